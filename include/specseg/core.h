@@ -1,0 +1,77 @@
+/* specseg — core types: status codes, error messages, the mesh and sparse-matrix structs.
+ *
+ * Conventions for the whole library:
+ *  - plain arrays in and out; the caller owns what it passes in; what a function allocates into an
+ *    output struct is released with the matching *_free function;
+ *  - every function that can fail returns an ss_status and, when `err` is not NULL, writes a
+ *    one-line message into it (files: "PATH:LINE: what"); the library never exits or aborts on input;
+ *  - 0-based indices everywhere; vertex arrays are xyz-interleaved (V[3*i+0..2]);
+ *  - dense matrices are column-major (Fortran / BLAS order) unless a function says otherwise;
+ *  - no global mutable state; OpenMP is used inside calls only. */
+#ifndef SPECSEG_CORE_H
+#define SPECSEG_CORE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum ss_status {
+  SS_OK = 0,
+  SS_ERR_IO = 1,        /* cannot open / read / write a file */
+  SS_ERR_PARSE = 2,     /* malformed file content */
+  SS_ERR_INVALID = 3,   /* invalid argument or mesh that cannot be processed */
+  SS_ERR_NOMEM = 4,     /* allocation failed */
+  SS_ERR_NUMERIC = 5,   /* factorisation / eigensolver / solver failure */
+  SS_ERR_UNSUPPORTED = 6
+} ss_status;
+
+typedef struct ss_error {
+  char msg[1024];
+} ss_error;
+
+/* printf-style; does nothing when e is NULL. Returns `code` so callers can `return ss_fail(...)`. */
+ss_status ss_fail(ss_error *e, ss_status code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+const char *ss_status_name(ss_status s);
+
+/* Triangle mesh: nv vertices (V, 3*nv doubles), nf triangles (F, 3*nf ints, 0-based). */
+typedef struct ss_mesh {
+  int nv, nf;
+  double *V;
+  int *F;
+} ss_mesh;
+
+ss_status ss_mesh_alloc(ss_mesh *m, int nv, int nf, ss_error *err); /* V, F uninitialised */
+ss_status ss_mesh_copy(const ss_mesh *src, ss_mesh *dst, ss_error *err);
+void ss_mesh_free(ss_mesh *m); /* frees arrays, zeroes the struct; safe on a zeroed struct */
+double ss_mesh_area(const ss_mesh *m);
+double ss_mesh_bbox_diagonal(const ss_mesh *m);
+
+/* Sparse matrix in compressed sparse column form, row indices sorted within each column.
+ * Symmetric matrices store both triangles. */
+typedef struct ss_sparse {
+  int nrows, ncols;
+  int *colptr;  /* ncols+1 */
+  int *rowind;  /* colptr[ncols] */
+  double *val;  /* colptr[ncols] */
+} ss_sparse;
+
+/* Build from (I[k], J[k], X[k]) triplets, summing duplicates. */
+ss_status ss_sparse_from_triplets(int nrows, int ncols, size_t nnz, const int *I, const int *J,
+                                  const double *X, ss_sparse *out, ss_error *err);
+void ss_sparse_free(ss_sparse *A);
+/* y = A x */
+void ss_sparse_matvec(const ss_sparse *A, const double *x, double *y);
+
+/* Wall-clock seconds (monotonic). */
+double ss_time(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,41 @@
+/* specseg — mesh and array file I/O. Readers never trust declared counts: they grow arrays as data
+ * arrives, check every index, and report "PATH:LINE: what" (or "PATH: byte OFFSET: what") on error. */
+#ifndef SPECSEG_IO_H
+#define SPECSEG_IO_H
+
+#include "specseg/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Read OFF, OBJ or PLY (chosen by extension, case-insensitive; falls back to content sniffing).
+ * OBJ polygons and OFF/PLY polygons are fan-triangulated; OBJ negative indices are relative. */
+ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
+ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
+ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
+ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
+
+/* Write by extension (.off or .ply). rgb: NULL or 3*nv bytes of per-vertex colour. */
+ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
+ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
+typedef enum ss_ply_format { SS_PLY_ASCII = 0, SS_PLY_BINARY_LE = 1, SS_PLY_BINARY_BE = 2 } ss_ply_format;
+ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_ply_format fmt,
+                       ss_error *err);
+
+/* NumPy .npy (format 1.0, '<f8', C order) of a rows x cols matrix given column-major in `a`. */
+ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
+/* Reads '<f8' or '>f8', C or Fortran order, 1-D or 2-D; returns a freshly malloc'd column-major array. */
+ss_status ss_read_npy(const char *path, double **a, int *rows, int *cols, ss_error *err);
+
+/* Text vectors: one value a line. Integers (labels, maps, landmark indices) and doubles (%.17g;
+ * "inf" allowed). Readers allocate *out with malloc and set *n; comments (#) and blank lines skipped. */
+ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err);
+ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err);
+ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err);
+ss_status ss_write_doubles(const char *path, const double *v, int n, ss_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Command (b): install what is missing, build (AddressSanitizer + UBSan), run the demo, run all tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh build-asan -DSS_SANITIZE=ON
+export ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1
+./build-asan/specseg demo -o build-asan/demo-out
+ctest --test-dir build-asan --output-on-failure -j2 --timeout 600
