@@ -10,13 +10,20 @@ extern "C" {
 #endif
 
 /* Read OFF, OBJ or PLY (chosen by extension, case-insensitive; falls back to content sniffing).
- * OBJ polygons and OFF/PLY polygons are fan-triangulated; OBJ negative indices are relative. */
+ * OBJ polygons and OFF/PLY polygons are fan-triangulated; OBJ negative indices are relative.
+ * OFF: optional [ST][C][N]OFF header, '#' comments, one vertex / one polygon a line, extra values
+ * (colours, normals) ignored. PLY: ascii / binary LE / binary BE, x y z of any numeric type, faces
+ * from the list `vertex_indices` (or `vertex_index`), everything else skipped. NaN/Inf coordinate
+ * literals are read as such (ss_mesh_check reports them). Files without faces, polygons with fewer
+ * than 3 vertices and out-of-range indices are errors (SS_ERR_PARSE). On failure *m is zeroed. */
 ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
 ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
 ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
 ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
 
-/* Write by extension (.off or .ply). rgb: NULL or 3*nv bytes of per-vertex colour. */
+/* Write by extension (.off or .ply; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
+ * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue).
+ * Coordinates are written losslessly (%.17g text, float64 binary): write -> read is exact. */
 ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 typedef enum ss_ply_format { SS_PLY_ASCII = 0, SS_PLY_BINARY_LE = 1, SS_PLY_BINARY_BE = 2 } ss_ply_format;
@@ -29,7 +36,8 @@ ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss
 ss_status ss_read_npy(const char *path, double **a, int *rows, int *cols, ss_error *err);
 
 /* Text vectors: one value a line. Integers (labels, maps, landmark indices) and doubles (%.17g;
- * "inf" allowed). Readers allocate *out with malloc and set *n; comments (#) and blank lines skipped. */
+ * "inf" allowed). Readers allocate *out with malloc and set *n; comments (#) and blank lines skipped.
+ * A line with two values, a non-number or an int out of range is an error "PATH:LINE: what". */
 ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err);
 ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err);

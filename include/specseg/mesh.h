@@ -25,15 +25,27 @@ typedef struct ss_mesh_report {
   int manifold;              /* 1 when no non-manifold edge or vertex */
 } ss_mesh_report;
 
+/* O(n log n). Faces with a repeated vertex index count as degenerate and are left out of the topology
+ * (edges, fans, loops, Euler characteristic); zero-area faces (height < 1e-14 x longest edge) with
+ * distinct vertices are counted as degenerate but kept, and so are duplicates (whose edges then show
+ * as non-manifold). Boundary loops are traced per vertex fan, so loops touching at a pinched vertex
+ * count separately. Fails (SS_ERR_INVALID) only on out-of-range indices or bad sizes. */
 ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err);
 
 /* Make a mesh the pipeline can process: drops degenerate/duplicate faces and unreferenced vertices,
  * splits pinched (non-manifold) vertices into one copy per fan. `to_input[i]` (malloc'd, out->nv
  * entries) gives the input vertex of each output vertex. Fails with SS_ERR_INVALID on NaN/Inf
  * coordinates, non-manifold edges that cannot be split, or an empty result. `warnings` (may be NULL)
- * receives a human-readable summary of what was changed ("" when nothing). */
+ * receives a human-readable summary of what was changed ("" when nothing).
+ * Output vertices keep the input order (copies of a split vertex are adjacent) and faces keep their
+ * order and orientation, so a mesh that needs no repair comes back identical with to_input = identity.
+ * Non-finite coordinates are an error only on vertices that a kept face uses. */
 ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char *warnings,
                            size_t warnings_size, ss_error *err);
+
+/* 1->4 midpoint subdivision (each edge split at its midpoint, no smoothing): nv + #edges vertices,
+ * 4 nf faces; input vertices keep their indices. `out` is allocated (free with ss_mesh_free). */
+ss_status ss_mesh_subdivide(const ss_mesh *in, ss_mesh *out, ss_error *err);
 
 /* Synthetic shapes (deterministic). */
 ss_status ss_synth_icosphere(int subdivisions, ss_mesh *m, ss_error *err); /* unit sphere */
@@ -42,6 +54,8 @@ ss_status ss_synth_torus(double R, double r, int nu, int nv, ss_mesh *m, ss_erro
  * share one connectivity and vertex order (ground truth = identity). pose 0 is the rest pose. */
 ss_status ss_synth_humanoid(int pose, ss_mesh *m, ss_error *err);
 int ss_synth_humanoid_pose_count(void);
+/* One-line description of a pose ("?" when out of range). */
+const char *ss_synth_humanoid_pose_name(int pose);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,22 @@
+/* Internal to the mesh readers: the per-format parsers over a loaded buffer. Not public API. */
+#ifndef SS_IO_INTERNAL_H
+#define SS_IO_INTERNAL_H
+
+#include <stdint.h>
+
+#include "specseg/core.h"
+#include "util/io_text.h"
+
+/* Largest vertex / face count any reader accepts (3*n must fit an int for index arithmetic). */
+#define IO_MAX_ELEMENTS (INT32_MAX / 3)
+
+/* Parsers over an already loaded buffer (path only for messages). On success *m owns the data.
+ * Meshes without faces are rejected: everything downstream needs triangles. */
+ss_status io_parse_off(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+ss_status io_parse_obj(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+
+/* Moves grown arrays into a mesh (shrinks to fit; frees the vectors). */
+ss_status io_finish_mesh(io_dvec *V, io_ivec *F, ss_mesh *m, const char *path, ss_error *err);
+
+#endif

@@ -1,0 +1,47 @@
+/* Internal: edge incidence and vertex fans of a triangle soup, shared by ss_mesh_check and
+ * ss_mesh_sanitize. Built by sorting half-edge keys (O(n log n)) and union-find over face corners.
+ * Not public API. */
+#ifndef SS_MESH_TOPOLOGY_H
+#define SS_MESH_TOPOLOGY_H
+
+#include <stdint.h>
+
+#include "specseg/core.h"
+
+/* 0: proper triangle; 1: repeated vertex index; 2: zero area (relative to its longest edge). */
+int topo_face_degenerate(const ss_mesh *m, int f);
+
+/* Index range check: SS_ERR_INVALID naming the first bad face. */
+ss_status topo_check_indices(const ss_mesh *m, ss_error *err);
+
+/* Face vertex sets for duplicate detection: v sorted ascending, f the face index. */
+typedef struct topo_tri {
+  int v[3];
+  int f;
+} topo_tri;
+/* Sorts by (v[0], v[1], v[2], f) in O(n + nv) plus small per-vertex insertion sorts; equal vertex sets
+ * end up adjacent with the lowest face index first. 0 ok, -1 out of memory. */
+int topo_sort_tris(topo_tri *t, size_t n, int nv);
+/* Fills t[] (sorted vertex sets) for the faces with three distinct indices where use is NULL or set. */
+size_t topo_collect_tris(const ss_mesh *m, const unsigned char *use, topo_tri *t);
+
+typedef struct topo {
+  int nf;
+  int nedges;            /* distinct undirected edges of the used faces */
+  int boundary_edges;    /* edges with one incident face */
+  int nonmanifold_edges; /* edges with more than two */
+  int first_nm_a, first_nm_b, first_nm_count; /* the first non-manifold edge found (for messages) */
+  /* corner c = 3*f + j (vertex F[c]); fan[c] = representative corner of the fan of faces around F[c]
+   * that contains face f (faces glued across edges they share); -1 for faces not used. Faces on a
+   * non-manifold edge are glued together too, so a "fan" count > 1 means a pinch. */
+  int *fan;
+  /* loop[c]: representative of the boundary loop through the fan of corner c, -1 when that fan has
+   * no boundary edge. */
+  int *loop;
+} topo;
+
+/* use: NULL (all faces) or nf flags; faces with a repeated vertex index are always left out. */
+ss_status topo_build(const ss_mesh *m, const unsigned char *use, topo *T, ss_error *err);
+void topo_free(topo *T);
+
+#endif

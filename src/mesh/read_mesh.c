@@ -1,0 +1,79 @@
+/* Format dispatch for mesh reading (extension first, then content sniffing) and the shared
+ * hand-over of grown arrays into an ss_mesh. */
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh/io_internal.h"
+#include "specseg/io.h"
+
+ss_status io_finish_mesh(io_dvec *V, io_ivec *F, ss_mesh *m, const char *path, ss_error *err) {
+  memset(m, 0, sizeof *m);
+  if (F->n == 0) return ss_fail(err, SS_ERR_PARSE, "%s: mesh has no faces", path);
+  if (V->n == 0) return ss_fail(err, SS_ERR_PARSE, "%s: mesh has no vertices", path);
+  /* shrink to fit: the geometric growth may have over-allocated up to 2x */
+  double *Va = realloc(V->a, V->n * sizeof(double));
+  if (Va) V->a = Va;
+  int *Fa = realloc(F->a, F->n * sizeof(int));
+  if (Fa) F->a = Fa;
+  m->nv = (int)(V->n / 3);
+  m->nf = (int)(F->n / 3);
+  m->V = V->a;
+  m->F = F->a;
+  V->a = NULL;
+  F->a = NULL;
+  V->n = V->cap = F->n = F->cap = 0;
+  return SS_OK;
+}
+
+static int ext_is(const char *path, const char *ext) {
+  const char *dot = strrchr(path, '.');
+  const char *slash = strrchr(path, '/');
+  if (!dot || (slash && dot < slash)) return 0;
+  dot++;
+  size_t n = strlen(ext);
+  if (strlen(dot) != n) return 0;
+  for (size_t i = 0; i < n; i++)
+    if (tolower((unsigned char)dot[i]) != ext[i]) return 0;
+  return 1;
+}
+
+/* Content sniffing for files without a known extension. */
+static int sniff(const char *buf, size_t len) {
+  if (len >= 4 && !memcmp(buf, "ply", 3) && (buf[3] == '\n' || buf[3] == '\r')) return 'p';
+  io_text t;
+  io_text_init(&t, buf, len);
+  const char *b, *e, *p, *tb;
+  size_t tl;
+  for (int lines = 0; lines < 1000 && io_text_line(&t, &b, &e); lines++) {
+    p = b;
+    if (!io_token(&p, e, 1, &tb, &tl)) continue;
+    if (tl >= 3 && !memcmp(tb + tl - 3, "OFF", 3)) return 'o';
+    if (io_tok_eq(tb, tl, "v") || io_tok_eq(tb, tl, "f") || io_tok_eq(tb, tl, "vn") || io_tok_eq(tb, tl, "vt") ||
+        io_tok_eq(tb, tl, "g") || io_tok_eq(tb, tl, "o") || io_tok_eq(tb, tl, "mtllib"))
+      return 'j';
+    long long x;
+    if (!io_parse_ll(tb, tl, &x)) return 'o'; /* OFF without its header starts with the counts */
+    return 0;
+  }
+  return 0;
+}
+
+ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
+  memset(m, 0, sizeof *m);
+  char *buf;
+  size_t len;
+  ss_status st = io_slurp(path, &buf, &len, err);
+  if (st) return st;
+  int kind = ext_is(path, "off") ? 'o' : ext_is(path, "obj") ? 'j' : ext_is(path, "ply") ? 'p' : sniff(buf, len);
+  switch (kind) {
+    case 'o': st = io_parse_off(path, buf, len, m, err); break;
+    case 'j': st = io_parse_obj(path, buf, len, m, err); break;
+    case 'p': st = io_parse_ply(path, buf, len, m, err); break;
+    default:
+      st = len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", path)
+                    : ss_fail(err, SS_ERR_UNSUPPORTED, "%s:1: unknown mesh format (expected OFF, OBJ or PLY)", path);
+  }
+  free(buf);
+  return st;
+}

@@ -1,0 +1,43 @@
+/* PNG output through libpng. */
+#include "specseg/render.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+#ifdef SS_HAVE_PNG
+#include <png.h>
+#include <setjmp.h>
+
+ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err) {
+  if (width < 1 || height < 1) return ss_fail(err, SS_ERR_INVALID, "%s: empty image", path);
+  FILE *f = fopen(path, "wb");
+  if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  png_infop info = png ? png_create_info_struct(png) : NULL;
+  if (!png || !info) {
+    png_destroy_write_struct(&png, &info);
+    fclose(f);
+    return ss_fail(err, SS_ERR_NOMEM, "%s: cannot create the PNG writer", path);
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    fclose(f);
+    return ss_fail(err, SS_ERR_IO, "%s: PNG write failed", path);
+  }
+  png_init_io(png, f);
+  png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < height; y++) png_write_row(png, (png_const_bytep)(rgb + 3 * (size_t)y * width));
+  png_write_end(png, NULL);
+  png_destroy_write_struct(&png, &info);
+  if (fclose(f) != 0) return ss_fail(err, SS_ERR_IO, "%s: write failed: %s", path, strerror(errno));
+  return SS_OK;
+}
+#else
+ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err) {
+  (void)rgb; (void)width; (void)height;
+  return ss_fail(err, SS_ERR_UNSUPPORTED, "%s: built without libpng", path);
+}
+#endif

@@ -1,0 +1,101 @@
+/* Text vectors: one value a line, '#' comments and blank lines skipped. Used for labels, maps,
+ * landmark lists and per-vertex fields. Doubles are written with %.17g (exact round trip). */
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "specseg/io.h"
+#include "util/io_text.h"
+
+/* Shared reader: parses one value per content line into a growing array of doubles or ints. */
+static ss_status read_values(const char *path, int as_int, void **out, int *n, ss_error *err) {
+  *out = NULL;
+  *n = 0;
+  char *buf;
+  size_t len;
+  ss_status st = io_slurp(path, &buf, &len, err);
+  if (st) return st;
+  io_text t;
+  io_text_init(&t, buf, len);
+  io_dvec dv = {0};
+  io_ivec iv = {0};
+  const char *b, *e, *p, *tb;
+  size_t tl;
+  char show[48];
+  while (!st && io_text_line(&t, &b, &e)) {
+    p = b;
+    if (!io_token(&p, e, 1, &tb, &tl)) continue;
+    size_t count = as_int ? iv.n : dv.n;
+    if (count >= INT_MAX) {
+      st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "too many values");
+      break;
+    }
+    if (as_int) {
+      long long v;
+      if (io_parse_ll(tb, tl, &v) || v < INT_MIN || v > INT_MAX)
+        st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "'%s' is not an integer in range", io_tok_show(tb, tl, show, sizeof show));
+      else if (io_ivec_push(&iv, (int)v))
+        st = io_fail_line(err, SS_ERR_NOMEM, path, t.line, "out of memory");
+    } else {
+      double v;
+      if (io_parse_double(tb, tl, &v))
+        st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "'%s' is not a number", io_tok_show(tb, tl, show, sizeof show));
+      else if (io_dvec_push(&dv, v))
+        st = io_fail_line(err, SS_ERR_NOMEM, path, t.line, "out of memory");
+    }
+    if (!st && !io_line_blank(p, e, 1))
+      st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "more than one value on the line");
+  }
+  free(buf);
+  if (st) {
+    free(dv.a);
+    free(iv.a);
+    return st;
+  }
+  void *a = as_int ? (void *)iv.a : (void *)dv.a;
+  size_t cnt = as_int ? iv.n : dv.n;
+  if (!a) a = malloc(sizeof(double)); /* a valid (empty) array even for an empty file */
+  if (!a) return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", path);
+  *out = a;
+  *n = (int)cnt;
+  return SS_OK;
+}
+
+ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err) {
+  void *a;
+  ss_status st = read_values(path, 1, &a, n, err);
+  *out = st ? NULL : (int *)a;
+  return st;
+}
+
+ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err) {
+  void *a;
+  ss_status st = read_values(path, 0, &a, n, err);
+  *out = st ? NULL : (double *)a;
+  return st;
+}
+
+static ss_status write_values(const char *path, const int *iv, const double *dv, int n, ss_error *err) {
+  if (n < 0 || (n > 0 && !iv && !dv)) return ss_fail(err, SS_ERR_INVALID, "%s: invalid vector (n = %d)", path, n);
+  FILE *f = fopen(path, "wb");
+  if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
+  for (int i = 0; i < n && !ferror(f); i++) {
+    if (iv) fprintf(f, "%d\n", iv[i]);
+    else fprintf(f, "%.17g\n", dv[i]);
+  }
+  int bad = ferror(f);
+  int e = errno;
+  if (fclose(f) != 0 && !bad) {
+    bad = 1;
+    e = errno;
+  }
+  if (bad) return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e));
+  return SS_OK;
+}
+
+ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err) { return write_values(path, v, NULL, n, err); }
+ss_status ss_write_doubles(const char *path, const double *v, int n, ss_error *err) {
+  return write_values(path, NULL, v, n, err);
+}
