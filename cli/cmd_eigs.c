@@ -1,3 +1,150 @@
+/* specseg eigs MESH -k K [--evecs FILE.npy] [--mass barycentric|voronoi] [--sigma S]
+ * Prints the k smallest Laplace–Beltrami eigenvalues, one a line (%.17g). */
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
 #include "cli.h"
-/* PLACEHOLDER — to be replaced by the real subcommand. */
-int cmd_eigs(int argc, char **argv) { (void)argc; (void)argv; return cli_error("eigs: not implemented yet"); }
+
+#define EIGS_USAGE "specseg eigs MESH -k K [--evecs FILE.npy] [--mass barycentric|voronoi] [--sigma S]"
+
+/* Rows/columns of W for the vertices with keep[i] >= 0 (keep[i] = new index). */
+static int restrict_matrix(const ss_sparse *W, const int *keep, int nkeep, ss_sparse *out) {
+  memset(out, 0, sizeof *out);
+  out->nrows = out->ncols = nkeep;
+  out->colptr = malloc(sizeof(int) * ((size_t)nkeep + 1));
+  out->rowind = malloc(sizeof(int) * ((size_t)W->colptr[W->ncols] + 1));
+  out->val = malloc(sizeof(double) * ((size_t)W->colptr[W->ncols] + 1));
+  if (!out->colptr || !out->rowind || !out->val) return -1;
+  int q = 0;
+  for (int j = 0; j < W->ncols; j++) {
+    if (keep[j] < 0) continue;
+    out->colptr[keep[j]] = q;
+    for (int p = W->colptr[j]; p < W->colptr[j + 1]; p++)
+      if (keep[W->rowind[p]] >= 0) {
+        out->rowind[q] = keep[W->rowind[p]];
+        out->val[q++] = W->val[p];
+      }
+  }
+  out->colptr[nkeep] = q;
+  return 0;
+}
+
+int cmd_eigs(int argc, char **argv) {
+  const char *mesh_path = NULL, *evecs_path = NULL;
+  int k = -1;
+  ss_mass_kind mass = SS_MASS_BARYCENTRIC;
+  ss_eigs_options opt;
+  ss_eigs_default_options(&opt);
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      printf("usage: %s\n", EIGS_USAGE);
+      return SS_EXIT_OK;
+    } else if (!strcmp(a, "-k")) {
+      if (i + 1 >= argc || cli_parse_int(argv[i + 1], 1, INT_MAX, &k))
+        return cli_usage("eigs: -k needs a positive integer\n  " EIGS_USAGE);
+      i++;
+    } else if (!strcmp(a, "--evecs")) {
+      if (i + 1 >= argc) return cli_usage("eigs: --evecs needs a file name\n  " EIGS_USAGE);
+      evecs_path = argv[++i];
+    } else if (!strcmp(a, "--mass")) {
+      if (i + 1 >= argc) return cli_usage("eigs: --mass needs barycentric or voronoi\n  " EIGS_USAGE);
+      const char *v = argv[++i];
+      if (!strcmp(v, "barycentric")) mass = SS_MASS_BARYCENTRIC;
+      else if (!strcmp(v, "voronoi")) mass = SS_MASS_VORONOI;
+      else return cli_usage("eigs: --mass must be barycentric or voronoi, not '%s'", v);
+    } else if (!strcmp(a, "--sigma")) {
+      if (i + 1 >= argc || cli_parse_double(argv[i + 1], &opt.sigma) || !(opt.sigma > -1e308 && opt.sigma < 1e308))
+        return cli_usage("eigs: --sigma needs a finite number\n  " EIGS_USAGE);
+      i++;
+    } else if (a[0] == '-' && a[1] != 0) {
+      return cli_usage("eigs: unknown option '%s'\n  " EIGS_USAGE, a);
+    } else if (!mesh_path) {
+      mesh_path = a;
+    } else {
+      return cli_usage("eigs: more than one mesh given ('%s', '%s')\n  " EIGS_USAGE, mesh_path, a);
+    }
+  }
+  if (!mesh_path) return cli_usage("eigs: no mesh given\n  " EIGS_USAGE);
+  if (k < 0) return cli_usage("eigs: -k K is required\n  " EIGS_USAGE);
+
+  ss_error err;
+  ss_mesh m = {0};
+  if (ss_read_mesh(mesh_path, &m, &err) != SS_OK) return cli_error("%s", err.msg);
+  if (k >= m.nv) {
+    int nv = m.nv;
+    ss_mesh_free(&m);
+    return cli_usage("eigs: -k %d must be smaller than the number of vertices (%d)", k, nv);
+  }
+
+  int rc = SS_EXIT_FAIL;
+  ss_sparse W = {0}, Wk = {0};
+  double *M = malloc(sizeof(double) * (size_t)m.nv), *Mk = NULL, *evals = NULL, *X = NULL, *Xk = NULL;
+  int *keep = malloc(sizeof(int) * (size_t)m.nv);
+  if (!M || !keep) { cli_error("out of memory"); goto out; }
+  if (ss_cotan_stiffness(&m, &W, &err) || ss_mass_lumped(&m, mass, M, &err)) {
+    cli_error("%s: %s", mesh_path, err.msg);
+    goto out;
+  }
+  /* Vertices with no area (unreferenced, or only in degenerate faces) have no W entries either:
+   * solve on the others and report 0 for them, rather than refusing the mesh. */
+  int nkeep = 0;
+  for (int i = 0; i < m.nv; i++) keep[i] = M[i] > 0 ? nkeep++ : -1;
+  const ss_sparse *Wuse = &W;
+  const double *Muse = M;
+  if (nkeep < m.nv) {
+    for (int j = 0; j < m.nv; j++)
+      if (keep[j] < 0)
+        for (int p = W.colptr[j]; p < W.colptr[j + 1]; p++)
+          if (W.val[p] != 0 && W.val[p] == W.val[p]) {
+            cli_error("%s: vertex %d has zero area but non-zero stiffness", mesh_path, j);
+            goto out;
+          }
+    if (k >= nkeep) {
+      cli_error("%s: only %d vertices have positive area; -k %d is too large", mesh_path, nkeep, k);
+      goto out;
+    }
+    cli_warn("%s: %d vertices have zero area (unreferenced or only in degenerate faces); their eigenvector "
+             "entries are 0",
+             mesh_path, m.nv - nkeep);
+    Mk = malloc(sizeof(double) * (size_t)nkeep);
+    if (!Mk || restrict_matrix(&W, keep, nkeep, &Wk)) { cli_error("out of memory"); goto out; }
+    for (int i = 0; i < m.nv; i++)
+      if (keep[i] >= 0) Mk[keep[i]] = M[i];
+    Wuse = &Wk;
+    Muse = Mk;
+  }
+  evals = malloc(sizeof(double) * (size_t)k);
+  Xk = malloc(sizeof(double) * (size_t)nkeep * (size_t)k);
+  if (!evals || !Xk) { cli_error("out of memory for %d eigenvectors", k); goto out; }
+  if (ss_eigs(Wuse, Muse, k, &opt, evals, Xk, &err) != SS_OK) {
+    cli_error("%s: %s", mesh_path, err.msg);
+    goto out;
+  }
+  if (evecs_path) {
+    const double *out = Xk;
+    if (nkeep < m.nv) {
+      X = calloc((size_t)m.nv * (size_t)k, sizeof(double));
+      if (!X) { cli_error("out of memory"); goto out; }
+      for (size_t j = 0; j < (size_t)k; j++)
+        for (int i = 0; i < m.nv; i++)
+          if (keep[i] >= 0) X[(size_t)i + (size_t)m.nv * j] = Xk[(size_t)keep[i] + (size_t)nkeep * j];
+      out = X;
+    }
+    if (ss_write_npy(evecs_path, out, m.nv, k, &err) != SS_OK) {
+      cli_error("%s", err.msg);
+      goto out;
+    }
+  }
+  for (int j = 0; j < k; j++) printf("%.17g\n", evals[j]);
+  if (fflush(stdout) != 0) { cli_error("cannot write to standard output"); goto out; }
+  rc = SS_EXIT_OK;
+out:
+  ss_sparse_free(&W);
+  ss_sparse_free(&Wk);
+  free(M); free(Mk); free(keep); free(evals); free(X); free(Xk);
+  ss_mesh_free(&m);
+  return rc;
+}

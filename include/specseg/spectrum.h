@@ -18,10 +18,22 @@ typedef struct ss_eigs_options {
 void ss_eigs_default_options(ss_eigs_options *o);
 
 /* W: symmetric n x n (both triangles stored); M: n positive lumped masses. Writes the k smallest
- * eigenvalues ascending into evals[k] and M-orthonormal eigenvectors, column-major n x k, into evecs.
- * opts may be NULL for defaults. */
+ * eigenvalues ascending into evals[k] and M-orthonormal eigenvectors, column-major n x k, into evecs
+ * (evecs may be NULL when only eigenvalues are wanted). opts may be NULL for defaults.
+ * More precisely: the k eigenvalues nearest sigma (as scipy's eigsh(..., sigma=σ)), which for the
+ * default σ just below 0 are the k smallest. Needs 1 <= k < n. Deterministic (fixed start vector).
+ * Errors: SS_ERR_INVALID (bad k, sizes, non-positive or non-finite mass, bad options),
+ * SS_ERR_NUMERIC (singular shifted matrix, no convergence, ARPACK failure), SS_ERR_NOMEM.
+ * For sigma <= 0 the λ = 0 pairs of components on which W annihilates constants (any Laplacian) are
+ * returned exactly (φ = 1/sqrt(component area) on the component) and deflated from the Lanczos
+ * operator. With the environment variable SS_EIGS_VERBOSE set, a timing breakdown goes to stderr. */
 ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_options *opts, double *evals,
                   double *evecs, ss_error *err);
+
+/* Accuracy of computed pairs: max over i of ||W φ_i − λ_i M φ_i|| / ((|λ_i|+1) ||M φ_i||) and
+ * max |ΦᵀMΦ − I|. Either output pointer may be NULL. */
+ss_status ss_eigs_check(const ss_sparse *W, const double *M, int k, const double *evals, const double *evecs,
+                        double *max_rel_residual, double *max_orth_error, ss_error *err);
 
 /* Convenience: W, M (barycentric) of the mesh, then ss_eigs. */
 ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss_error *err);

@@ -1,0 +1,180 @@
+/* Sparse symmetric factorisation with CHOLMOD. Simplicial LDL^T: on these mesh matrices its
+ * solves were ~3x faster than supernodal ones (shared/design/paper-notes.md), and LDL^T also
+ * copes with an indefinite shift (sigma inside the spectrum). */
+#include "linalg/cholmod_wrap.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <suitesparse/cholmod.h>
+
+struct ss_chol {
+  cholmod_common cc;
+  cholmod_factor *L;
+  cholmod_dense *X, *Y, *E; /* solve workspaces, reused across calls */
+  int n;
+};
+
+int ss_chol_size(const ss_chol *c) { return c->n; }
+double ss_chol_nnz(const ss_chol *c) {
+  if (!c->L || !c->L->p) return 0;
+  const int *p = c->L->p;
+  return (double)p[c->n];
+}
+
+void ss_chol_free(ss_chol *c) {
+  if (!c) return;
+  if (c->L) cholmod_free_factor(&c->L, &c->cc);
+  if (c->X) cholmod_free_dense(&c->X, &c->cc);
+  if (c->Y) cholmod_free_dense(&c->Y, &c->cc);
+  if (c->E) cholmod_free_dense(&c->E, &c->cc);
+  cholmod_finish(&c->cc);
+  free(c);
+}
+
+/* Upper triangle of A + alpha*diag(d) as a CHOLMOD matrix, with a diagonal entry in every column. */
+static ss_status shifted_upper(const ss_sparse *A, double alpha, const double *d, cholmod_common *cc,
+                               cholmod_sparse **out, ss_error *err) {
+  int n = A->ncols;
+  size_t nz = 0;
+  for (int j = 0; j < n; j++) {
+    for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++)
+      if (A->rowind[p] < j) nz++;
+    nz++; /* the diagonal, present or not in A */
+  }
+  cholmod_sparse *S = cholmod_allocate_sparse((size_t)n, (size_t)n, nz, 1, 1, 1, CHOLMOD_REAL, cc);
+  if (!S) return ss_fail(err, SS_ERR_NOMEM, "out of memory for a %d x %d sparse matrix", n, n);
+  int *Sp = S->p, *Si = S->i;
+  double *Sx = S->x;
+  size_t q = 0;
+  for (int j = 0; j < n; j++) {
+    Sp[j] = (int)q;
+    double diag = (d ? alpha * d[j] : 0.0);
+    for (int p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
+      int i = A->rowind[p];
+      double v = A->val[p];
+      if (!isfinite(v)) {
+        cholmod_free_sparse(&S, cc);
+        return ss_fail(err, SS_ERR_INVALID, "matrix entry (%d,%d) is not finite", i, j);
+      }
+      if (i < j) { Si[q] = i; Sx[q] = v; q++; }
+      else if (i == j) diag += v;
+    }
+    Si[q] = j; Sx[q] = diag; q++;
+  }
+  Sp[n] = (int)q;
+  *out = S;
+  return SS_OK;
+}
+
+ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_chol **out, ss_error *err) {
+  *out = NULL;
+  if (!A || A->nrows != A->ncols || A->nrows < 1)
+    return ss_fail(err, SS_ERR_INVALID, "factorisation needs a non-empty square matrix");
+  int n = A->ncols;
+  ss_chol *c = calloc(1, sizeof *c);
+  if (!c) return ss_fail(err, SS_ERR_NOMEM, "out of memory for a factorisation");
+  c->n = n;
+  cholmod_start(&c->cc);
+  c->cc.print = 0;
+  c->cc.error_handler = NULL;
+  c->cc.supernodal = CHOLMOD_SIMPLICIAL;
+  c->cc.final_ll = 0;
+
+  cholmod_sparse *S = NULL;
+  ss_status st = shifted_upper(A, alpha, d, &c->cc, &S, err);
+  if (st) {
+    ss_chol_free(c);
+    return st;
+  }
+  c->L = cholmod_analyze(S, &c->cc);
+  if (!c->L) {
+    int st = c->cc.status;
+    cholmod_free_sparse(&S, &c->cc);
+    ss_chol_free(c);
+    return ss_fail(err, st == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                   "CHOLMOD analysis failed (status %d)", st);
+  }
+  int ok = cholmod_factorize(S, c->L, &c->cc);
+  cholmod_free_sparse(&S, &c->cc);
+  if (!ok || c->cc.status == CHOLMOD_OUT_OF_MEMORY) {
+    int st = c->cc.status;
+    ss_chol_free(c);
+    return ss_fail(err, st == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                   "CHOLMOD factorisation failed (status %d)", st);
+  }
+  if (c->L->minor < (size_t)n) {
+    size_t minor = c->L->minor;
+    ss_chol_free(c);
+    return ss_fail(err, SS_ERR_NUMERIC, "factorisation broke down at column %zu: matrix is singular (choose another shift)",
+                   minor);
+  }
+  /* LDL^T keeps D on the factor's diagonal (first entry of each column). Only zero or non-finite
+   * pivots are fatal: a tiny pivot (shift very close to an eigenvalue) is exactly what shift-invert
+   * thrives on, and callers judge the final residuals. */
+  const int *Lp = c->L->p;
+  const double *Lx = c->L->x;
+  for (int j = 0; j < n; j++) {
+    double dj = Lx[Lp[j]];
+    if (!isfinite(dj) || dj == 0.0) {
+      ss_chol_free(c);
+      return ss_fail(err, SS_ERR_NUMERIC,
+                     "shifted matrix is singular (pivot %g at column %d); choose another shift", dj, j);
+    }
+  }
+  *out = c;
+  return SS_OK;
+}
+
+ss_status ss_chol_solve(ss_chol *c, const double *B, double *X, int nrhs, ss_error *err) {
+  if (nrhs < 1) return SS_OK;
+  cholmod_dense b;
+  memset(&b, 0, sizeof b);
+  b.nrow = (size_t)c->n;
+  b.ncol = (size_t)nrhs;
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = (void *)B;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  if (!cholmod_solve2(CHOLMOD_A, c->L, &b, NULL, &c->X, NULL, &c->Y, &c->E, &c->cc))
+    return ss_fail(err, c->cc.status == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                   "CHOLMOD solve failed (status %d)", c->cc.status);
+  memcpy(X, c->X->x, sizeof(double) * b.nzmax);
+  return SS_OK;
+}
+
+
+ss_status ss_chol_inertia(ss_chol *c, const ss_sparse *A, double alpha, const double *d, int *negative,
+                          ss_error *err) {
+  if (!A || A->ncols != c->n || A->nrows != c->n) return ss_fail(err, SS_ERR_INVALID, "inertia: size mismatch");
+  cholmod_sparse *S = NULL;
+  ss_status st = shifted_upper(A, alpha, d, &c->cc, &S, err);
+  if (st) return st;
+  /* same pattern, same ordering: refactor a copy of the factor, no new analysis */
+  cholmod_factor *L2 = cholmod_copy_factor(c->L, &c->cc);
+  if (!L2) {
+    cholmod_free_sparse(&S, &c->cc);
+    return ss_fail(err, SS_ERR_NOMEM, "inertia: out of memory");
+  }
+  int ok = cholmod_factorize(S, L2, &c->cc);
+  cholmod_free_sparse(&S, &c->cc);
+  if (!ok || L2->minor < (size_t)c->n || L2->is_super || L2->is_ll) {
+    cholmod_free_factor(&L2, &c->cc);
+    return ss_fail(err, SS_ERR_NUMERIC, "inertia: LDL^T factorisation broke down");
+  }
+  const int *Lp = L2->p;
+  const double *Lx = L2->x;
+  int neg = 0;
+  for (int j = 0; j < c->n; j++) {
+    double dj = Lx[Lp[j]];
+    if (!isfinite(dj) || dj == 0.0) {
+      cholmod_free_factor(&L2, &c->cc);
+      return ss_fail(err, SS_ERR_NUMERIC, "inertia: zero pivot");
+    }
+    neg += dj < 0;
+  }
+  cholmod_free_factor(&L2, &c->cc);
+  *negative = neg;
+  return SS_OK;
+}
