@@ -22,5 +22,8 @@ int cli_parse_double(const char *s, double *out);
 int cmd_info(int argc, char **argv);
 int cmd_eigs(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
+int cmd_smooth(int argc, char **argv);
+int cmd_remesh(int argc, char **argv);
+int cmd_geodesic(int argc, char **argv);
 
 #endif

@@ -66,6 +66,9 @@ static const command commands[] = {
     {"info", cmd_info, "MESH                      mesh statistics and checks"},
     {"eigs", cmd_eigs, "MESH -k K [--evecs F.npy]  Laplace-Beltrami eigenvalues"},
     {"demo", cmd_demo, "[-o DIR]                  the pipeline on built-in synthetic shapes"},
+    {"smooth", cmd_smooth, "MESH -o OUT [--steps N] [--dt D]  conformalized mean curvature flow"},
+    {"remesh", cmd_remesh, "MESH -o OUT [--faces N]   isotropic remeshing"},
+    {"geodesic", cmd_geodesic, "MESH --source I [--source J ...] [--method exact|graph|edge] [--max-dist D] -o DIST.txt"},
 };
 
 static void print_help(FILE *f) {

@@ -6,6 +6,7 @@
 #include "specseg/io.h"
 #include "specseg/mesh.h"
 #include "specseg/laplacian.h"
+#include "specseg/streamline.h"
 #include "specseg/spectrum.h"
 #include "specseg/geodesic.h"
 #endif

@@ -1,0 +1,27 @@
+/* Internal: the exact propagation engine and its reusable per-thread workspace. */
+#ifndef SS_GEODESIC_VTP_H
+#define SS_GEODESIC_VTP_H
+
+#include "geodesic/geodesic_mesh.h"
+
+typedef struct ss_vtp_ws ss_vtp_ws;
+
+ss_vtp_ws *ss_vtp_ws_new(int nv, int nf);
+void ss_vtp_ws_free(ss_vtp_ws *ws);
+
+/* One propagation. dist (nv) receives the distances. max_dist <= 0 / INFINITY: no limit. targets
+ * may be NULL; when given, propagation stops once all are settled. Returns SS_ERR_NOMEM or
+ * SS_ERR_INVALID (bad source / target index); `settled_radius` (may be NULL) receives the queue key
+ * at stop: every vertex with dist <= that value is exact. */
+ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sources, int nsources,
+                     double max_dist, const int *targets, int ntargets, double *dist,
+                     double *settled_radius, ss_error *err);
+
+/* Counters of the last run (for benchmarks). */
+typedef struct ss_vtp_stats {
+  long long windows_created, windows_propagated, events;
+  size_t peak_heap, peak_windows;
+} ss_vtp_stats;
+void ss_vtp_ws_stats(const ss_vtp_ws *ws, ss_vtp_stats *st);
+
+#endif

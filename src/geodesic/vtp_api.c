@@ -1,0 +1,138 @@
+/* Public entry points of the exact geodesic engine: single run, target early stop, batches. */
+#include "geodesic/vtp.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+ss_status ss_vtp_distances(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
+                           double *dist, ss_error *err) {
+  if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
+  ss_vtp_ws *ws = ss_vtp_ws_new(gm->nv, gm->nf);
+  if (!ws) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
+  ss_status st = ss_vtp_run(gm, ws, sources, nsources, max_dist, NULL, 0, dist, NULL, err);
+  ss_vtp_ws_free(ws);
+  return st;
+}
+
+ss_status ss_vtp_distances_targets(const ss_geodesic_mesh *gm, const int *sources, int nsources,
+                                   const int *targets, int ntargets, double *dist, ss_error *err) {
+  if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
+  if (ntargets < 0 || (ntargets > 0 && !targets)) return ss_fail(err, SS_ERR_INVALID, "invalid target list");
+  ss_vtp_ws *ws = ss_vtp_ws_new(gm->nv, gm->nf);
+  if (!ws) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
+  ss_status st = ss_vtp_run(gm, ws, sources, nsources, 0, targets, ntargets, dist, NULL, err);
+  ss_vtp_ws_free(ws);
+  return st;
+}
+
+ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
+                             double *dist, ss_error *err) {
+  if (!gm || nsources < 0 || (nsources > 0 && (!sources || !dist)))
+    return ss_fail(err, SS_ERR_INVALID, "invalid arguments to ss_geodesic_fields");
+  for (int i = 0; i < nsources; i++)
+    if (sources[i] < 0 || sources[i] >= gm->nv)
+      return ss_fail(err, SS_ERR_INVALID, "source vertex %d outside [0,%d)", sources[i], gm->nv);
+  int failed = 0;
+#pragma omp parallel
+  {
+    ss_vtp_ws *ws = ss_vtp_ws_new(gm->nv, gm->nf);
+    if (!ws) {
+#pragma omp atomic write
+      failed = 1;
+    }
+#pragma omp for schedule(dynamic, 1)
+    for (int j = 0; j < nsources; j++) {
+      if (!ws) continue;
+      if (ss_vtp_run(gm, ws, sources + j, 1, max_dist, NULL, 0, dist + (size_t)j * gm->nv, NULL, NULL)) {
+#pragma omp atomic write
+        failed = 1;
+      }
+    }
+    ss_vtp_ws_free(ws);
+  }
+  if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic fields");
+  return SS_OK;
+}
+
+typedef struct {
+  int src, idx;
+} pair_ref;
+
+static int cmp_pair(const void *x, const void *y) {
+  const pair_ref *a = x, *b = y;
+  if (a->src != b->src) return a->src < b->src ? -1 : 1;
+  return (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const int *dst, int npairs,
+                            double *out, ss_error *err) {
+  if (!gm || npairs < 0 || (npairs > 0 && (!src || !dst || !out)))
+    return ss_fail(err, SS_ERR_INVALID, "invalid arguments to ss_geodesic_pairs");
+  int nv = gm->nv;
+  for (int i = 0; i < npairs; i++)
+    if (src[i] < 0 || src[i] >= nv || dst[i] < 0 || dst[i] >= nv)
+      return ss_fail(err, SS_ERR_INVALID, "pair %d (%d,%d) outside [0,%d)", i, src[i], dst[i], nv);
+  if (npairs == 0) return SS_OK;
+  pair_ref *pr = malloc(sizeof(pair_ref) * (size_t)npairs);
+  int *groups = malloc(sizeof(int) * ((size_t)npairs + 1));
+  int *tg = malloc(sizeof(int) * (size_t)npairs);
+  if (!pr || !groups || !tg) {
+    free(pr); free(groups); free(tg);
+    return ss_fail(err, SS_ERR_NOMEM, "out of memory");
+  }
+  for (int i = 0; i < npairs; i++) { pr[i].src = src[i]; pr[i].idx = i; }
+  qsort(pr, (size_t)npairs, sizeof(pair_ref), cmp_pair);
+  int ng = 0;
+  for (int i = 0; i < npairs; i++) {
+    if (i == 0 || pr[i].src != pr[i - 1].src) groups[ng++] = i;
+    tg[i] = dst[pr[i].idx];
+  }
+  groups[ng] = npairs;
+  int failed = 0;
+#pragma omp parallel
+  {
+    ss_vtp_ws *ws = ss_vtp_ws_new(nv, gm->nf);
+    double *d = malloc(sizeof(double) * (size_t)nv);
+    if (!ws || !d) {
+#pragma omp atomic write
+      failed = 1;
+    }
+#pragma omp for schedule(dynamic, 1)
+    for (int g = 0; g < ng; g++) {
+      if (!ws || !d) continue;
+      int a = groups[g], b = groups[g + 1], s = pr[a].src;
+      if (ss_vtp_run(gm, ws, &s, 1, 0, tg + a, b - a, d, NULL, NULL)) {
+#pragma omp atomic write
+        failed = 1;
+        continue;
+      }
+      for (int i = a; i < b; i++) out[pr[i].idx] = d[tg[i]];
+    }
+    free(d);
+    ss_vtp_ws_free(ws);
+  }
+  free(pr); free(groups); free(tg);
+  if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic pairs");
+  return SS_OK;
+}
+
+ss_status ss_geodesic_distances(const ss_mesh *m, ss_geodesic_method method, const int *sources, int nsources,
+                                double max_dist, double *dist, ss_error *err) {
+  ss_status st;
+  if (method == SS_GEODESIC_EXACT) {
+    ss_geodesic_mesh *gm;
+    if ((st = ss_geodesic_mesh_build(m, &gm, err))) return st;
+    st = ss_vtp_distances(gm, sources, nsources, max_dist, dist, err);
+    ss_geodesic_mesh_free(gm);
+    return st;
+  }
+  if (method != SS_GEODESIC_GRAPH && method != SS_GEODESIC_EDGE)
+    return ss_fail(err, SS_ERR_INVALID, "unknown geodesic method %d", (int)method);
+  ss_graph g;
+  st = method == SS_GEODESIC_GRAPH ? ss_graph_npp22(m, &g, err) : ss_graph_edges(m, &g, err);
+  if (st) return st;
+  st = ss_graph_dijkstra(&g, sources, nsources, max_dist, dist, NULL, err);
+  ss_graph_free(&g);
+  return st;
+}
