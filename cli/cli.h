@@ -24,6 +24,7 @@ int cmd_eigs(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_smooth(int argc, char **argv);
 int cmd_remesh(int argc, char **argv);
+int cmd_segment(int argc, char **argv);
 int cmd_geodesic(int argc, char **argv);
 
 #endif

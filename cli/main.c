@@ -69,6 +69,7 @@ static const command commands[] = {
     {"smooth", cmd_smooth, "MESH -o OUT [--steps N] [--dt D]  conformalized mean curvature flow"},
     {"remesh", cmd_remesh, "MESH -o OUT [--faces N]   isotropic remeshing"},
     {"geodesic", cmd_geodesic, "MESH --source I [--source J ...] [--method exact|graph|edge] [--max-dist D] -o DIST.txt"},
+    {"segment", cmd_segment, "MESH -o LABELS [--centers F] [--ply F] [--faces N] [--no-streamline] [--timings]"},
 };
 
 static void print_help(FILE *f) {

@@ -9,4 +9,6 @@
 #include "specseg/streamline.h"
 #include "specseg/spectrum.h"
 #include "specseg/geodesic.h"
+#include "specseg/segment.h"
+#include "specseg/eval.h"
 #endif

@@ -229,6 +229,31 @@ static void project_all(lanczos_ctx *c, double *x) {
   }
 }
 
+/* The reverse-communication loop of dsaupd: OP y = M^-1/2 (W - σM)^-1 M^-1/2 x on the projected space. */
+static ss_status arpack_iterate(lanczos_ctx *c, int nev, int ncv, double *resid, double *V, a_int *iparam,
+                                a_int *ipntr, double *workd, double *workl, int lworkl, a_int *info,
+                                ss_error *err) {
+  const int n = c->n;
+  const size_t nn = (size_t)n;
+  a_int ido = 0;
+  for (;;) {
+    dsaupd_c(&ido, "I", n, "LM", nev, c->tol, resid, ncv, V, n, iparam, ipntr, workd, workl, lworkl, info);
+    if (ido != -1 && ido != 1) return SS_OK;
+    const double *x = workd + ipntr[0] - 1;
+    double *y = workd + ipntr[1] - 1;
+    memcpy(y, x, sizeof(double) * nn);
+    project_all(c, y);
+    for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
+    double ts = ss_time();
+    ss_status st = ss_chol_solve(c->chol, y, y, 1, err);
+    c->tsolve += ss_time() - ts;
+    c->nops++;
+    if (st) return st;
+    for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
+    project_all(c, y);
+  }
+}
+
 /* The nev eigenpairs of OP of largest |ν| with ARPACK: Y (n x nev, scaled space, orthonormal) and
  * lam (λ = σ + 1/ν), both ordered by ascending λ. */
 static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, double *lam, ss_error *err) {
@@ -261,25 +286,15 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
   iparam[0] = 1; /* exact shifts */
   iparam[2] = c->maxiter;
   iparam[6] = 1; /* mode 1: OP applied by us */
-  a_int ido = 0, info = 1;
+  a_int info = 1;
   start_vector(resid, n, seed);
   project_all(c, resid);
-  for (;;) {
-    dsaupd_c(&ido, "I", n, "LM", nev, c->tol, resid, ncv, V, n, iparam, ipntr, workd, workl, lworkl, &info);
-    if (ido != -1 && ido != 1) break;
-    const double *x = workd + ipntr[0] - 1;
-    double *y = workd + ipntr[1] - 1;
-    memcpy(y, x, sizeof(double) * nn);
-    project_all(c, y);
-    for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
-    double ts = ss_time();
-    st = ss_chol_solve(c->chol, y, y, 1, err);
-    c->tsolve += ss_time() - ts;
-    c->nops++;
-    if (st) goto out;
-    for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
-    project_all(c, y);
-  }
+  /* ARPACK's Fortran core keeps SAVEd state between reverse-communication calls, so one run must not
+   * interleave with another: serialise whole runs across OpenMP threads (the factorisation, the
+   * Ritz vectors and everything else stay parallel). */
+#pragma omp critical(ss_arpack)
+  st = arpack_iterate(c, nev, ncv, resid, V, iparam, ipntr, workd, workl, lworkl, &info, err);
+  if (st) goto out;
   if (info < 0) {
     st = ss_fail(err, SS_ERR_NUMERIC, "eigs: ARPACK dsaupd failed (info %d: %s)", (int)info, arpack_info_msg((int)info));
     goto out;

@@ -1,0 +1,104 @@
+/* specseg — coherent segmentation (paper §4): critical points of the Fiedler function, the intrinsic
+ * Voronoi diagram (iVd) of those points on the NPP22 geodesic graph, and the whole pipeline
+ * (CMCF smoothing → isotropic remeshing → Fiedler → critical points → iVd → labels on the input). */
+#ifndef SPECSEG_SEGMENT_H
+#define SPECSEG_SEGMENT_H
+
+#include "specseg/core.h"
+#include "specseg/geodesic.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Critical points of a vertex function (§4.2) ------------------------------------------------ */
+
+typedef enum ss_crit_type {
+  SS_CRIT_REGULAR = 0,
+  SS_CRIT_MIN = 1,    /* φ(x) < φ(y) for every y of the 1-ring */
+  SS_CRIT_MAX = 2,    /* φ(x) > φ(y) for every y of the 1-ring */
+  SS_CRIT_SADDLE = 3  /* ≥ 4 triangles t_xyz of the star with min(φy,φz) < φx < max(φy,φz) */
+} ss_crit_type;
+
+/* Critical points of phi (nv values) on mesh m. Every comparison is on (φ, vertex index)
+ * lexicographically (symbolic perturbation), so ties never make a vertex both or neither.
+ *
+ * cleanup_rings > 0 applies the authors' clean-up: a critical point is dropped when another critical
+ * point within its cleanup_rings-ring (mesh edges) has a per-vertex gradient magnitude of φ not larger
+ * than its own (ties between equal magnitudes resolved by vertex index, so one of them survives). The
+ * test is made against the raw set (simultaneously), as the rule reads. 0 = no clean-up.
+ *
+ * type (may be NULL): nv entries, ss_crit_type of each vertex AFTER clean-up (dropped ones REGULAR).
+ * points/npoints: malloc'd list of the critical vertices after clean-up, ascending vertex index.
+ * nraw (may be NULL): number of critical points before clean-up. Vertices in no face are regular. */
+ss_status ss_fiedler_critical_points(const ss_mesh *m, const double *phi, int cleanup_rings,
+                                     signed char *type, int **points, int *npoints, int *nraw,
+                                     ss_error *err);
+
+/* Per-vertex gradient magnitude of a P1 function: |area-weighted mean of the incident faces'
+ * gradients|. grad_norm: nv entries (0 for isolated vertices). */
+ss_status ss_vertex_gradient_norm(const ss_mesh *m, const double *phi, double *grad_norm, ss_error *err);
+
+/* ---- Intrinsic Voronoi diagram (§4.3) ----------------------------------------------------------- */
+
+/* iVd of `centers` (graph nodes, distinct) on g, computed as the paper does: Dijkstra from centers[0]
+ * gives s and ρ = max s; each further centre runs a Dijkstra bounded by ρ that overwrites s and the tag
+ * of every node it strictly improves; then ρ = max s again. On return s[i] = distance to the nearest
+ * centre and tag[i] = index into `centers` of that centre (ties go to the earlier centre), -1 and
+ * INFINITY for nodes no centre reaches. s and tag: g->n entries each. */
+ss_status ss_ivd(const ss_graph *g, const int *centers, int ncenters, double *s, int *tag, ss_error *err);
+
+/* ---- The whole pipeline ------------------------------------------------------------------------- */
+
+typedef struct ss_segment_options {
+  int target_faces;    /* remeshing target triangle count; default 15000 */
+  int no_streamline;   /* 1: Fiedler + critical points + iVd straight on the input (no CMCF/remesh) */
+  int cleanup_rings;   /* critical-point clean-up radius in rings (0 = off); default 5 (the authors').
+                          On streamlined FAUST it never fires (8 raw points); it merges clusters on raw
+                          inputs and on a few TOSCA animals. */
+  int n_eigs;          /* eigenpairs computed (the Fiedler vector is the 2nd); default 2, min 2: the
+                          critical points from k = 2, 3, 10 and 50 are identical on FAUST */
+  int cmcf_steps;      /* 0 = streamline module default */
+  double cmcf_dt;      /* 0 = streamline module default */
+  int sanitize;        /* 1: ss_mesh_sanitize the input first (pinched vertices, degenerate faces) */
+} ss_segment_options;
+
+void ss_segment_default_options(ss_segment_options *o);
+
+typedef struct ss_segmentation {
+  int nv;              /* input vertices */
+  int m;               /* number of segments (= critical points after clean-up) */
+  int *labels;         /* nv: segment 0..m-1 of each input vertex */
+  int *centers;        /* m: input vertex at the centre of each segment */
+  int empty_segments;  /* segments no input vertex fell in (their cell on `work` missed Ψ's image) */
+  /* the shape the Fiedler function lives on (the remeshed smoothed shape, or a copy of the input
+   * under no_streamline) and what was computed on it */
+  ss_mesh work;
+  int *psi;            /* nv: input vertex → closest vertex of `work` to its smoothed twin (Ψ);
+                          -1 for an input vertex no face uses (dropped by the sanitizer) */
+  double *phi;         /* work.nv: the Fiedler vector (M-normalised; sign chosen so that its entry of
+                          largest magnitude is positive) */
+  double lambda2;      /* its eigenvalue */
+  int *crit;           /* m: work vertex of the critical point at the centre of segment s */
+  signed char *crit_type; /* m: ss_crit_type of crit[s] */
+  int ncrit_raw;       /* critical points before clean-up */
+  int *work_labels;    /* work.nv: iVd tag of each work vertex (segment index) */
+  double *work_dist;   /* work.nv: geodesic (graph) distance to the nearest centre */
+  /* wall seconds per stage (0 when skipped); t_total is the whole ss_segment call (sanitizing and
+   * mapping back included, reading the file not) */
+  double t_read;       /* filled by callers that read the mesh (CLI, bench); ss_segment leaves it */
+  double t_smooth, t_remesh, t_psi, t_spectrum, t_critical, t_ivd, t_total;
+} ss_segmentation;
+
+/* Segments `input` (triangle mesh, one or more components). opts may be NULL. Boundary loops (e.g.
+ * TOSCA's small holes) are closed with a centroid fan before smoothing, since the remesher takes
+ * closed surfaces; the added vertices are not part of the output. Critical points are ordered by
+ * vertex index of `work`, and segment s is the iVd cell of crit[s]. On failure `out` is zeroed. */
+ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts, ss_segmentation *out,
+                     ss_error *err);
+void ss_segmentation_free(ss_segmentation *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

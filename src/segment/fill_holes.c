@@ -1,0 +1,128 @@
+/* Close boundary loops with a centroid fan (see fill_holes.h). */
+#include "fill_holes.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int cmp_u64(const void *a, const void *b) {
+  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+  return x < y ? -1 : x > y;
+}
+
+static int has_key(const uint64_t *keys, size_t n, uint64_t k) {
+  size_t lo = 0, hi = n;
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (keys[mid] < k) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < n && keys[lo] == k;
+}
+
+ss_status ss_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_error *err) {
+  memset(out, 0, sizeof *out);
+  *nholes = 0;
+  int nv = in->nv, nf = in->nf;
+  size_t nh = 3 * (size_t)nf;
+  uint64_t *keys = malloc(sizeof(uint64_t) * (nh ? nh : 1));
+  int *next = malloc(sizeof(int) * (size_t)(nv ? nv : 1)); /* boundary half-edge a→next[a] */
+  int *loop = NULL;
+  ss_status st = SS_OK;
+  if (!keys || !next) {
+    st = ss_fail(err, SS_ERR_NOMEM, "fill holes: out of memory");
+    goto done;
+  }
+  for (size_t h = 0; h < nh; h++) {
+    int a = in->F[h], b = in->F[h - h % 3 + (h % 3 + 1) % 3];
+    keys[h] = (uint64_t)a * (uint64_t)nv + (uint64_t)b;
+  }
+  qsort(keys, nh, sizeof *keys, cmp_u64);
+  for (size_t h = 1; h < nh; h++)
+    if (keys[h] == keys[h - 1]) {
+      st = ss_fail(err, SS_ERR_UNSUPPORTED, "fill holes: edge %llu-%llu is used twice in one direction",
+                   (unsigned long long)(keys[h] / (uint64_t)nv), (unsigned long long)(keys[h] % (uint64_t)nv));
+      goto done;
+    }
+  for (int i = 0; i < nv; i++) next[i] = -1;
+  size_t nb = 0;
+  for (size_t h = 0; h < nh; h++) {
+    int a = in->F[h], b = in->F[h - h % 3 + (h % 3 + 1) % 3];
+    if (has_key(keys, nh, (uint64_t)b * (uint64_t)nv + (uint64_t)a)) continue;
+    if (next[a] >= 0) {
+      st = ss_fail(err, SS_ERR_UNSUPPORTED, "fill holes: vertex %d has two outgoing boundary edges", a);
+      goto done;
+    }
+    next[a] = b;
+    nb++;
+  }
+  if (nb == 0) {
+    st = ss_mesh_copy(in, out, err);
+    goto done;
+  }
+  /* trace loops; each boundary edge becomes one fan triangle, each loop one vertex */
+  loop = malloc(sizeof(int) * nb);
+  if (!loop) {
+    st = ss_fail(err, SS_ERR_NOMEM, "fill holes: out of memory");
+    goto done;
+  }
+  int nloops = 0;
+  {
+    /* count loops first so the output can be sized */
+    unsigned char *seen = calloc((size_t)nv, 1);
+    if (!seen) {
+      st = ss_fail(err, SS_ERR_NOMEM, "fill holes: out of memory");
+      goto done;
+    }
+    for (int s = 0; s < nv; s++) {
+      if (next[s] < 0 || seen[s]) continue;
+      int v = s;
+      size_t len = 0;
+      while (!seen[v]) {
+        seen[v] = 1;
+        if (next[v] < 0 || ++len > nb) break;
+        v = next[v];
+      }
+      if (v != s || next[v] < 0) {
+        free(seen);
+        st = ss_fail(err, SS_ERR_UNSUPPORTED, "fill holes: boundary through vertex %d is not a simple loop", s);
+        goto done;
+      }
+      nloops++;
+    }
+    free(seen);
+  }
+  if ((st = ss_mesh_alloc(out, nv + nloops, nf + (int)nb, err))) goto done;
+  memcpy(out->V, in->V, sizeof(double) * 3 * (size_t)nv);
+  memcpy(out->F, in->F, sizeof(int) * 3 * (size_t)nf);
+  int fo = nf, c = nv;
+  for (int s = 0; s < nv; s++) {
+    if (next[s] < 0) continue;
+    size_t len = 0;
+    int v = s;
+    do {
+      loop[len++] = v;
+      int w = next[v];
+      next[v] = -1; /* consumed */
+      v = w;
+    } while (v != s);
+    double cen[3] = {0, 0, 0};
+    for (size_t k = 0; k < len; k++)
+      for (int d = 0; d < 3; d++) cen[d] += in->V[3 * (size_t)loop[k] + d] / (double)len;
+    for (int d = 0; d < 3; d++) out->V[3 * (size_t)c + d] = cen[d];
+    for (size_t k = 0; k < len; k++) {
+      int a = loop[k], b = loop[(k + 1) % len];
+      out->F[3 * (size_t)fo] = b;
+      out->F[3 * (size_t)fo + 1] = a;
+      out->F[3 * (size_t)fo + 2] = c;
+      fo++;
+    }
+    c++;
+  }
+  *nholes = nloops;
+done:
+  free(keys);
+  free(next);
+  free(loop);
+  return st;
+}
