@@ -26,5 +26,9 @@ int cmd_smooth(int argc, char **argv);
 int cmd_remesh(int argc, char **argv);
 int cmd_segment(int argc, char **argv);
 int cmd_geodesic(int argc, char **argv);
+int cmd_eval(int argc, char **argv);
+int cmd_error(int argc, char **argv);
+int cmd_match(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 
 #endif

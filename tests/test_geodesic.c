@@ -5,7 +5,10 @@
 #include "specseg/io.h"
 #include "specseg/mesh.h"
 #include "geodesic_meshes.h"
+#include "geodesic/geodesic_mesh.h"
 #include "testlib.h"
+
+#include <omp.h>
 
 static double *field(const ss_geodesic_mesh *gm, int nv, const int *src, int ns, double maxd) {
   double *d = malloc(sizeof(double) * nv);
@@ -351,6 +354,166 @@ static void test_degenerate(void) {
   ss_geodesic_mesh_free(gm);
 }
 
+/* ---- point-to-point queries (early stop, A* bounds, landmarks, pairs) against full fields ---- */
+static int close_rel(double a, double b, double scale) {
+  if (isinf(b)) return isinf(a);
+  return fabs(a - b) <= 1e-12 * fmax(b, 1e-3 * scale);
+}
+
+/* nsrc sources; for each: near targets (within 10% of the field's range), far random targets;
+ * one_to_many with 1, 3 and 12 targets (12 > the A* limit), one reused query object, then a batch
+ * of pairs in both orientations (many far pairs: attaches landmarks when `landmarks` < 0), and the
+ * same batch on 1 and 2 threads must agree bit for bit. */
+static void check_queries(const ss_mesh *m, const char *name, int nsrc, int landmarks) {
+  ss_geodesic_mesh *gm = build(m);
+  CHECK(gm != NULL);
+  if (!gm) return;
+  if (landmarks >= 0) CHECK(ss_geodesic_mesh_prepare_queries(gm, landmarks, NULL) == SS_OK);
+  int n = m->nv;
+  double scale = ss_mesh_bbox_diagonal(m);
+  int *src = malloc(sizeof(int) * nsrc);
+  double **fld = malloc(sizeof(double *) * nsrc);
+  ss_geodesic_query *q = NULL;
+  CHECK(ss_geodesic_query_new(gm, &q, NULL) == SS_OK);
+  int np = 0, cap = 48 * nsrc;
+  int *pa = malloc(sizeof(int) * 2 * cap), *pb = malloc(sizeof(int) * 2 * cap);
+  int bad_one = 0, bad_query = 0, nnear = 0;
+  for (int k = 0; k < nsrc; k++) {
+    src[k] = (int)(gm_rand() * n);
+    fld[k] = field(gm, n, src + k, 1, 0);
+    double dmax = 0;
+    for (int i = 0; i < n; i++) if (isfinite(fld[k][i])) dmax = fmax(dmax, fld[k][i]);
+    int tg[12];
+    for (int j = 0; j < 12; j++) {
+      int t = (int)(gm_rand() * n);
+      if (j < 6) /* near: rejection-sample a vertex within 10% of the range */
+        for (int tries = 0; tries < 2000 && !(fld[k][t] <= 0.1 * dmax); tries++) t = (int)(gm_rand() * n);
+      if (fld[k][t] <= 0.1 * dmax) nnear++;
+      tg[j] = t;
+    }
+    int order[3][12] = {{0}, {0, 6, 1}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}}, cnt[3] = {1, 3, 12};
+    for (int c = 0; c < 3; c++) {
+      int t[12];
+      double out[12];
+      for (int j = 0; j < cnt[c]; j++) t[j] = tg[order[c][j]];
+      CHECK(ss_geodesic_one_to_many(gm, src[k], t, cnt[c], out, NULL) == SS_OK);
+      for (int j = 0; j < cnt[c]; j++) if (!close_rel(out[j], fld[k][t[j]], scale)) bad_one++;
+    }
+    for (int j = 0; j < 12; j++) { /* the reused object, one target at a time, near and far mixed */
+      double o;
+      CHECK(ss_geodesic_query_run(q, src[k], tg + j, 1, &o, NULL) == SS_OK);
+      if (!close_rel(o, fld[k][tg[j]], scale)) bad_query++;
+    }
+    for (int j = 0; j < 48 && np < cap; j++) {
+      int t = j < 12 ? tg[j] : (int)(gm_rand() * n);
+      pa[np] = src[k]; pb[np] = t; np++;
+    }
+  }
+  CHECK_MSG(bad_one == 0, "%s: %d one-to-many values differ from the fields", name, bad_one);
+  { /* nearest of k targets (stop at the first final one) == min over the fields */
+    int ks[3] = {1, 2, 10}, bad_min = 0;
+    for (int c = 0; c < 3; c++) {
+      int k = ks[c], *t = malloc(sizeof(int) * nsrc * k);
+      double *o = malloc(sizeof(double) * nsrc);
+      for (int i = 0; i < nsrc * k; i++) t[i] = (int)(gm_rand() * n);
+      CHECK(ss_geodesic_nearest_of(gm, src, t, k, nsrc, o, NULL) == SS_OK);
+      for (int i = 0; i < nsrc; i++) {
+        double ref = INFINITY;
+        for (int j = 0; j < k; j++) ref = fmin(ref, fld[i][t[i * k + j]]);
+        if (!close_rel(o[i], ref, scale)) bad_min++;
+      }
+      free(t); free(o);
+    }
+    CHECK_MSG(bad_min == 0, "%s: %d nearest-of values differ from the fields", name, bad_min);
+  }
+  CHECK_MSG(bad_query == 0, "%s: %d reused-query values differ from the fields", name, bad_query);
+  CHECK_MSG(nnear >= 3 * nsrc, "%s: too few near targets (%d)", name, nnear);
+  /* both orientations, and padding pairs between the sources */
+  int base = np;
+  for (int i = 0; i < base; i++) { pa[np] = pb[i]; pb[np] = pa[i]; np++; }
+  while (np < 2 * cap && np < 520) { pa[np] = src[np % nsrc]; pb[np] = src[(np / nsrc) % nsrc]; np++; }
+  double *o1 = malloc(sizeof(double) * np), *o2 = malloc(sizeof(double) * np);
+  omp_set_num_threads(1);
+  CHECK(ss_geodesic_pairs(gm, pa, pb, np, o1, NULL) == SS_OK);
+  omp_set_num_threads(2);
+  CHECK(ss_geodesic_pairs(gm, pa, pb, np, o2, NULL) == SS_OK);
+  int bad = 0, same = 1;
+  for (int i = 0; i < np; i++) {
+    int k = 0;
+    while (k < nsrc && src[k] != pa[i] && src[k] != pb[i]) k++;
+    if (k == nsrc) { bad++; continue; }
+    double ref = fld[k][src[k] == pa[i] ? pb[i] : pa[i]];
+    if (!close_rel(o1[i], ref, scale)) bad++;
+    if (memcmp(o1 + i, o2 + i, sizeof(double))) same = 0;
+  }
+  CHECK_MSG(bad == 0, "%s: %d of %d pairs differ from the fields", name, bad, np);
+  CHECK_MSG(same, "%s: pairs differ between 1 and 2 threads", name);
+  if (landmarks < 0) CHECK_MSG(gm->lm != NULL && gm->nlm == 8, "%s: far pairs did not attach landmarks", name);
+  if (landmarks == 0) CHECK_MSG(gm->lm == NULL, "%s: landmarks attached although turned off", name);
+  free(o1); free(o2); free(pa); free(pb);
+  for (int k = 0; k < nsrc; k++) free(fld[k]);
+  free(fld); free(src);
+  ss_geodesic_query_free(q);
+  ss_geodesic_mesh_free(gm);
+}
+
+static void test_queries(void) {
+  ss_mesh m;
+  gm_rng_state = 4242;
+  /* open bumpy sheet: boundary everywhere near, saddles inside */
+  gm_flat_grid(30, 26, 3.0, 2.5, 0.8, &m);
+  for (int i = 0; i < m.nv; i++) {
+    double *p = m.V + 3 * i;
+    p[2] = 0.4 * sin(3 * p[0]) * cos(2.5 * p[1]) + 0.2 * p[0] * p[1];
+  }
+  check_queries(&m, "bumpy sheet, auto landmarks", 6, -1);
+  check_queries(&m, "bumpy sheet, no landmarks", 4, 0);
+  ss_mesh_free(&m);
+  gm_cylinder(24, 15, 0.5, 2.0, &m); /* two boundary loops, flat */
+  check_queries(&m, "cylinder, 16 landmarks", 5, 16);
+  ss_mesh_free(&m);
+  const char *dir = tl_data_dir();
+  if (!dir) { SKIP("FAUST data not found"); }
+  else {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/faust/tr_reg_000.off", dir);
+    ss_error e;
+    if (ss_read_mesh(path, &m, &e)) CHECK_MSG(0, "%s", e.msg);
+    else {
+      check_queries(&m, "faust, auto landmarks", 6, -1);
+      ss_mesh_free(&m);
+    }
+  }
+  /* two components: unreachable targets are inf, also with landmarks; same vertex: 0 */
+  ss_error e;
+  double V[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 0, 0, 5, 5, 5, 6, 5, 5, 5, 6, 5};
+  int F[] = {0, 1, 2, 1, 3, 2, 1, 4, 3, 5, 6, 7, 0, 1, 4};
+  ss_mesh d = {8, 5, V, F};
+  ss_geodesic_mesh *gm = build(&d);
+  CHECK(ss_geodesic_mesh_prepare_queries(gm, 4, NULL) == SS_OK);
+  int tg[4] = {3, 5, 0, 3};
+  double out[4];
+  CHECK(ss_geodesic_one_to_many(gm, 0, tg, 4, out, NULL) == SS_OK);
+  CHECK_NEAR(out[0], sqrt(2.0), 1e-15);
+  CHECK(isinf(out[1]) && out[2] == 0 && out[3] == out[0]);
+  int pa[3] = {0, 6, 2}, pb[3] = {6, 7, 2};
+  CHECK(ss_geodesic_pairs(gm, pa, pb, 3, out, NULL) == SS_OK);
+  CHECK(isinf(out[0]) && fabs(out[1] - sqrt(2.0)) < 1e-15 && out[2] == 0);
+  int ns[2] = {0, 5}, nt[4] = {6, 4, 7, 5};
+  CHECK(ss_geodesic_nearest_of(gm, ns, nt, 2, 2, out, NULL) == SS_OK);
+  CHECK(fabs(out[0] - 2.0) < 1e-15 && out[1] == 0);
+  nt[1] = 7;
+  CHECK(ss_geodesic_nearest_of(gm, ns, nt, 2, 1, out, NULL) == SS_OK && isinf(out[0]));
+  CHECK(ss_geodesic_nearest_of(gm, ns, nt, 0, 1, out, &e) == SS_ERR_INVALID);
+  /* errors */
+  int bad = 8;
+  CHECK(ss_geodesic_one_to_many(gm, 0, &bad, 1, out, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_one_to_many(gm, -1, tg, 1, out, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_mesh_prepare_queries(gm, 17, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_one_to_many(gm, 0, tg, 0, out, &e) == SS_OK);
+  ss_geodesic_mesh_free(gm);
+}
+
 int main(void) {
   test_faust();
   test_flat(0.0, 0.0, 0);
@@ -364,5 +527,6 @@ int main(void) {
   test_sphere();
   test_invariants();
   test_degenerate();
+  test_queries();
   TEST_MAIN_END();
 }

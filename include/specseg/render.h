@@ -1,4 +1,10 @@
-/* specseg — software rendering of meshes to RGB images and PNG files (no GPU, no window). */
+/* specseg — software rendering of meshes to RGB images and PNG files (no GPU, no window).
+ *
+ * Images are 8-bit RGB, 3*width*height bytes, row-major, top row first. The rasteriser is
+ * orthographic with a z-buffer and deferred per-sample Blinn-Phong shading under a headlight;
+ * anti-aliasing by supersampling. Extras: isolines of a scalar field (screen-space, constant width),
+ * marker spheres (ray-cast impostors, z-tested against the mesh), and 2-D drawing helpers for
+ * panels, text and colour bars. */
 #ifndef SPECSEG_RENDER_H
 #define SPECSEG_RENDER_H
 
@@ -10,27 +16,90 @@ extern "C" {
 
 typedef struct ss_render_options {
   int width, height;           /* output image size in pixels */
-  double azimuth, elevation;   /* view direction in degrees; (0,0) looks along -z at the +z side (front, y up) */
+  double azimuth, elevation;   /* view direction in degrees; (0,0) looks along -z at the +z side (front, y up);
+                                  azimuth turns the camera about +y, elevation raises it towards +y */
   unsigned char background[3];
-  int supersample;             /* 1..4: anti-aliasing by rendering s×s samples per pixel */
-  double margin;               /* fraction of the image left empty around the shape */
+  int supersample;             /* 1..4: anti-aliasing by rendering s×s samples per pixel (default 2) */
+  double margin;               /* fraction of the image left empty around the shape (default 0.05) */
+  double scale;                /* output pixels per world unit; 0 (default) = fit the mesh into the image.
+                                  Give several panels the same scale (ss_render_fit_scale) to compare sizes. */
 } ss_render_options;
 
 void ss_render_default_options(ss_render_options *o);
 
-/* Rasterise `m` (orthographic, z-buffer, Phong-lit headlight, two-sided) into `rgb` (3*width*height
- * bytes, row-major, top row first). Colours: per-face `face_rgb` (3*nf) wins over per-vertex
- * `vertex_rgb` (3*nv, interpolated); grey when both are NULL. */
+/* What to draw. Start from ss_render_scene_init (mesh set, everything else off). */
+typedef struct ss_render_scene {
+  const ss_mesh *mesh;
+  const unsigned char *vertex_rgb; /* 3*nv, interpolated; NULL: grey */
+  const unsigned char *face_rgb;   /* 3*nf, flat; wins over vertex_rgb */
+  const double *scalar;            /* nv values whose isolines are drawn (NULL: none) */
+  int isolines;                    /* number of levels, evenly spaced strictly inside [smin, smax] */
+  double scalar_min, scalar_max;   /* level range; scalar_min >= scalar_max: the field's finite range */
+  unsigned char isoline_rgb[3];    /* default dark grey */
+  int nmarkers;                    /* small spheres, e.g. segment centres and landmarks */
+  const double *markers;           /* 3*nmarkers centres in world coordinates */
+  const unsigned char *marker_rgb; /* 3*nmarkers, NULL: black */
+  double marker_radius;            /* world units; <= 0: 1.2% of the mesh's bounding-box diagonal */
+} ss_render_scene;
+
+void ss_render_scene_init(ss_render_scene *s, const ss_mesh *m);
+
+/* Render the scene into `rgb`. Fails (SS_ERR_INVALID) on bad sizes, face indices out of range, a NULL
+ * marker array with nmarkers > 0; SS_ERR_NOMEM when the buffers cannot be allocated. */
+ss_status ss_render(const ss_render_scene *s, const ss_render_options *o, unsigned char *rgb, ss_error *err);
+
+/* Shorthand: the mesh with per-face colours `face_rgb` (wins) or per-vertex `vertex_rgb`, grey when both
+ * are NULL. */
 ss_status ss_render_mesh(const ss_mesh *m, const unsigned char *vertex_rgb, const unsigned char *face_rgb,
                          const ss_render_options *o, unsigned char *rgb, ss_error *err);
+
+/* The scale (pixels per world unit) at which `m`, seen from o's view, fills o's image minus margins.
+ * The smallest over several meshes shows them all at one common scale. 0 for an empty mesh. */
+double ss_render_fit_scale(const ss_mesh *m, const ss_render_options *o);
 
 /* 8-bit RGB PNG. */
 ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err);
 
-/* Perceptual colormap (viridis-like), t clamped to [0,1]. */
+/* ---- colours ---------------------------------------------------------------------------------- */
+
+typedef enum ss_colormap_kind {
+  SS_CMAP_VIRIDIS = 0, /* perceptual sequential, dark blue → green → yellow (scalar fields) */
+  SS_CMAP_HEAT = 1     /* white → yellow → red → dark red (errors: 0 is white) */
+} ss_colormap_kind;
+
+/* Perceptual colormap (viridis-like), t clamped to [0,1]; NaN maps to 0. */
 void ss_colormap(double t, unsigned char rgb[3]);
-/* Distinct colour for a segment label (well separated hues for the first ~20 labels). */
+void ss_colormap_kind_rgb(ss_colormap_kind kind, double t, unsigned char rgb[3]);
+/* Distinct colour for a segment label (well separated hues for the first ~20 labels); < 0: grey. */
 void ss_label_color(int label, unsigned char rgb[3]);
+
+/* Per-face colours of a segmentation (labels: one per vertex, -1 = none): a face whose three corners
+ * share label l gets ss_label_color(l), faces across segments get `neutral` (NULL: light grey
+ * 225,225,220) — the paper's convention for boundary triangles. face_rgb: 3*nf bytes. */
+ss_status ss_segmentation_face_colors(const ss_mesh *m, const int *labels, const unsigned char *neutral,
+                                      unsigned char *face_rgb, ss_error *err);
+/* Renumber `labels` (n vertices, ids >= -1) in place so that its segment ids agree with `ref` on the same
+ * vertices where they overlap most (greedy on the overlap counts, each reference id used once); segments
+ * left without a partner get ids after the reference's largest. Gives corresponding segments of shapes
+ * in correspondence (e.g. FAUST poses, identity ground truth) the same colour. */
+ss_status ss_labels_align(int *labels, const int *ref, int n, ss_error *err);
+
+/* ---- 2-D drawing on an RGB image (everything clipped to the image) ------------------------------ */
+
+void ss_image_fill(unsigned char *rgb, int w, int h, const unsigned char c[3]);
+/* Copy a sw x sh image into dst at (x, y). */
+void ss_image_blit(unsigned char *dst, int dw, int dh, const unsigned char *src, int sw, int sh, int x, int y);
+void ss_image_rect(unsigned char *rgb, int w, int h, int x, int y, int rw, int rh, const unsigned char c[3]);
+/* Text in a built-in 5x7 pixel font, each font pixel drawn as a scale x scale block; (x, y) is the
+ * top-left corner. Covers digits, letters (lower case drawn as upper case), space and . , - + : / % ( ) = _ #;
+ * other characters are drawn as a box. Returns the width drawn in pixels. */
+int ss_draw_text(unsigned char *rgb, int w, int h, int x, int y, int scale, const unsigned char c[3],
+                 const char *text);
+int ss_text_width(const char *text, int scale);
+/* A vertical colour bar with its range written beside it: the box (x, y, bw, bh), hi at the top,
+ * tick labels lo, mid and hi (printf %.3g) in `text_rgb` to its right, and an optional title above. */
+void ss_draw_colorbar(unsigned char *rgb, int w, int h, int x, int y, int bw, int bh, ss_colormap_kind kind,
+                      double lo, double hi, const char *title, int text_scale, const unsigned char text_rgb[3]);
 
 #ifdef __cplusplus
 }

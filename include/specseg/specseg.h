@@ -9,6 +9,10 @@
 #include "specseg/streamline.h"
 #include "specseg/spectrum.h"
 #include "specseg/geodesic.h"
+#include "specseg/fmap.h"
 #include "specseg/segment.h"
 #include "specseg/eval.h"
+#include "specseg/evaluation.h"
+#include "specseg/render.h"
+#include "specseg/match.h"
 #endif

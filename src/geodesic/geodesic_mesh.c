@@ -19,7 +19,8 @@ static int cmp_key(const void *x, const void *y) {
 
 void ss_geodesic_mesh_free(ss_geodesic_mesh *gm) {
   if (!gm) return;
-  free(gm->F); free(gm->twin); free(gm->fr); free(gm->vptr); free(gm->vcorner); free(gm->vflag); free(gm->cang); free(gm->theta);
+  omp_destroy_lock(&gm->lm_lock);
+  free(gm->F); free(gm->V); free(gm->twin); free(gm->fr); free(gm->vptr); free(gm->vcorner); free(gm->vflag); free(gm->cang); free(gm->ang); free(gm->theta); free(gm->lm);
   free(gm);
 }
 
@@ -35,24 +36,28 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
   size_t nh = 3 * (size_t)nf;
   ss_geodesic_mesh *gm = calloc(1, sizeof *gm);
   if (!gm) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
+  omp_init_lock(&gm->lm_lock);
   gm->nv = nv; gm->nf = nf;
   gm->F = malloc(sizeof(int) * (nh ? nh : 1));
+  gm->V = malloc(sizeof(double) * 3 * (size_t)nv);
   gm->twin = malloc(sizeof(int) * (nh ? nh : 1));
   gm->fr = malloc(sizeof(ss_he_frame) * (nh ? nh : 1));
   gm->vptr = calloc((size_t)nv + 1, sizeof(int));
   gm->vcorner = malloc(sizeof(int) * (nh ? nh : 1));
   gm->vflag = calloc((size_t)nv, 1);
   gm->cang = calloc(nh ? nh : 1, sizeof(double));
+  gm->ang = calloc(nh ? nh : 1, sizeof(double));
   gm->theta = calloc((size_t)nv, sizeof(double));
   he_key *keys = malloc(sizeof(he_key) * (nh ? nh : 1));
   double *angle = calloc((size_t)nv, sizeof(double));
   unsigned char *dead = calloc((size_t)nf + 1, 1);
-  if (!gm->F || !gm->twin || !gm->fr || !gm->vptr || !gm->vcorner || !gm->vflag || !gm->cang || !gm->theta || !keys || !angle || !dead) {
+  if (!gm->F || !gm->V || !gm->twin || !gm->fr || !gm->vptr || !gm->vcorner || !gm->vflag || !gm->cang || !gm->ang || !gm->theta || !keys || !angle || !dead) {
     free(keys); free(angle); free(dead);
     ss_geodesic_mesh_free(gm);
     return ss_fail(err, SS_ERR_NOMEM, "out of memory building the geodesic structure");
   }
   memcpy(gm->F, m->F, sizeof(int) * nh);
+  memcpy(gm->V, m->V, sizeof(double) * 3 * (size_t)nv);
   gm->scale = ss_mesh_bbox_diagonal(m);
   if (!(gm->scale > 0)) gm->scale = 1;
   /* frames and angles; faces of (near) zero area, or with a repeated vertex, are cut out */
@@ -77,7 +82,8 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
       for (int i = 0; i < 3; i++) {
         /* interior angle at t[i] between half-edge i and the reversed half-edge i+2 */
         const ss_he_frame *fr = gm->fr + 3 * (size_t)f + i;
-        angle[t[i]] += atan2(fr->cy, fr->cx);
+        gm->ang[3 * (size_t)f + i] = atan2(fr->cy, fr->cx);
+        angle[t[i]] += gm->ang[3 * (size_t)f + i];
       }
     else
       for (int i = 0; i < 3; i++) { gm->fr[3 * (size_t)f + i].len = 0; gm->fr[3 * (size_t)f + i].cx = 0; gm->fr[3 * (size_t)f + i].cy = 0; }

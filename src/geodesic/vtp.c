@@ -9,7 +9,7 @@
  * sigma + |(x,0)-(sx,sy)|.
  *
  * Queue keys never decrease (a child's key is at least its parent's), so when a vertex event pops
- * its estimate is final; saddle / boundary vertices then emit windows as pseudo-sources, only into
+ * its estimate is final (target queries with A* keys: see run_core); saddle / boundary vertices then emit windows as pseudo-sources, only into
  * the wedge where a shortest path through them can continue (angle >= pi on both sides of the
  * arrival direction). Rules that remove windows, all exact:
  *  - vertex pruning (VTP): every vertex estimate d(v) is the length of a real surface path, so any
@@ -37,7 +37,7 @@ typedef struct {
   int id; /* >= 0 half-edge with queued windows, < 0 vertex event -(v+1) */
 } hent;
 
-enum { VS_SETTLED = 1, VS_TARGET = 2, VS_SOURCE = 4 };
+enum { VS_SETTLED = 1, VS_TARGET = 2, VS_SOURCE = 4, VS_TOUCHED = 8 };
 
 struct ss_vtp_ws {
   int nv;
@@ -50,6 +50,7 @@ struct ss_vtp_ws {
   int nfree;
   hent *heap;
   size_t hsize, hcap;
+  int *hpos; /* nh + nv: heap position of each half-edge / vertex entry, -1 when absent */
   ss_vtp_stats st;
   int nomem;
   /* per half-edge: the best path to the opposite vertex found so far whose last segment crosses the
@@ -57,6 +58,7 @@ struct ss_vtp_ws {
   double *bestd, *bestx;
   int *head;     /* queued windows of each half-edge (list) */
   double *hkey;  /* smallest key among them, INFINITY when none */
+  unsigned *hgen; /* A*: target-set generation hkey was computed with */
   unsigned *stamp;
   unsigned run;
   int nh;
@@ -64,6 +66,22 @@ struct ss_vtp_ws {
   const ss_geodesic_mesh *gm;
   double *d;
   double tol, maxd;
+  /* Per-vertex state lives in the workspace and is reset through the list of vertices a run
+   * touched, so a local query costs what it settles, not O(nv). Untouched: d = INFINITY,
+   * arr_he = -1, vs = 0, vkey = emitted = INFINITY. */
+  double *dd;      /* nv distance estimates (ws->d points here) */
+  double *vkey;    /* A*: key of the vertex's latest queued event */
+  unsigned *vgen;  /* A*: target-set generation of vkey */
+  unsigned tgen;   /* A*: bumped when a target is final and leaves the bound's target set */
+  double *emitted; /* A*: sigma of the vertex's latest emission as a pseudo-source */
+  int *touched, ntouched;
+  /* A* (target queries): keys add a lower bound on the remaining length to the nearest remaining
+   * target (Euclidean, landmarks); keys are then no longer monotone (see run_core) */
+  int astar, nht, nlm;
+  double ht[3 * SS_VTP_MAX_HEUR];
+  double lt[SS_VTP_MAX_HEUR * SS_GEODESIC_MAX_LANDMARKS]; /* landmark distances of the targets */
+  int hv[SS_VTP_MAX_HEUR];                                /* the targets themselves */
+  const double *lmf;                                      /* the mesh's landmark fields, this run */
 };
 
 ss_vtp_ws *ss_vtp_ws_new(int nv, int nf) {
@@ -77,57 +95,59 @@ ss_vtp_ws *ss_vtp_ws_new(int nv, int nf) {
   ws->stamp = calloc(nh, sizeof(unsigned));
   ws->head = malloc(sizeof(int) * nh);
   ws->hkey = malloc(sizeof(double) * nh);
+  ws->hgen = malloc(sizeof(unsigned) * nh);
   ws->vs = calloc((size_t)(nv > 0 ? nv : 1), 1);
   ws->arr_he = malloc(sizeof(int) * (size_t)(nv > 0 ? nv : 1));
   ws->arr_y = malloc(sizeof(double) * (size_t)(nv > 0 ? nv : 1));
   ws->arr_x = malloc(sizeof(double) * (size_t)(nv > 0 ? nv : 1));
+  size_t nvv = (size_t)(nv > 0 ? nv : 1);
+  ws->dd = malloc(sizeof(double) * nvv);
+  ws->vkey = malloc(sizeof(double) * nvv);
+  ws->vgen = calloc(nvv, sizeof(unsigned));
+  ws->emitted = malloc(sizeof(double) * nvv);
+  ws->touched = malloc(sizeof(int) * nvv);
   ws->cappool = 1024;
   ws->pool = malloc(sizeof(vwin) * (size_t)ws->cappool);
   ws->freeids = malloc(sizeof(int) * (size_t)ws->cappool);
   ws->hcap = 1024;
   ws->heap = malloc(sizeof(hent) * ws->hcap);
-  if (!ws->head || !ws->hkey || !ws->arr_he || !ws->arr_y || !ws->arr_x || !ws->bestd || !ws->bestx || !ws->stamp || !ws->vs || !ws->pool || !ws->freeids || !ws->heap) {
+  ws->hpos = malloc(sizeof(int) * (nh + nvv));
+  if (ws->hpos)
+    for (size_t i = 0; i < nh + nvv; i++) ws->hpos[i] = -1;
+  if (!ws->head || !ws->hkey || !ws->hgen || !ws->vgen || !ws->arr_he || !ws->arr_y || !ws->arr_x || !ws->bestd || !ws->bestx || !ws->stamp || !ws->vs || !ws->pool || !ws->freeids || !ws->heap ||
+      !ws->hpos || !ws->dd || !ws->vkey || !ws->emitted || !ws->touched) {
     ss_vtp_ws_free(ws);
     return NULL;
   }
+  for (int i = 0; i < nv; i++) { ws->dd[i] = INFINITY; ws->vkey[i] = INFINITY; ws->emitted[i] = INFINITY; ws->arr_he[i] = -1; }
+  ws->d = ws->dd;
   return ws;
 }
 
 void ss_vtp_ws_free(ss_vtp_ws *ws) {
   if (!ws) return;
-  free(ws->bestd); free(ws->bestx); free(ws->stamp); free(ws->head); free(ws->hkey);
+  free(ws->bestd); free(ws->bestx); free(ws->stamp); free(ws->head); free(ws->hkey); free(ws->hgen); free(ws->vgen);
   free(ws->arr_he); free(ws->arr_y); free(ws->arr_x);
-  free(ws->vs); free(ws->pool); free(ws->freeids); free(ws->heap);
+  free(ws->dd); free(ws->vkey); free(ws->emitted); free(ws->touched);
+  free(ws->vs); free(ws->pool); free(ws->freeids); free(ws->heap); free(ws->hpos);
   free(ws);
 }
 
 void ss_vtp_ws_stats(const ss_vtp_ws *ws, ss_vtp_stats *st) { *st = ws->st; }
 
-/* ---- 4-ary heap (shallower than a binary heap: fewer unpredictable branches per pop) ------- */
-static int heap_push(ss_vtp_ws *ws, double key, int id) {
-  if (ws->hsize == ws->hcap) {
-    size_t nc = ws->hcap * 2;
-    hent *nh = realloc(ws->heap, sizeof(hent) * nc);
-    if (!nh) { ws->nomem = 1; return -1; }
-    ws->heap = nh; ws->hcap = nc;
-  }
-  hent *h = ws->heap;
-  size_t i = ws->hsize++;
-  while (i > 0) {
-    size_t p = (i - 1) >> 2;
-    if (h[p].key <= key) break;
-    h[i] = h[p];
-    i = p;
-  }
-  h[i].key = key; h[i].id = id;
-  if (ws->hsize > ws->st.peak_heap) ws->st.peak_heap = ws->hsize;
-  return 0;
+/* ---- indexed 4-ary heap (shallower than a binary heap: fewer unpredictable branches per pop) --
+ * One entry per half-edge / vertex at most, keyed by its current key: a lower key moves the entry
+ * up instead of queueing a second one, so no stale entries are popped (half of all pops before). */
+static inline int hslot(const ss_vtp_ws *ws, int id) { return id >= 0 ? id : ws->nh - id - 1; }
+
+static inline void heap_place(ss_vtp_ws *ws, size_t i, hent e) {
+  ws->heap[i] = e;
+  ws->hpos[hslot(ws, e.id)] = (int)i;
 }
 
-static hent heap_pop(ss_vtp_ws *ws) {
+static void heap_sift_down(ss_vtp_ws *ws, size_t i, hent e) {
   hent *h = ws->heap;
-  hent top = h[0], last = h[--ws->hsize];
-  size_t n = ws->hsize, i = 0;
+  size_t n = ws->hsize;
   for (;;) {
     size_t c = 4 * i + 1;
     if (c >= n) break;
@@ -136,12 +156,53 @@ static hent heap_pop(ss_vtp_ws *ws) {
     size_t end = c + 4 < n ? c + 4 : n;
     for (size_t j = c + 1; j < end; j++)
       if (h[j].key < bk) { bk = h[j].key; best = j; }
-    if (bk >= last.key) break;
-    h[i] = h[best];
+    if (bk >= e.key) break;
+    heap_place(ws, i, h[best]);
     i = best;
   }
-  if (n > 0) h[i] = last;
+  heap_place(ws, i, e);
+}
+
+/* Insert id with `key`, or move its entry to `key`. */
+static int heap_push(ss_vtp_ws *ws, double key, int id) {
+  int p = ws->hpos[hslot(ws, id)];
+  hent e = {key, id};
+  size_t i;
+  if (p >= 0) {
+    if (key > ws->heap[p].key) { heap_sift_down(ws, (size_t)p, e); return 0; }
+    i = (size_t)p;
+  } else {
+    if (ws->hsize == ws->hcap) {
+      size_t nc = ws->hcap * 2;
+      hent *nh = realloc(ws->heap, sizeof(hent) * nc);
+      if (!nh) { ws->nomem = 1; return -1; }
+      ws->heap = nh; ws->hcap = nc;
+    }
+    i = ws->hsize++;
+    if (ws->hsize > ws->st.peak_heap) ws->st.peak_heap = ws->hsize;
+  }
+  hent *h = ws->heap;
+  while (i > 0) {
+    size_t q = (i - 1) >> 2;
+    if (h[q].key <= key) break;
+    heap_place(ws, i, h[q]);
+    i = q;
+  }
+  heap_place(ws, i, e);
+  return 0;
+}
+
+static hent heap_pop(ss_vtp_ws *ws) {
+  hent top = ws->heap[0], last = ws->heap[--ws->hsize];
+  ws->hpos[hslot(ws, top.id)] = -1;
+  if (ws->hsize > 0) heap_sift_down(ws, 0, last);
   return top;
+}
+
+/* Entries left by an early stop leave the index clean for the next run. */
+static void heap_clear(ss_vtp_ws *ws) {
+  for (size_t i = 0; i < ws->hsize; i++) ws->hpos[hslot(ws, ws->heap[i].id)] = -1;
+  ws->hsize = 0;
 }
 
 /* ---- window pool -------------------------------------------------------------------------- */
@@ -162,20 +223,107 @@ static int win_alloc(ss_vtp_ws *ws) {
   return id;
 }
 
+/* ---- touched vertices and A* bounds ------------------------------------------------------- */
+static inline void v_touch(ss_vtp_ws *ws, int v) {
+  if (!(ws->vs[v] & VS_TOUCHED)) { ws->vs[v] |= VS_TOUCHED; ws->touched[ws->ntouched++] = v; }
+}
+
+static void ws_reset(ss_vtp_ws *ws) {
+  for (int k = 0; k < ws->ntouched; k++) {
+    int v = ws->touched[k];
+    ws->dd[v] = INFINITY; ws->vkey[v] = INFINITY; ws->emitted[v] = INFINITY; ws->arr_he[v] = -1; ws->vs[v] = 0;
+  }
+  ws->ntouched = 0;
+}
+
+/* Lower bounds on the remaining length to the nearest target: the Euclidean distance (surface
+ * paths are 3D curves) and, when the mesh carries landmark fields, |d_L(p) - d_L(t)| (triangle
+ * inequality). Lowered by a relative 1e-12 and the tolerance so that round-off never lifts a bound
+ * above the true remaining length. */
+static inline double heur_safe(const ss_vtp_ws *ws, double b) {
+  b = b * (1 - 1e-12) - ws->tol;
+  return b > 0 ? b : 0;
+}
+
+static inline double heur_pt(const ss_vtp_ws *ws, int v) {
+  if (!ws->astar) return 0;
+  const double *p = ws->gm->V + 3 * (size_t)v;
+  const double *lv = ws->nlm ? ws->lmf + (size_t)v * ws->nlm : NULL;
+  double best = INFINITY;
+  for (int j = 0; j < ws->nht; j++) {
+    const double *t = ws->ht + 3 * j;
+    double dx = p[0] - t[0], dy = p[1] - t[1], dz = p[2] - t[2], b = sqrt(dx * dx + dy * dy + dz * dz);
+    const double *lt = ws->lt + j * ws->nlm;
+    for (int k = 0; k < ws->nlm; k++) {
+      double q = fabs(lv[k] - lt[k]);
+      if (q > b && q < INFINITY) b = q; /* NaN / inf (unreachable landmark): skipped */
+    }
+    if (b < best) best = b;
+  }
+  return heur_safe(ws, best);
+}
+
+/* Same for the piece [b0,b1] of half-edge h: the nearest point of the piece to the target, and
+ * landmark distances along the edge bracketed by the 1-Lipschitz bounds from its end vertices. */
+static inline double heur_seg(const ss_vtp_ws *ws, int h, double b0, double b1) {
+  if (!ws->astar) return 0;
+  const ss_geodesic_mesh *gm = ws->gm;
+  int ia = gm->F[h], ib = gm->F[ss_he_next(h)];
+  const double *a = gm->V + 3 * (size_t)ia, *b = gm->V + 3 * (size_t)ib;
+  double L = gm->fr[h].len, inv = 1.0 / L;
+  double u[3] = {(b[0] - a[0]) * inv, (b[1] - a[1]) * inv, (b[2] - a[2]) * inv};
+  double lo[SS_GEODESIC_MAX_LANDMARKS], hi[SS_GEODESIC_MAX_LANDMARKS];
+  int K = ws->nlm;
+  if (K) {
+    const double *la = ws->lmf + (size_t)ia * K, *lb = ws->lmf + (size_t)ib * K;
+    for (int k = 0; k < K; k++) {
+      /* d_L(x) >= max(la - x, lb - (L - x)), <= min(la + x, lb + L - x) on the edge */
+      double xl = 0.5 * (la[k] - lb[k] + L), xh = 0.5 * (lb[k] + L - la[k]);
+      xl = xl < b0 ? b0 : (xl > b1 ? b1 : xl);
+      xh = xh < b0 ? b0 : (xh > b1 ? b1 : xh);
+      double l1 = la[k] - xl, l2 = lb[k] - (L - xl), h1 = la[k] + xh, h2 = lb[k] + (L - xh);
+      lo[k] = l1 > l2 ? l1 : l2;
+      hi[k] = h1 < h2 ? h1 : h2;
+    }
+  }
+  double best = INFINITY;
+  for (int j = 0; j < ws->nht; j++) {
+    const double *t = ws->ht + 3 * j;
+    double w[3] = {t[0] - a[0], t[1] - a[1], t[2] - a[2]};
+    double x = w[0] * u[0] + w[1] * u[1] + w[2] * u[2];
+    x = x < b0 ? b0 : (x > b1 ? b1 : x);
+    double dx = w[0] - x * u[0], dy = w[1] - x * u[1], dz = w[2] - x * u[2];
+    double bnd = sqrt(dx * dx + dy * dy + dz * dz);
+    const double *lt = ws->lt + j * K;
+    for (int k = 0; k < K; k++) {
+      double q1 = lo[k] - lt[k], q2 = lt[k] - hi[k], q = q1 > q2 ? q1 : q2;
+      if (q > bnd && q < INFINITY) bnd = q;
+    }
+    if (bnd < best) best = bnd;
+  }
+  return heur_safe(ws, best);
+}
+
 /* ---- vertices ----------------------------------------------------------------------------- */
 /* New estimate `val` for v through a path arriving inside corner hc along direction (dx,dy) in that
  * corner's frame (hc = -1: the
  * path bends on the way, direction not recorded). Pseudo-source vertices keep the arrival direction
  * of a straight arrival, also on a tie, so that they emit only where a geodesic can continue. */
 static void vertex_update(ss_vtp_ws *ws, int v, double val, int hc, double dy, double dx) {
-  if (ws->vs[v] & VS_SETTLED) return;
+  if (!ws->astar && (ws->vs[v] & VS_SETTLED)) return;
   if (!(val < ws->d[v])) {
     if (hc >= 0 && ws->arr_he[v] < 0 && val <= ws->d[v] + ws->tol) { ws->arr_he[v] = hc; ws->arr_y[v] = dy; ws->arr_x[v] = dx; }
     return;
   }
+  v_touch(ws, v);
   ws->d[v] = val;
   ws->arr_he[v] = hc; ws->arr_y[v] = dy; ws->arr_x[v] = dx;
-  if ((ws->gm->vflag[v] & SS_GV_PSEUDO) || (ws->vs[v] & VS_TARGET)) heap_push(ws, val, -(v + 1));
+  if ((ws->gm->vflag[v] & SS_GV_PSEUDO) || (ws->vs[v] & VS_TARGET)) {
+    double key = val + heur_pt(ws, v);
+    ws->vkey[v] = key;
+    ws->vgen[v] = ws->tgen;
+    heap_push(ws, key, -(v + 1));
+  }
 }
 
 static inline void he_touch(ss_vtp_ws *ws, int h) {
@@ -184,6 +332,7 @@ static inline void he_touch(ss_vtp_ws *ws, int h) {
     ws->bestd[h] = INFINITY;
     ws->head[h] = -1;
     ws->hkey[h] = INFINITY;
+    ws->hgen[h] = ws->tgen;
   }
 }
 
@@ -264,6 +413,7 @@ static void add_window(ss_vtp_ws *ws, int h, double b0, double b1, double sx, do
   if (!prune(ws, h, &b0, &b1, sx, sy, sigma)) return;
   double key = win_key(b0, b1, sx, sy, sigma);
   if (key > ws->maxd) return;
+  if (ws->astar) key += heur_seg(ws, h, b0, b1);
   int id = win_alloc(ws);
   if (id < 0) return;
   vwin *w = ws->pool + id;
@@ -275,6 +425,8 @@ static void add_window(ss_vtp_ws *ws, int h, double b0, double b1, double sx, do
   w->next = ws->head[h];
   ws->head[h] = id;
   if (key < ws->hkey[h]) {
+    /* an older-generation hkey stays marked old: the minimum is still a valid (weaker) bound */
+    if (ws->hkey[h] == INFINITY) ws->hgen[h] = ws->tgen;
     ws->hkey[h] = key;
     heap_push(ws, key, h);
   }
@@ -296,7 +448,7 @@ static void emit_corner(ss_vtp_ws *ws, int h, double p0, double p1, double sigma
   const ss_geodesic_mesh *gm = ws->gm;
   const ss_he_frame *fh = gm->fr + h;
   int ho = ss_he_next(h), hp = ss_he_prev(h);
-  double ang = atan2(fh->cy, fh->cx);
+  double ang = gm->ang[h];
   if (p0 <= 0) vertex_update(ws, gm->F[ho], sigma + fh->len, ho, gm->fr[ho].cy, gm->fr[ho].cx);
   if (p1 >= ang) vertex_update(ws, gm->F[hp], sigma + gm->fr[hp].len, hp, 0, 1);
   int t = gm->twin[ho];
@@ -322,7 +474,7 @@ static void emit(ss_vtp_ws *ws, int v) {
   double w0 = ain + M_PI - margin, w1 = ain + theta - M_PI + margin;
   for (int k = gm->vptr[v]; k < gm->vptr[v + 1]; k++) {
     int h = gm->vcorner[k];
-    double c0 = gm->cang[h], ang = atan2(gm->fr[h].cy, gm->fr[h].cx);
+    double c0 = gm->cang[h], ang = gm->ang[h];
     for (int r = -1; r <= 1; r++) {
       double lo = w0 + r * theta - c0, hi = w1 + r * theta - c0;
       if (lo < 0) lo = 0;
@@ -413,10 +565,20 @@ static void propagate(ss_vtp_ws *ws, const vwin *w) {
 }
 
 /* ---- driver ------------------------------------------------------------------------------- */
-ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sources, int nsources,
-                     double max_dist, const int *targets, int ntargets, double *dist,
-                     double *settled_radius, ss_error *err) {
-  if (!gm || !ws || !dist || ws->nv != gm->nv || ws->nh != 3 * gm->nf) return ss_fail(err, SS_ERR_INVALID, "invalid geodesic workspace");
+/* Early stop on targets. Without A* keys never decrease (a child's key is at least its parent's),
+ * so a vertex is final when its event pops, as in Dijkstra. With A* a key is a lower bound on the
+ * length of any source-target path continuing through the entry (window: smallest window
+ * distance + Euclidean distance from the window's piece of edge to the nearest target; vertex:
+ * estimate + Euclidean distance). Every rule that removes windows only removes parts that are
+ * strictly longer than some real path (vertex estimates are always lengths of real paths), whatever
+ * the processing order, so the windows along a shortest path are all created; the first of them not
+ * yet processed is queued with a key <= the true distance. Hence when a target's current event pops,
+ * every queued key is >= its estimate and the estimate is exact. Vertex estimates may still drop
+ * after a pseudo-source vertex emitted, so it emits again when they do (A* only). */
+static ss_status run_core(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sources, int nsources,
+                          double max_dist, const int *targets, int ntargets, int astar, int first,
+                          double *settled_radius, int *first_hit, ss_error *err) {
+  if (!gm || !ws || ws->nv != gm->nv || ws->nh != 3 * gm->nf) return ss_fail(err, SS_ERR_INVALID, "invalid geodesic workspace");
   if (nsources < 1 || !sources) return ss_fail(err, SS_ERR_INVALID, "no source vertex given");
   int nv = gm->nv;
   for (int i = 0; i < nsources; i++)
@@ -425,45 +587,108 @@ ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sourc
   for (int i = 0; i < ntargets; i++)
     if (!targets || targets[i] < 0 || targets[i] >= nv)
       return ss_fail(err, SS_ERR_INVALID, "target vertex %d outside [0,%d)", targets ? targets[i] : -1, nv);
+  ws_reset(ws);
   memset(&ws->st, 0, sizeof ws->st);
-  memset(ws->vs, 0, (size_t)nv);
-  ws->npool = 0; ws->nfree = 0; ws->hsize = 0; ws->nomem = 0;
-  ws->gm = gm; ws->d = dist;
+  heap_clear(ws);
+  ws->npool = 0; ws->nfree = 0; ws->nomem = 0;
+  ws->gm = gm; ws->d = ws->dd;
   if (++ws->run == 0) { /* stamp wrap-around: clear once every 2^32 runs */
     memset(ws->stamp, 0, sizeof(unsigned) * (size_t)(ws->nh > 0 ? ws->nh : 1));
     ws->run = 1;
   }
   ws->tol = 1e-12 * gm->scale;
   ws->maxd = (max_dist > 0 && !isnan(max_dist)) ? max_dist : INFINITY;
-  for (int i = 0; i < nv; i++) { dist[i] = INFINITY; ws->arr_he[i] = -1; }
+  ws->astar = astar && ntargets > 0 && ntargets <= SS_VTP_MAX_HEUR;
+  ws->nht = 0;
+  if (ws->astar) {
+    ws->maxd = INFINITY;
+    const double *lmf = __atomic_load_n(&gm->lm, __ATOMIC_ACQUIRE);
+    ws->lmf = lmf;
+    ws->nlm = lmf ? gm->nlm : 0;
+    for (int i = 0; i < ntargets; i++) {
+      int dup = 0;
+      for (int j = 0; j < ws->nht; j++) dup |= ws->hv[j] == targets[i];
+      if (dup) continue;
+      ws->hv[ws->nht] = targets[i];
+      memcpy(ws->ht + 3 * ws->nht, gm->V + 3 * (size_t)targets[i], 3 * sizeof(double));
+      for (int k = 0; k < ws->nlm; k++) ws->lt[ws->nht * ws->nlm + k] = lmf[(size_t)targets[i] * ws->nlm + k];
+      ws->nht++;
+    }
+  }
   int left = 0;
   for (int i = 0; i < ntargets; i++)
-    if (!(ws->vs[targets[i]] & VS_TARGET)) { ws->vs[targets[i]] |= VS_TARGET; left++; }
+    if (!(ws->vs[targets[i]] & VS_TARGET)) { v_touch(ws, targets[i]); ws->vs[targets[i]] |= VS_TARGET; left++; }
   for (int i = 0; i < nsources; i++) {
     int s = sources[i];
     if (ws->vs[s] & VS_SOURCE) continue;
+    v_touch(ws, s);
     ws->vs[s] |= VS_SOURCE;
-    dist[s] = 0;
-    heap_push(ws, 0, -(s + 1));
+    ws->d[s] = 0;
+    ws->vkey[s] = heur_pt(ws, s);
+    ws->vgen[s] = ws->tgen;
+    heap_push(ws, ws->vkey[s], -(s + 1));
   }
   double radius = INFINITY;
-  int stop_targets = ntargets > 0;
+  int stop_targets = ntargets > 0, hit_dummy;
+  if (!first_hit) first_hit = &hit_dummy;
+  *first_hit = -1;
   while (ws->hsize > 0 && !ws->nomem) {
     hent e = heap_pop(ws);
     if (e.key > ws->maxd) { radius = ws->maxd; break; }
     ws->st.events++;
     if (e.id < 0) {
       int v = -e.id - 1;
+      if (ws->astar) {
+        if (e.key != ws->vkey[v]) continue; /* superseded by a better estimate */
+        if (ws->vgen[v] != ws->tgen) {         /* bound computed for a larger target set: tighten */
+          ws->vkey[v] = ws->d[v] + heur_pt(ws, v);
+          ws->vgen[v] = ws->tgen;
+          heap_push(ws, ws->vkey[v], e.id);
+          continue;
+        }
+        ws->vkey[v] = -1;                     /* consumed */
+        if ((ws->vs[v] & VS_TARGET) && !(ws->vs[v] & VS_SETTLED)) {
+          ws->vs[v] |= VS_SETTLED;
+          if (--left == 0 || first) { radius = e.key; *first_hit = v; break; }
+          /* v is final: later keys only need to bound the paths to the remaining targets */
+          for (int j = 0; j < ws->nht; j++)
+            if (ws->hv[j] == v) {
+              int last = --ws->nht;
+              ws->hv[j] = ws->hv[last];
+              memcpy(ws->ht + 3 * j, ws->ht + 3 * last, 3 * sizeof(double));
+              memcpy(ws->lt + j * ws->nlm, ws->lt + last * ws->nlm, (size_t)ws->nlm * sizeof(double));
+              ws->tgen++;
+              break;
+            }
+        }
+        if (((gm->vflag[v] & SS_GV_PSEUDO) || (ws->vs[v] & VS_SOURCE)) && ws->d[v] < ws->emitted[v]) {
+          ws->emitted[v] = ws->d[v];
+          emit(ws, v);
+        }
+        continue;
+      }
       if (ws->vs[v] & VS_SETTLED) continue;
       ws->vs[v] |= VS_SETTLED;
       if (ws->vs[v] & VS_TARGET) {
-        if (--left == 0 && stop_targets) { radius = e.key; break; }
+        if ((--left == 0 || first) && stop_targets) { radius = e.key; *first_hit = v; break; }
       }
       if ((gm->vflag[v] & SS_GV_PSEUDO) || (ws->vs[v] & VS_SOURCE)) emit(ws, v);
       continue;
     }
     int h = e.id;
     if (ws->stamp[h] != ws->run || ws->head[h] < 0 || e.key != ws->hkey[h]) continue; /* stale */
+    if (ws->astar && ws->hgen[h] != ws->tgen) { /* tighten a bound made for a larger target set */
+      double k = INFINITY;
+      for (int id = ws->head[h]; id >= 0; id = ws->pool[id].next) {
+        const vwin *w = ws->pool + id;
+        double kw = win_key(w->b0, w->b1, w->sx, w->sy, w->sigma) + heur_seg(ws, h, w->b0, w->b1);
+        if (kw < k) k = kw;
+      }
+      ws->hkey[h] = k;
+      ws->hgen[h] = ws->tgen;
+      heap_push(ws, k, h);
+      continue;
+    }
     int id = ws->head[h];
     ws->head[h] = -1;
     ws->hkey[h] = INFINITY;
@@ -476,10 +701,35 @@ ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sourc
       if (ws->nomem) break;
     }
   }
+  ws->st.touched = ws->ntouched;
   if (ws->nomem) return ss_fail(err, SS_ERR_NOMEM, "out of memory during geodesic propagation");
-  if (ws->maxd < INFINITY)
-    for (int i = 0; i < nv; i++)
-      if (dist[i] > ws->maxd) dist[i] = INFINITY;
   if (settled_radius) *settled_radius = radius;
+  return SS_OK;
+}
+
+ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sources, int nsources,
+                     double max_dist, const int *targets, int ntargets, double *dist,
+                     double *settled_radius, ss_error *err) {
+  if (!dist) return ss_fail(err, SS_ERR_INVALID, "null distance output");
+  ss_status st = run_core(gm, ws, sources, nsources, max_dist, targets, ntargets, 0, 0, settled_radius, NULL, err);
+  if (st) return st;
+  memcpy(dist, ws->dd, sizeof(double) * (size_t)gm->nv);
+  if (ws->maxd < INFINITY)
+    for (int i = 0; i < gm->nv; i++)
+      if (dist[i] > ws->maxd) dist[i] = INFINITY;
+  return SS_OK;
+}
+
+ss_status ss_vtp_query(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, int source, const int *targets, int ntargets,
+                       int astar, int first, double *out, ss_error *err) {
+  if (ntargets < 1 || !targets || !out) return ss_fail(err, SS_ERR_INVALID, "invalid target query");
+  int hit = -1;
+  ss_status st = run_core(gm, ws, &source, 1, 0, targets, ntargets, astar, first, NULL, &hit, err);
+  if (st) return st;
+  if (first) {
+    *out = hit >= 0 ? ws->dd[hit] : INFINITY; /* no hit: every target unreachable */
+    return SS_OK;
+  }
+  for (int i = 0; i < ntargets; i++) out[i] = ws->dd[targets[i]];
   return SS_OK;
 }

@@ -1,4 +1,5 @@
-/* Public entry points of the exact geodesic engine: single run, target early stop, batches. */
+/* Public entry points of the exact geodesic engine: single run, target early stop, batch of fields
+ * (target queries and pairs: geodesic_query.c). */
 #include "geodesic/vtp.h"
 
 #include <math.h>
@@ -52,68 +53,6 @@ ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int
     ss_vtp_ws_free(ws);
   }
   if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic fields");
-  return SS_OK;
-}
-
-typedef struct {
-  int src, idx;
-} pair_ref;
-
-static int cmp_pair(const void *x, const void *y) {
-  const pair_ref *a = x, *b = y;
-  if (a->src != b->src) return a->src < b->src ? -1 : 1;
-  return (a->idx > b->idx) - (a->idx < b->idx);
-}
-
-ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const int *dst, int npairs,
-                            double *out, ss_error *err) {
-  if (!gm || npairs < 0 || (npairs > 0 && (!src || !dst || !out)))
-    return ss_fail(err, SS_ERR_INVALID, "invalid arguments to ss_geodesic_pairs");
-  int nv = gm->nv;
-  for (int i = 0; i < npairs; i++)
-    if (src[i] < 0 || src[i] >= nv || dst[i] < 0 || dst[i] >= nv)
-      return ss_fail(err, SS_ERR_INVALID, "pair %d (%d,%d) outside [0,%d)", i, src[i], dst[i], nv);
-  if (npairs == 0) return SS_OK;
-  pair_ref *pr = malloc(sizeof(pair_ref) * (size_t)npairs);
-  int *groups = malloc(sizeof(int) * ((size_t)npairs + 1));
-  int *tg = malloc(sizeof(int) * (size_t)npairs);
-  if (!pr || !groups || !tg) {
-    free(pr); free(groups); free(tg);
-    return ss_fail(err, SS_ERR_NOMEM, "out of memory");
-  }
-  for (int i = 0; i < npairs; i++) { pr[i].src = src[i]; pr[i].idx = i; }
-  qsort(pr, (size_t)npairs, sizeof(pair_ref), cmp_pair);
-  int ng = 0;
-  for (int i = 0; i < npairs; i++) {
-    if (i == 0 || pr[i].src != pr[i - 1].src) groups[ng++] = i;
-    tg[i] = dst[pr[i].idx];
-  }
-  groups[ng] = npairs;
-  int failed = 0;
-#pragma omp parallel
-  {
-    ss_vtp_ws *ws = ss_vtp_ws_new(nv, gm->nf);
-    double *d = malloc(sizeof(double) * (size_t)nv);
-    if (!ws || !d) {
-#pragma omp atomic write
-      failed = 1;
-    }
-#pragma omp for schedule(dynamic, 1)
-    for (int g = 0; g < ng; g++) {
-      if (!ws || !d) continue;
-      int a = groups[g], b = groups[g + 1], s = pr[a].src;
-      if (ss_vtp_run(gm, ws, &s, 1, 0, tg + a, b - a, d, NULL, NULL)) {
-#pragma omp atomic write
-        failed = 1;
-        continue;
-      }
-      for (int i = a; i < b; i++) out[pr[i].idx] = d[tg[i]];
-    }
-    free(d);
-    ss_vtp_ws_free(ws);
-  }
-  free(pr); free(groups); free(tg);
-  if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic pairs");
   return SS_OK;
 }
 

@@ -16,6 +16,24 @@ void ss_colormap(double t, unsigned char rgb[3]) {
   for (int c = 0; c < 3; c++) rgb[c] = (unsigned char)lround(A[i][c] * (1 - f) + A[i + 1][c] * f);
 }
 
+/* White → yellow → orange → red → dark red (ColorBrewer YlOrRd-like anchors), so zero error is white. */
+static void heat(double t, unsigned char rgb[3]) {
+  static const double A[6][3] = {{255, 255, 255}, {255, 237, 160}, {254, 178, 76},
+                                 {240, 59, 32},   {189, 0, 38},    {100, 0, 30}};
+  if (!(t > 0)) t = 0;
+  if (t > 1) t = 1;
+  double x = t * 5;
+  int i = (int)x;
+  if (i > 4) i = 4;
+  double f = x - i;
+  for (int c = 0; c < 3; c++) rgb[c] = (unsigned char)lround(A[i][c] * (1 - f) + A[i + 1][c] * f);
+}
+
+void ss_colormap_kind_rgb(ss_colormap_kind kind, double t, unsigned char rgb[3]) {
+  if (kind == SS_CMAP_HEAT) heat(t, rgb);
+  else ss_colormap(t, rgb);
+}
+
 void ss_label_color(int label, unsigned char rgb[3]) {
   /* hand-picked, well separated hues first; golden-angle hues afterwards */
   static const unsigned char P[12][3] = {{230, 25, 75},  {60, 180, 75},   {255, 200, 25}, {0, 130, 200},

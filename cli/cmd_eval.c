@@ -1,0 +1,342 @@
+/* specseg eval: reproduce the paper's evaluation (Table 1, §5 coherency, §5 timings). */
+#include "cli.h"
+#include "specseg/evaluation.h"
+#include "specseg/io.h"
+#include "specseg/match.h"
+
+#include <dirent.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+static const char *USAGE =
+    "eval --data DIR --table1 [--pairs N] [--seed S] [--out RESULTS.csv] [--jobs N] [--cache DIR]\n"
+    "                   [--shard I/N] [--error-samples N] [--k K] [--policies random,subj,pose]\n"
+    "                   [--landmarks best,gt,fps] [--methods std,asa,diff] [--quiet]\n"
+    "       specseg eval merge CSV... [--out ALL.csv]\n"
+    "       specseg eval --coherency --data DIR [--jobs N]\n"
+    "       specseg eval --timings --data DIR [--shapes N]";
+
+/* "a,b,c" of names → bit set; -1 on an unknown name */
+static int parse_set(const char *s, int (*parse)(const char *)) {
+  char buf[256];
+  snprintf(buf, sizeof buf, "%s", s);
+  int mask = 0;
+  for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+    int v = parse(t);
+    if (v < 0) return -1;
+    mask |= 1 << v;
+  }
+  return mask ? mask : -1;
+}
+static int parse_policy(const char *s) { return ss_pair_policy_parse(s); }
+static int parse_lm(const char *s) { return ss_lm_set_parse(s); }
+static int parse_method(const char *s) { return ss_eval_method_parse(s); }
+
+/* Table 1 in the paper's layout, ours beside the paper's, and the ordering checks. */
+static void print_table(const ss_table1 *t, FILE *f) {
+  fprintf(f, "\n%-17s %17s %17s %17s  %5s  %s\n", "Table 1", "STD", "ASA", "DIFF", "pairs", "checks");
+  fprintf(f, "%-17s %17s %17s %17s\n", "scenario", "ours (paper)", "ours (paper)", "ours (paper)");
+  for (int i = 0; i < 12; i++) {
+    if (t->count[i][0] + t->count[i][1] + t->count[i][2] == 0) continue;
+    fprintf(f, "%-17s", ss_table1_row_names[i]);
+    int n = 0;
+    for (int c = 0; c < 3; c++) {
+      if (t->count[i][c]) fprintf(f, "   %7.4f (%.3f)", t->mean[i][c], ss_table1_paper[i][c]);
+      else fprintf(f, "   %7s (%.3f)", "-", ss_table1_paper[i][c]);
+      if (t->count[i][c] > n) n = t->count[i][c];
+    }
+    fprintf(f, "  %5d", n);
+    if (t->count[i][0] && t->count[i][1] && t->count[i][2]) {
+      const double *m = t->mean[i];
+      fprintf(f, "  %s%s", m[2] <= m[1] && m[1] <= m[0] ? "DIFF<=ASA<=STD" : "order differs",
+              (i % 3 != 2) ? (m[2] <= 0.8 * m[0] ? ", DIFF<=0.8STD" : ", DIFF>0.8STD") : "");
+    }
+    fputc('\n', f);
+  }
+}
+
+static int print_csv_table(const char *path) {
+  ss_eval_row *rows;
+  int n;
+  ss_error e;
+  if (ss_eval_csv_read(path, &rows, &n, &e)) return cli_error("%s", e.msg);
+  ss_table1 t;
+  ss_status st = ss_table1_aggregate(rows, n, &t, &e);
+  free(rows);
+  if (st) return cli_error("%s", e.msg);
+  print_table(&t, stdout);
+  return SS_EXIT_OK;
+}
+
+static int cmd_merge(int argc, char **argv) {
+  const char *out = NULL;
+  ss_eval_row *all = NULL;
+  int n = 0, nin = 0;
+  ss_error e;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--out") || !strcmp(argv[i], "-o")) {
+      if (++i >= argc) { free(all); return cli_usage("%s needs a value\n       specseg %s", argv[i - 1], USAGE); }
+      out = argv[i];
+      continue;
+    }
+    if (argv[i][0] == '-') { free(all); return cli_usage("unknown option '%s'\n       specseg %s", argv[i], USAGE); }
+    ss_eval_row *r;
+    int m;
+    if (ss_eval_csv_read(argv[i], &r, &m, &e)) { free(all); return cli_error("%s", e.msg); }
+    ss_eval_row *g = realloc(all, sizeof *all * (size_t)(n + m + 1));
+    if (!g) { free(all); free(r); return cli_error("out of memory"); }
+    all = g;
+    if (m) memcpy(all + n, r, sizeof *r * (size_t)m);
+    n += m;
+    nin++;
+    free(r);
+  }
+  if (!nin) { free(all); return cli_usage("merge needs at least one CSV\n       specseg %s", USAGE); }
+  if (ss_eval_rows_canonical(all, &n, &e)) { free(all); return cli_error("%s", e.msg); }
+  if (out) {
+    FILE *f = fopen(out, "wb");
+    if (!f) { free(all); return cli_error("%s: cannot write: %s", out, strerror(errno)); }
+    fprintf(f, "%s\n", ss_eval_csv_header());
+    char line[512];
+    for (int i = 0; i < n; i++) {
+      ss_eval_csv_format_row(&all[i], line, sizeof line);
+      fprintf(f, "%s\n", line);
+    }
+    if (fclose(f)) { free(all); return cli_error("%s: write failed", out); }
+  }
+  ss_table1 t;
+  ss_status st = ss_table1_aggregate(all, n, &t, &e);
+  free(all);
+  if (st) return cli_error("%s", e.msg);
+  printf("merged %d rows from %d files%s%s\n", n, nin, out ? " into " : "", out ? out : "");
+  print_table(&t, stdout);
+  return SS_EXIT_OK;
+}
+
+/* ---- §5 coherency ------------------------------------------------------------------------------ */
+
+static int name_cmp(const void *a, const void *b) {
+  const char *x = *(const char *const *)a, *y = *(const char *const *)b;
+  /* class prefix, then the number: cat2 < cat10 */
+  size_t i = 0;
+  while (x[i] && x[i] == y[i] && !(x[i] >= '0' && x[i] <= '9')) i++;
+  if ((x[i] >= '0' && x[i] <= '9') && (y[i] >= '0' && y[i] <= '9')) {
+    long p = strtol(x + i, NULL, 10), q = strtol(y + i, NULL, 10);
+    if (p != q) return p < q ? -1 : 1;
+  }
+  return strcmp(x, y);
+}
+
+static void print_coherency(const ss_coherency_result *r) {
+  printf("%-9s %3d shapes  coherency with streamlining %.3f (min %.3f)   without %.3f (min %.3f)\n", r->name,
+         r->nshapes, r->coherency[0], r->min_coherency[0], r->coherency[1], r->min_coherency[1]);
+  for (int w = 0; w < 2; w++) {
+    printf("          segments %s:", w ? "without" : "with   ");
+    for (int k = 0; k < 32; k++)
+      if (r->hist[w][k]) printf(" %d%s x%d", k, k == 31 ? "+" : "", r->hist[w][k]);
+    putchar('\n');
+  }
+}
+
+static int run_coherency(const char *dir, int jobs) {
+  char path[4096];
+  ss_error e;
+  /* FAUST: X0 = tr_reg_000 */
+  char *fp[100];
+  int nf = 0;
+  for (int i = 0; i < 100; i++) {
+    snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", dir, i);
+    if (access(path, R_OK)) break;
+    fp[nf++] = strdup(path);
+  }
+  printf("§5 coherency (X0 = first shape of each set; paper FAUST: 0.92 with streamlining, 0.68 without)\n");
+  int rc = SS_EXIT_OK;
+  if (nf >= 2) {
+    ss_coherency_result r;
+    if (ss_eval_coherency_set("faust", nf, (const char *const *)fp, jobs, &r, &e)) rc = cli_error("%s", e.msg);
+    else print_coherency(&r);
+  } else cli_warn("no FAUST shapes under %s/faust", dir);
+  for (int i = 0; i < nf; i++) free(fp[i]);
+  /* TOSCA: one set per class (file name without its number), X0 = the lowest number */
+  snprintf(path, sizeof path, "%s/tosca", dir);
+  DIR *d = opendir(path);
+  if (!d) { cli_warn("no TOSCA folder %s", path); return rc; }
+  char *names[512];
+  int nn = 0;
+  struct dirent *de;
+  while ((de = readdir(d)) && nn < 512) {
+    size_t L = strlen(de->d_name);
+    if (L > 4 && !strcmp(de->d_name + L - 4, ".off")) names[nn++] = strdup(de->d_name);
+  }
+  closedir(d);
+  qsort(names, (size_t)nn, sizeof *names, name_cmp);
+  for (int i = 0; i < nn;) {
+    char cls[64];
+    size_t L = strcspn(names[i], "0123456789.");
+    snprintf(cls, sizeof cls, "%.*s", (int)L, names[i]);
+    int j = i;
+    char *paths[512];
+    while (j < nn && strcspn(names[j], "0123456789.") == L && !strncmp(names[j], cls, L)) {
+      char p2[4200];
+      snprintf(p2, sizeof p2, "%s/tosca/%s", dir, names[j]);
+      paths[j - i] = strdup(p2);
+      j++;
+    }
+    if (j - i >= 2) {
+      ss_coherency_result r;
+      if (ss_eval_coherency_set(cls, j - i, (const char *const *)paths, jobs, &r, &e)) cli_warn("%s: %s", cls, e.msg);
+      else print_coherency(&r);
+    }
+    for (int k = 0; k < j - i; k++) free(paths[k]);
+    i = j;
+  }
+  for (int i = 0; i < nn; i++) free(names[i]);
+  return rc;
+}
+
+/* ---- §5 timings -------------------------------------------------------------------------------- */
+
+static int dbl_cmp(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+static double median(double *v, int n) {
+  qsort(v, (size_t)n, sizeof *v, dbl_cmp);
+  return n ? (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])) : NAN;
+}
+
+static int run_timings(const char *dir, int nshapes) {
+  char path[4096];
+  ss_error e;
+  int *lm = NULL, nlm = 0;
+  snprintf(path, sizeof path, "%s/faust/landmarks_best.txt", dir);
+  if (ss_read_ints(path, &lm, &nlm, &e)) return cli_error("%s", e.msg);
+  double *t[5], *pcpu = calloc((size_t)nshapes, sizeof(double));
+  for (int k = 0; k < 5; k++) t[k] = calloc((size_t)nshapes, sizeof(double));
+  ss_segmentation prev;
+  memset(&prev, 0, sizeof prev);
+  ss_mesh mprev = {0};
+  int n = 0, np = 0, rc = SS_EXIT_OK;
+  for (int i = 0; i < nshapes; i++) {
+    snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", dir, i);
+    ss_mesh m = {0};
+    ss_segmentation s;
+    clock_t c0 = clock();
+    if (ss_read_mesh(path, &m, &e) || ss_segment(&m, NULL, &s, &e)) {
+      rc = cli_error("%s", e.msg);
+      ss_mesh_free(&m);
+      break;
+    }
+    t[0][n] = s.t_smooth;
+    t[1][n] = s.t_remesh + s.t_psi;
+    t[2][n] = s.t_spectrum + s.t_critical + s.t_ivd;
+    t[4][n] = (double)(clock() - c0) / CLOCKS_PER_SEC;
+    n++;
+    if (i > 0) { /* pairing with the previous shape, BEST landmarks (fields on both work meshes) */
+      ss_segment_pairs pr;
+      double t0 = ss_time();
+      clock_t c1 = clock();
+      if (ss_pair_segments(&prev, &s, nlm, lm, lm, &pr, &e)) rc = cli_error("%s", e.msg);
+      else t[3][np] = ss_time() - t0, pcpu[np++] = (double)(clock() - c1) / CLOCKS_PER_SEC, ss_segment_pairs_free(&pr);
+    }
+    ss_segmentation_free(&prev);
+    ss_mesh_free(&mprev);
+    prev = s;
+    mprev = m;
+    fprintf(stderr, "\r  timings: %d/%d shapes", i + 1, nshapes);
+  }
+  fputc('\n', stderr);
+  ss_segmentation_free(&prev);
+  ss_mesh_free(&mprev);
+  static const char *names[4] = {"CMCF", "remeshing (+ Psi)", "Fiedler + critical + iVd", "pairing"};
+  static const double paper[4] = {0.14, 0.84, 0.36, 0.57};
+  printf("§5 per-stage timings, medians over %d FAUST shapes (%d pairings)\n", n, np);
+  printf("%-26s %9s %9s %7s\n", "stage", "ours [s]", "paper [s]", "ratio");
+  double tot = 0, ptot = 0;
+  for (int k = 0; k < 4; k++) {
+    double med = median(t[k], k == 3 ? np : n);
+    tot += med, ptot += paper[k];
+    printf("%-26s %9.3f %9.2f %7.2f\n", names[k], med, paper[k], paper[k] / med);
+  }
+  double seg = tot - median(t[3], np);
+  printf("%-26s %9.3f %9.2f %7.2f   (the paper's 1.34 s: the first three stages)\n", "segmentation", seg, 1.34,
+         1.34 / seg);
+  printf("%-26s %9.3f %9.2f %7.2f   (ratio = paper / ours; wall clock, noisy on a shared machine)\n", "with pairing",
+         tot, ptot, ptot / tot);
+  printf("process CPU medians: segmentation %.3f s, pairing %.3f s (all threads; on a busy machine a better guide)\n",
+         median(t[4], n), median(pcpu, np));
+  for (int k = 0; k < 5; k++) free(t[k]);
+  free(pcpu);
+  free(lm);
+  return rc;
+}
+
+int cmd_eval(int argc, char **argv) {
+  if (argc >= 2 && !strcmp(argv[1], "merge")) return cmd_merge(argc - 1, argv + 1);
+  ss_table1_options o;
+  ss_table1_default_options(&o);
+  o.out_csv = "specseg_table1.csv";
+  int table1 = 0, coherency = 0, timings = 0, quiet = 0, nshapes = 100;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+#define NEEDV() do { if (!v) return cli_usage("%s needs a value\n       specseg %s", a, USAGE); i++; } while (0)
+    if (!strcmp(a, "--table1")) table1 = 1;
+    else if (!strcmp(a, "--coherency")) coherency = 1;
+    else if (!strcmp(a, "--timings")) timings = 1;
+    else if (!strcmp(a, "--quiet")) quiet = 1;
+    else if (!strcmp(a, "--data")) { NEEDV(); o.data_dir = v; }
+    else if (!strcmp(a, "--out") || !strcmp(a, "-o")) { NEEDV(); o.out_csv = v; }
+    else if (!strcmp(a, "--cache")) { NEEDV(); o.cache_dir = v; }
+    else if (!strcmp(a, "--pairs")) { NEEDV(); if (cli_parse_int(v, 1, 900, &o.npairs)) return cli_usage("--pairs: integer in [1,900]"); }
+    else if (!strcmp(a, "--jobs")) { NEEDV(); if (cli_parse_int(v, 1, 1024, &o.jobs)) return cli_usage("--jobs: positive integer"); }
+    else if (!strcmp(a, "--k")) { NEEDV(); if (cli_parse_int(v, 3, 1000, &o.k)) return cli_usage("--k: integer in [3,1000]"); }
+    else if (!strcmp(a, "--shapes")) { NEEDV(); if (cli_parse_int(v, 1, 100, &nshapes)) return cli_usage("--shapes: integer in [1,100]"); }
+    else if (!strcmp(a, "--error-samples")) { NEEDV(); if (cli_parse_int(v, 0, 3000, &o.error_samples)) return cli_usage("--error-samples: integer in [0,3000] (0 = every vertex)"); }
+    else if (!strcmp(a, "--seed")) {
+      NEEDV();
+      char *end;
+      errno = 0;
+      unsigned long long s = strtoull(v, &end, 10);
+      if (errno || *end || !*v || v[0] == '-') return cli_usage("--seed: non-negative integer");
+      o.seed = s;
+    } else if (!strcmp(a, "--shard")) {
+      NEEDV();
+      int si, sn;
+      char tail;
+      if (sscanf(v, "%d/%d%c", &si, &sn, &tail) != 2 || sn < 1 || si < 1 || si > sn)
+        return cli_usage("--shard: I/N with 1 <= I <= N (e.g. 3/8)");
+      o.shard_i = si - 1, o.shard_n = sn;
+    } else if (!strcmp(a, "--policies")) { NEEDV(); if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_usage("--policies: comma list of random,subj,pose"); }
+    else if (!strcmp(a, "--landmarks")) { NEEDV(); if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_usage("--landmarks: comma list of best,gt,fps"); }
+    else if (!strcmp(a, "--methods")) { NEEDV(); if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_usage("--methods: comma list of std,asa,diff"); }
+    else return cli_usage("unknown option '%s'\n       specseg %s", a, USAGE);
+#undef NEEDV
+  }
+  if (table1 + coherency + timings != 1) return cli_usage("choose one of --table1, --coherency, --timings\n       specseg %s", USAGE);
+  if (!o.data_dir) return cli_usage("--data DIR is required\n       specseg %s", USAGE);
+  if (coherency) return run_coherency(o.data_dir, o.jobs);
+  if (timings) return run_timings(o.data_dir, nshapes);
+#ifdef __GLIBC__
+  /* every match allocates and frees tens of MB of probe / operator buffers: keep them in the heap
+   * instead of mmap/munmap-ing them each time (page faults were ~20 % of the run's CPU) */
+  mallopt(M_MMAP_THRESHOLD, 512 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+  o.progress = !quiet && isatty(2);
+  o.verbose = !quiet;
+  ss_error e;
+  int nnew = 0;
+  double t0 = ss_time();
+  if (ss_table1_run(&o, &nnew, &e)) return cli_error("%s", e.msg);
+  if (!quiet) fprintf(stderr, "eval: %d new rows in %.1f s -> %s\n", nnew, ss_time() - t0, o.out_csv);
+  return print_csv_table(o.out_csv);
+}

@@ -1,0 +1,431 @@
+/* specseg render MESH [MESH2 ...] -o OUT.png [--labels L.txt | --scalar F.txt | --map MAP.txt --target Y |
+ *                --error MAP.txt --target Y] [--view V] [--size WxH] [--centers C.txt] [--landmarks LM.txt]
+ *                [--isolines N] ...
+ * Pictures of segmentations, scalar fields, maps and map errors; several meshes become side-by-side
+ * panels drawn at one common scale. Per-mesh files (--labels, --scalar, --map, --error, --centers,
+ * --landmarks) are given either once (used for every mesh) or once per mesh, in mesh order. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "specseg/render.h"
+
+static const char *usage =
+    "specseg render MESH [MESH2 ...] -o OUT.png [--labels L.txt | --scalar F.txt | --map MAP.txt --target Y |\n"
+    "       --error MAP.txt --target Y [--gt GT.txt] [--sym SYM.txt]] [--view front|back|left|right|top|AZ,EL]\n"
+    "       [--size WxH] [--centers C.txt] [--landmarks LM.txt] [--isolines N] [--range LO,HI] [--cols N]\n"
+    "       [--match-colors REF_LABELS.txt] [--no-titles] [--supersample S]";
+
+#define MAXM 64
+
+enum mode { MODE_PLAIN, MODE_LABELS, MODE_SCALAR, MODE_MAP, MODE_ERROR };
+
+typedef struct list {
+  const char *v[MAXM];
+  int n;
+} list;
+
+static int push(list *l, const char *s) {
+  if (l->n >= MAXM) return -1;
+  l->v[l->n++] = s;
+  return 0;
+}
+/* The file for mesh i: the single one, or the i-th. */
+static const char *pick(const list *l, int i) { return l->n == 0 ? NULL : (l->n == 1 ? l->v[0] : l->v[i]); }
+
+typedef struct panel {
+  const char *path;
+  ss_mesh mesh;
+  unsigned char *vrgb, *frgb;
+  double *scalar;   /* scalar field / errors (nv) */
+  double *markers;  /* 3*nmarkers */
+  unsigned char *mrgb;
+  int nmarkers;
+  char title[96];
+} panel;
+
+static const unsigned char NEUTRAL[3] = {225, 225, 220};   /* boundary triangles */
+static const unsigned char CENTRE_RGB[3] = {20, 20, 20};
+/* landmarks: white on segment colours, blue on colormaps (whose low end is white) */
+static const unsigned char LANDMARK_RGB[3] = {250, 250, 250}, LANDMARK_RGB_CMAP[3] = {40, 90, 230};
+static const unsigned char TEXT_RGB[3] = {30, 30, 30};
+
+static void stem(const char *path, char *out, size_t n) {
+  const char *b = strrchr(path, '/');
+  b = b ? b + 1 : path;
+  snprintf(out, n, "%s", b);
+  char *dot = strrchr(out, '.');
+  if (dot && dot != out) *dot = 0;
+}
+
+static int parse_view(const char *s, double *az, double *el) {
+  static const struct { const char *name; double az, el; } V[] = {
+      {"front", 0, 0}, {"back", 180, 0}, {"left", 90, 0}, {"right", -90, 0}, {"top", 0, 90}, {"bottom", 0, -90}};
+  for (size_t i = 0; i < sizeof V / sizeof V[0]; i++)
+    if (!strcmp(s, V[i].name)) {
+      *az = V[i].az, *el = V[i].el;
+      return 0;
+    }
+  char buf[64];
+  snprintf(buf, sizeof buf, "%s", s);
+  char *comma = strchr(buf, ',');
+  if (!comma) return -1;
+  *comma = 0;
+  if (cli_parse_double(buf, az) || cli_parse_double(comma + 1, el)) return -1;
+  if (!isfinite(*az) || !isfinite(*el) || fabs(*el) > 90) return -1;
+  return 0;
+}
+
+static int parse_pair_int(const char *s, int *a, int *b) {
+  char buf[64];
+  snprintf(buf, sizeof buf, "%s", s);
+  char *x = strchr(buf, 'x');
+  if (!x) return -1;
+  *x = 0;
+  return cli_parse_int(buf, 16, 8192, a) || cli_parse_int(x + 1, 16, 8192, b) ? -1 : 0;
+}
+
+/* Read a label/index file and check its length. */
+static int read_ints_n(const char *path, int want, int **out, int *n) {
+  ss_error err = {{0}};
+  if (ss_read_ints(path, out, n, &err)) return cli_error("%s", err.msg);
+  if (want >= 0 && *n != want) {
+    int got = *n;
+    free(*out);
+    *out = NULL;
+    return cli_error("%s: %d values, the mesh has %d vertices", path, got, want);
+  }
+  return 0;
+}
+
+static int add_markers(panel *p, const char *path, const unsigned char rgb[3]) {
+  int *idx = NULL, n = 0;
+  if (read_ints_n(path, -1, &idx, &n)) return -1;
+  for (int k = 0; k < n; k++)
+    if (idx[k] < 0 || idx[k] >= p->mesh.nv) {
+      int bad = idx[k];
+      free(idx);
+      return cli_error("%s: vertex %d out of range (the mesh has %d vertices)", path, bad, p->mesh.nv);
+    }
+  double *M = realloc(p->markers, sizeof(double) * 3 * (size_t)(p->nmarkers + n + 1));
+  unsigned char *C = M ? realloc(p->mrgb, 3 * (size_t)(p->nmarkers + n + 1)) : NULL;
+  if (M) p->markers = M;
+  if (C) p->mrgb = C;
+  if (!M || !C) {
+    free(idx);
+    return cli_error("out of memory");
+  }
+  for (int k = 0; k < n; k++) {
+    memcpy(p->markers + 3 * (size_t)(p->nmarkers + k), p->mesh.V + 3 * (size_t)idx[k], 3 * sizeof(double));
+    memcpy(p->mrgb + 3 * (size_t)(p->nmarkers + k), rgb, 3);
+  }
+  p->nmarkers += n;
+  free(idx);
+  return 0;
+}
+
+/* Per-vertex colours from the normalised coordinates (the "texture" transferred by a map). */
+static void coordinate_colors(const ss_mesh *m, unsigned char *rgb) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < m->nv; i++)
+    for (int d = 0; d < 3; d++) {
+      double v = m->V[3 * (size_t)i + d];
+      if (v < lo[d]) lo[d] = v;
+      if (v > hi[d]) hi[d] = v;
+    }
+  for (int i = 0; i < m->nv; i++)
+    for (int d = 0; d < 3; d++) {
+      double t = hi[d] > lo[d] ? (m->V[3 * (size_t)i + d] - lo[d]) / (hi[d] - lo[d]) : 0.5;
+      rgb[3 * (size_t)i + d] = (unsigned char)lround(255 * (0.12 + 0.85 * t));
+    }
+}
+
+static int scalar_colors(panel *p, ss_colormap_kind kind, double lo, double hi) {
+  p->vrgb = malloc(3 * (size_t)p->mesh.nv + 1);
+  if (!p->vrgb) return cli_error("out of memory");
+  for (int i = 0; i < p->mesh.nv; i++) {
+    double v = p->scalar[i];
+    unsigned char *c = p->vrgb + 3 * (size_t)i;
+    if (!isfinite(v)) c[0] = c[1] = c[2] = 150; /* unreached / undefined */
+    else ss_colormap_kind_rgb(kind, hi > lo ? (v - lo) / (hi - lo) : 0, c);
+  }
+  return 0;
+}
+
+int cmd_render(int argc, char **argv) {
+  list meshes = {0}, labels = {0}, scalars = {0}, maps = {0}, centers = {0}, landmarks = {0};
+  const char *out = NULL, *target = NULL, *gt_path = NULL, *sym_path = NULL, *ref_path = NULL;
+  enum mode mode = MODE_PLAIN;
+  int width = 800, height = 800, isolines = 0, cols = 0, titles = 1, ss = 2, have_range = 0;
+  double az = 0, el = 0, rlo = 0, rhi = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    int has = i + 1 < argc;
+    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
+      printf("usage: %s\n\n"
+             "Software-rendered PNG (z-buffer, Phong, anti-aliased). Modes:\n"
+             "  --labels L.txt   segmentation: one colour per segment, boundary triangles neutral\n"
+             "  --scalar F.txt   per-vertex field, viridis colormap, colour bar, --isolines N levels\n"
+             "  --map MAP.txt --target Y   colour transfer: Y coloured by its normalised xyz, MESH by the\n"
+             "                   colour of its image (MAP line i = vertex of Y for vertex i of MESH)\n"
+             "  --error MAP.txt --target Y  geodesic error d_Y(MAP(x), GT(x)) / sqrt(area Y), exact\n"
+             "                   geodesics, GT = identity unless --gt; heat map with its colour scale\n"
+             "Several meshes become panels (--cols N per row, default all in one row) at a common scale;\n"
+             "per-mesh files are given once for all meshes or once per mesh. --size is per panel\n"
+             "(default 800x800). --centers / --landmarks: vertex indices drawn as black / white (blue on\n"
+             "colormaps) spheres.\n"
+             "--match-colors REF: permute segment ids to agree with REF labels (same vertex order).\n"
+             "--range LO,HI fixes the colour scale of --scalar / --error.\n",
+             usage);
+      return SS_EXIT_OK;
+    }
+    const char *opt1[] = {"--labels", "--scalar", "--map", "--error", "--centers", "--landmarks"};
+    list *lists[] = {&labels, &scalars, &maps, &maps, &centers, &landmarks};
+    int matched = 0;
+    for (int k = 0; k < 6; k++)
+      if (!strcmp(a, opt1[k])) {
+        if (!has) return cli_usage("%s\n%s needs a file", usage, a);
+        if (push(lists[k], argv[++i])) return cli_usage("too many %s files (at most %d)", a, MAXM);
+        enum mode want = k == 0 ? MODE_LABELS : k == 1 ? MODE_SCALAR : k == 2 ? MODE_MAP : k == 3 ? MODE_ERROR : mode;
+        if (k < 4) {
+          if (mode != MODE_PLAIN && mode != want)
+            return cli_usage("%s\n--labels, --scalar, --map and --error exclude each other", usage);
+          mode = want;
+        }
+        matched = 1;
+        break;
+      }
+    if (matched) continue;
+    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+      if (!has) return cli_usage("%s\n-o needs a file", usage);
+      out = argv[++i];
+    } else if (!strcmp(a, "--target")) {
+      if (!has) return cli_usage("%s\n--target needs a mesh", usage);
+      target = argv[++i];
+    } else if (!strcmp(a, "--gt")) {
+      if (!has) return cli_usage("%s\n--gt needs a file", usage);
+      gt_path = argv[++i];
+    } else if (!strcmp(a, "--sym")) {
+      if (!has) return cli_usage("%s\n--sym needs a file", usage);
+      sym_path = argv[++i];
+    } else if (!strcmp(a, "--match-colors")) {
+      if (!has) return cli_usage("%s\n--match-colors needs a labels file", usage);
+      ref_path = argv[++i];
+    } else if (!strcmp(a, "--view")) {
+      if (!has || parse_view(argv[++i], &az, &el))
+        return cli_usage("%s\n--view needs front, back, left, right, top, bottom or AZ,EL (degrees, |EL| <= 90)", usage);
+    } else if (!strcmp(a, "--size")) {
+      if (!has || parse_pair_int(argv[++i], &width, &height))
+        return cli_usage("%s\n--size needs WxH, each between 16 and 8192", usage);
+    } else if (!strcmp(a, "--isolines")) {
+      if (!has || cli_parse_int(argv[++i], 0, 1000, &isolines))
+        return cli_usage("%s\n--isolines needs an integer between 0 and 1000", usage);
+    } else if (!strcmp(a, "--cols")) {
+      if (!has || cli_parse_int(argv[++i], 1, MAXM, &cols))
+        return cli_usage("%s\n--cols needs an integer between 1 and %d", usage, MAXM);
+    } else if (!strcmp(a, "--supersample")) {
+      if (!has || cli_parse_int(argv[++i], 1, 4, &ss)) return cli_usage("%s\n--supersample needs 1..4", usage);
+    } else if (!strcmp(a, "--range")) {
+      char buf[128];
+      if (!has) return cli_usage("%s\n--range needs LO,HI", usage);
+      snprintf(buf, sizeof buf, "%s", argv[++i]);
+      char *c = strchr(buf, ',');
+      if (!c) return cli_usage("%s\n--range needs LO,HI", usage);
+      *c = 0;
+      if (cli_parse_double(buf, &rlo) || cli_parse_double(c + 1, &rhi) || !isfinite(rlo) || !isfinite(rhi) ||
+          !(rlo < rhi))
+        return cli_usage("%s\n--range needs finite LO < HI", usage);
+      have_range = 1;
+    } else if (!strcmp(a, "--no-titles")) {
+      titles = 0;
+    } else if (a[0] == '-' && a[1]) {
+      return cli_usage("%s\nunknown option '%s'", usage, a);
+    } else if (push(&meshes, a)) {
+      return cli_usage("too many meshes (at most %d)", MAXM);
+    }
+  }
+  int nm = meshes.n;
+  if (nm == 0) return cli_usage("%s\nno mesh given", usage);
+  if (!out) return cli_usage("%s\nmissing -o OUT.png", usage);
+  if ((mode == MODE_MAP || mode == MODE_ERROR) && !target)
+    return cli_usage("%s\n--map / --error need --target Y", usage);
+  if (target && mode != MODE_MAP && mode != MODE_ERROR) return cli_usage("%s\n--target goes with --map or --error", usage);
+  if ((gt_path || sym_path) && mode != MODE_ERROR) return cli_usage("%s\n--gt / --sym go with --error", usage);
+  if (ref_path && mode != MODE_LABELS) return cli_usage("%s\n--match-colors goes with --labels", usage);
+  const list *all[] = {&labels, &scalars, &maps, &centers, &landmarks};
+  const char *names[] = {"--labels", "--scalar", "--map/--error", "--centers", "--landmarks"};
+  for (int k = 0; k < 5; k++)
+    if (all[k]->n > 1 && all[k]->n != nm)
+      return cli_usage("%s\n%s given %d times for %d meshes (give it once or once per mesh)", usage, names[k],
+                       all[k]->n, nm);
+
+  ss_error err = {{0}};
+  int rc = SS_EXIT_OK, np = 0, nref = 0, *ints = NULL, *refl = NULL, *gt = NULL, *sym = NULL;
+  panel *P = calloc((size_t)nm + 1, sizeof(panel));
+  ss_mesh Y = {0};
+  unsigned char *img = NULL, *canvas = NULL;
+  double t0 = ss_time(), t_render = 0;
+  if (!P) return cli_error("out of memory");
+  if (target && ss_read_mesh(target, &Y, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  if (mode == MODE_MAP) { /* the target, coloured by its coordinates, is the first panel */
+    P[0].path = target;
+    if (ss_mesh_copy(&Y, &P[0].mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    if (!(P[0].vrgb = malloc(3 * (size_t)Y.nv + 1))) { rc = cli_error("out of memory"); goto done; }
+    coordinate_colors(&Y, P[0].vrgb);
+    stem(target, P[0].title, sizeof P[0].title);
+    np = 1;
+  }
+  if (mode == MODE_ERROR) {
+    int n;
+    if (gt_path && read_ints_n(gt_path, -1, &gt, &n)) { rc = SS_EXIT_FAIL; goto done; }
+    if (sym_path && read_ints_n(sym_path, -1, &sym, &n)) { rc = SS_EXIT_FAIL; goto done; }
+  }
+  if (ref_path) {
+    int n;
+    if (read_ints_n(ref_path, -1, &refl, &n)) { rc = SS_EXIT_FAIL; goto done; }
+    nref = n;
+  }
+  double lo = INFINITY, hi = -INFINITY;
+  for (int i = 0; i < nm; i++) {
+    panel *p = &P[np++];
+    p->path = meshes.v[i];
+    if (ss_read_mesh(p->path, &p->mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    int nv = p->mesh.nv, n = 0;
+    stem(p->path, p->title, sizeof p->title);
+    if (mode == MODE_LABELS) {
+      if (read_ints_n(pick(&labels, i), nv, &ints, &n)) { rc = SS_EXIT_FAIL; goto done; }
+      for (int v = 0; v < nv; v++)
+        if (ints[v] < -1) { rc = cli_error("%s: line %d: negative label %d", pick(&labels, i), v + 1, ints[v]); goto done; }
+      if (refl) {
+        if (nref != nv) {
+          rc = cli_error("%s: %d labels, %s has %d vertices", ref_path, nref, p->path, nv);
+          goto done;
+        }
+        if (ss_labels_align(ints, refl, nv, &err)) { rc = cli_error("%s: %s", ref_path, err.msg); goto done; }
+      }
+      int nseg = 0;
+      for (int v = 0; v < nv; v++)
+        if (ints[v] + 1 > nseg) nseg = ints[v] + 1;
+      if (!(p->frgb = malloc(3 * (size_t)p->mesh.nf + 1))) { rc = cli_error("out of memory"); goto done; }
+      /* as the paper's figures: a triangle takes its segment's colour only when all three corners agree */
+      if (ss_segmentation_face_colors(&p->mesh, ints, NEUTRAL, p->frgb, &err)) { rc = cli_error("%s: %s", p->path, err.msg); goto done; }
+      if (titles) {
+        size_t len = strlen(p->title);
+        snprintf(p->title + len, sizeof p->title - len, " (%d)", nseg);
+      }
+      free(ints);
+      ints = NULL;
+    } else if (mode == MODE_SCALAR) {
+      if (ss_read_doubles(pick(&scalars, i), &p->scalar, &n, &err)) { rc = cli_error("%s", err.msg); goto done; }
+      if (n != nv) { rc = cli_error("%s: %d values, %s has %d vertices", pick(&scalars, i), n, p->path, nv); goto done; }
+    } else if (mode == MODE_MAP || mode == MODE_ERROR) {
+      const char *mp = pick(&maps, i);
+      if (read_ints_n(mp, nv, &ints, &n)) { rc = SS_EXIT_FAIL; goto done; }
+      for (int v = 0; v < nv; v++)
+        if (ints[v] < 0 || ints[v] >= Y.nv) {
+          rc = cli_error("%s: line %d: vertex %d out of range (%s has %d vertices)", mp, v + 1, ints[v], target, Y.nv);
+          goto done;
+        }
+      if (mode == MODE_MAP) {
+        if (!(p->vrgb = malloc(3 * (size_t)nv + 1))) { rc = cli_error("out of memory"); goto done; }
+        for (int v = 0; v < nv; v++) memcpy(p->vrgb + 3 * (size_t)v, P[0].vrgb + 3 * (size_t)ints[v], 3);
+      } else {
+        if (!(p->scalar = malloc(sizeof(double) * (size_t)nv + 1))) { rc = cli_error("out of memory"); goto done; }
+        double mean = 0;
+        if (!gt && nv > Y.nv) {
+          rc = cli_error("identity ground truth: %s has %d vertices, %s only %d", p->path, nv, target, Y.nv);
+          goto done;
+        }
+        if (ss_map_geodesic_error(&Y, nv, ints, gt, sym, p->scalar, &mean, &err)) {
+          rc = cli_error("%s: %s", mp, err.msg);
+          goto done;
+        }
+        size_t len = strlen(p->title);
+        snprintf(p->title + len, sizeof p->title - len, " mean %.4f", mean);
+      }
+      free(ints);
+      ints = NULL;
+    }
+    if (p->scalar)
+      for (int v = 0; v < nv; v++)
+        if (isfinite(p->scalar[v])) {
+          if (p->scalar[v] < lo) lo = p->scalar[v];
+          if (p->scalar[v] > hi) hi = p->scalar[v];
+        }
+    if (pick(&centers, i) && add_markers(p, pick(&centers, i), CENTRE_RGB)) { rc = SS_EXIT_FAIL; goto done; }
+    if (pick(&landmarks, i) && add_markers(p, pick(&landmarks, i), mode == MODE_LABELS || mode == MODE_PLAIN ? LANDMARK_RGB : LANDMARK_RGB_CMAP)) { rc = SS_EXIT_FAIL; goto done; }
+  }
+  int bar = mode == MODE_SCALAR || mode == MODE_ERROR;
+  if (bar) {
+    if (have_range) lo = rlo, hi = rhi;
+    if (mode == MODE_ERROR && !have_range) lo = 0; /* errors: the scale starts at a perfect map */
+    if (!(lo <= hi)) lo = 0, hi = 1;
+    if (!(hi > lo)) hi = lo + 1;
+    for (int k = 0; k < np; k++)
+      if (scalar_colors(&P[k], mode == MODE_ERROR ? SS_CMAP_HEAT : SS_CMAP_VIRIDIS, lo, hi)) { rc = SS_EXIT_FAIL; goto done; }
+  }
+
+  ss_render_options o;
+  ss_render_default_options(&o);
+  o.width = width, o.height = height, o.azimuth = az, o.elevation = el, o.supersample = ss;
+  /* one scale for all panels so sizes compare */
+  double scale = INFINITY;
+  for (int k = 0; k < np; k++) {
+    double s = ss_render_fit_scale(&P[k].mesh, &o);
+    if (s > 0 && s < scale) scale = s;
+  }
+  o.scale = isfinite(scale) ? scale : 0;
+  if (cols <= 0 || cols > np) cols = np;
+  int rows = (np + cols - 1) / cols;
+  int ts = height >= 600 ? 2 + (height - 600) / 400 : 1; /* text scale */
+  int title_h = titles ? 7 * ts + 6 * ts : 0;
+  int bar_w = bar ? (width / 4 > 40 * ts ? width / 4 : 40 * ts) : 0;
+  long cw = (long)cols * width + bar_w, ch = (long)rows * (height + title_h);
+  if (cw > 32768 || ch > 32768) { rc = cli_error("image would be %ldx%ld pixels; use a smaller --size", cw, ch); goto done; }
+  img = malloc(3 * (size_t)width * height);
+  canvas = malloc(3 * (size_t)cw * ch);
+  if (!img || !canvas) { rc = cli_error("out of memory for a %ldx%ld image", cw, ch); goto done; }
+  ss_image_fill(canvas, (int)cw, (int)ch, o.background);
+  for (int k = 0; k < np; k++) {
+    ss_render_scene sc;
+    ss_render_scene_init(&sc, &P[k].mesh);
+    sc.vertex_rgb = P[k].vrgb;
+    sc.face_rgb = P[k].frgb;
+    if (mode == MODE_SCALAR && isolines > 0) {
+      sc.scalar = P[k].scalar;
+      sc.isolines = isolines;
+      sc.scalar_min = lo, sc.scalar_max = hi;
+    }
+    sc.nmarkers = P[k].nmarkers;
+    sc.markers = P[k].markers;
+    sc.marker_rgb = P[k].mrgb;
+    double t = ss_time();
+    if (ss_render(&sc, &o, img, &err)) { rc = cli_error("%s: %s", P[k].path, err.msg); goto done; }
+    t_render += ss_time() - t;
+    int px = (k % cols) * width, py = (k / cols) * (height + title_h);
+    ss_image_blit(canvas, (int)cw, (int)ch, img, width, height, px, py);
+    if (titles) {
+      int tw = ss_text_width(P[k].title, ts);
+      ss_draw_text(canvas, (int)cw, (int)ch, px + (width - tw) / 2, py + height + 2 * ts, ts, TEXT_RGB, P[k].title);
+    }
+  }
+  if (bar) {
+    int bh = (int)(0.6 * rows * height), bx = cols * width + 4 * ts, by = (int)(ch - bh) / 2;
+    ss_draw_colorbar(canvas, (int)cw, (int)ch, bx, by, 6 * ts + 8, bh, mode == MODE_ERROR ? SS_CMAP_HEAT : SS_CMAP_VIRIDIS,
+                     lo, hi, mode == MODE_ERROR ? "error" : "", ts, TEXT_RGB);
+  }
+  if (ss_write_png(out, canvas, (int)cw, (int)ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  printf("%d panel%s %dx%d rendered in %.3f s (total %.3f s) -> %s (%ldx%ld)\n", np, np == 1 ? "" : "s", width,
+         height, t_render, ss_time() - t0, out, cw, ch);
+  if (fflush(stdout) != 0) rc = cli_error("cannot write to standard output");
+done:
+  for (int k = 0; k <= nm; k++) {
+    ss_mesh_free(&P[k].mesh);
+    free(P[k].vrgb); free(P[k].frgb); free(P[k].scalar); free(P[k].markers); free(P[k].mrgb);
+  }
+  free(P); free(ints); free(refl); free(gt); free(sym); free(img); free(canvas);
+  ss_mesh_free(&Y);
+  return rc;
+}

@@ -1,0 +1,160 @@
+/* specseg — reproducing the paper's evaluation (§5–6, Table 1, Appendix A): a deterministic PRNG,
+ * the pairing policies, farthest point sampling with exact geodesics, FAUST's left–right symmetry
+ * map, the results CSV (read / merge / aggregate) and the Table 1 runner (prepared shapes cached,
+ * OpenMP over work units, resumable, shardable). */
+#ifndef SPECSEG_EVALUATION_H
+#define SPECSEG_EVALUATION_H
+
+#include <stdint.h>
+#include <stdio.h>
+
+#include "specseg/core.h"
+#include "specseg/geodesic.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Deterministic PRNG: splitmix64 (same stream on every machine and compiler) -------------- */
+
+typedef struct ss_rng {
+  uint64_t state;
+} ss_rng;
+
+void ss_rng_seed(ss_rng *r, uint64_t seed);
+uint64_t ss_rng_next(ss_rng *r);
+/* Uniform integer in [0, n) for n ≥ 1, without modulo bias (rejection sampling); 0 when n ≤ 1. */
+int ss_rng_below(ss_rng *r, int n);
+
+/* ---- Pairing policies (paper §6.1) ------------------------------------------------------------ */
+
+typedef enum ss_pair_policy {
+  SS_POLICY_RANDOM = 0, /* any two different shapes */
+  SS_POLICY_SUBJ = 1,   /* same subject, different pose */
+  SS_POLICY_POSE = 2    /* same pose, different subjects */
+} ss_pair_policy;
+
+const char *ss_pair_policy_name(ss_pair_policy p); /* "random" | "subj" | "pose" */
+int ss_pair_policy_parse(const char *s);            /* -1 when unknown */
+
+/* npairs distinct ordered pairs (x, y), x ≠ y, drawn without replacement from all pairs the policy
+ * allows, deterministically from `seed`. Shape s is subject s / nposes, pose s % nposes (FAUST:
+ * tr_reg_NNN, 10 × 10). Fails with SS_ERR_INVALID when fewer than npairs pairs exist. */
+ss_status ss_eval_pairs(ss_pair_policy policy, int nsubjects, int nposes, int npairs, uint64_t seed, int *x,
+                        int *y, ss_error *err);
+
+/* ---- Farthest point sampling (Appendix A) ----------------------------------------------------- */
+
+/* p_0 = seed, p_{j+1} = argmax_x min_{i ≤ j} d(p_i, x) with exact (VTP) geodesics; ties go to the
+ * lower vertex index. points: m vertices. mindist (may be NULL): nv entries, min distance to
+ * p_0..p_{m-1} on return. Vertices unreachable from the seed are never chosen; fails with
+ * SS_ERR_INVALID when fewer than m vertices are reachable. */
+ss_status ss_fps(const ss_geodesic_mesh *gm, int seed, int m, int *points, double *mindist, ss_error *err);
+
+/* ---- Left–right symmetry map ------------------------------------------------------------------ */
+
+typedef struct ss_symmetry_stats {
+  double normal[3], point[3]; /* the fitted mirror plane */
+  double involution;          /* fraction of x with sym[sym[x]] == x */
+  double mean_residual;       /* mean |reflect(x) − sym(x)| / bbox diagonal */
+  int refined;                /* vertices whose nearest-reflection candidate the intrinsic check changed */
+} ss_symmetry_stats;
+
+/* Left–right symmetry map of an (approximately) mirror-symmetric shape: sym[x] = mirror vertex of x.
+ * lm / lm_mirror: nl landmark pairs (lm_mirror[i] is the mirror of lm[i]; equal for landmarks on the
+ * symmetry plane, e.g. the head); at least one pair must differ. Steps: (1) a plane with normal
+ * Σ (p(lm) − p(lm_mirror)) through the centroid; (2) ICP refinement of the plane (reflect, nearest
+ * vertices, refit normal = principal direction of x − sym(x), point = mean midpoint), 10 rounds;
+ * (3) intrinsic check: among the 8 vertices nearest to the reflected point, keep the one whose exact
+ * geodesic distances to the landmarks best match x's distances to the mirrored landmarks (all
+ * scaled by 1/√area), with the Euclidean offset as a tie-breaker. stats may be NULL. */
+ss_status ss_symmetry_map(const ss_mesh *m, int nl, const int *lm, const int *lm_mirror, int *sym,
+                          ss_symmetry_stats *stats, ss_error *err);
+
+/* ---- Results: one row per (scenario, method, pair) -------------------------------------------- */
+
+typedef enum ss_lm_set { SS_LM_BEST = 0, SS_LM_GT = 1, SS_LM_FPS = 2 } ss_lm_set;
+typedef enum ss_eval_method { SS_METHOD_STD = 0, SS_METHOD_ASA = 1, SS_METHOD_DIFF = 2 } ss_eval_method;
+const char *ss_lm_set_name(ss_lm_set s);           /* "best" | "gt" | "fps" */
+const char *ss_eval_method_name(ss_eval_method m); /* "std" | "asa" | "diff" */
+int ss_lm_set_parse(const char *s);
+int ss_eval_method_parse(const char *s);
+
+typedef struct ss_eval_row {
+  int policy, landmarks, method; /* ss_pair_policy, ss_lm_set, ss_eval_method */
+  int x, y;                      /* shape indices */
+  double error, error_sym;       /* mean geodesic error / √area(Y), plain and symmetric */
+  int segments_x, segments_y, paired;
+  double seconds;                /* matching time of this row (wall) */
+  int samples;                   /* vertices the error averages over */
+  double cpu_seconds;            /* CPU time of the matching (its thread; BLAS runs single-threaded) */
+} ss_eval_row;
+
+/* CSV header line (no newline) and one row (%.17g for reals, so CSV → read → CSV is exact). */
+const char *ss_eval_csv_header(void);
+void ss_eval_csv_format_row(const ss_eval_row *r, char *buf, size_t size);
+/* Reads a results CSV (header required; unknown extra columns ignored, columns found by name).
+ * *rows is malloc'd. A missing file is SS_ERR_IO. A truncated last line (interrupted run) is
+ * dropped silently; any other malformed line is SS_ERR_PARSE "PATH:LINE: what". */
+ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_error *err);
+/* Canonical order (policy, landmarks, method, x, y) and duplicate removal: rows with the same key
+ * must agree (else SS_ERR_INVALID naming the key). n is updated. */
+ss_status ss_eval_rows_canonical(ss_eval_row *rows, int *n, ss_error *err);
+
+/* Table 1 layout: 12 rows (FAUST {best,gt,fps}, subj ×3, pose ×3, sym ×3) × 3 methods. The sym
+ * rows average error_sym of the random-policy rows. Means are summed in canonical row order, so
+ * any split of the rows into shards gives bit-identical means. */
+typedef struct ss_table1 {
+  double mean[12][3];
+  int count[12][3];
+} ss_table1;
+/* rows need not be canonical (a sorted copy is made). */
+ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_error *err);
+/* The paper's Table 1 values, same layout. */
+extern const double ss_table1_paper[12][3];
+extern const char *const ss_table1_row_names[12];
+
+/* ---- The Table 1 runner ----------------------------------------------------------------------- */
+
+typedef struct ss_table1_options {
+  const char *data_dir;   /* folder with faust/tr_reg_NNN.off and faust/landmarks_best.txt */
+  const char *out_csv;    /* results file: rows already there are skipped (resume); new rows appended */
+  const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there */
+  int npairs;             /* per policy (default 100) */
+  uint64_t seed;          /* default 1 */
+  int jobs;               /* parallel work units (OpenMP threads); 0 = omp default */
+  int shard_i, shard_n;   /* run the shard_i-th (0-based) of shard_n slices; default 0 / 1 */
+  int error_samples;      /* 0: all vertices (slow for bad maps); else this many random vertices plus
+                             their mirrors — a different seeded sample for each target shape, whose
+                             exact fields are computed once per target (default 64) */
+  int k;                  /* eigenpairs of the functional map basis (default 50) */
+  int policies_mask, lm_mask, methods_mask; /* bit sets of what to run (default all 7) */
+  int progress;           /* 1: progress bar with ETA on stderr */
+  int verbose;            /* 1: stage messages on stderr */
+} ss_table1_options;
+
+void ss_table1_default_options(ss_table1_options *o);
+
+/* Runs (the shard of) Table 1 and appends its rows to o->out_csv. *new_rows receives the number of
+ * rows computed now (rows already in the file are skipped). */
+ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err);
+
+/* ---- §5 coherency and timings ----------------------------------------------------------------- */
+
+typedef struct ss_coherency_result {
+  char name[64];       /* "faust" or a TOSCA class */
+  int nshapes;
+  double coherency[2]; /* mean over Y ≠ X0: [0] with streamlining, [1] without */
+  double min_coherency[2];
+  int hist[2][32];     /* segment counts (31 = 31 or more) over all shapes of the set */
+} ss_coherency_result;
+
+/* Coherency of every shape of a set with the set's first shape (ground truth = identity: all shapes
+ * share connectivity). paths: n mesh files. jobs as above. */
+ss_status ss_eval_coherency_set(const char *name, int n, const char *const *paths, int jobs,
+                                ss_coherency_result *res, ss_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

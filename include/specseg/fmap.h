@@ -1,0 +1,187 @@
+/* specseg — functional maps (paper §6): WKS and wave-kernel probe functions, the functional map of
+ * Eq. (1) (Nogneng & Ovsjanikov 2017), point-to-point conversion and ZoomOut refinement.
+ *
+ * Conventions of this module:
+ *  - a spectral basis is (evals[k], evecs n x k column-major, M-orthonormal, ascending eigenvalues,
+ *    evals[0] ≈ 0 the constant function), as produced by ss_mesh_eigs;
+ *  - a functional map C from a source shape S to a target shape T is k_T x k_S, column-major, and
+ *    maps spectral coefficients of functions on S to those on T: b = C a;
+ *  - the point map that goes with C is the pull-back one and goes the OTHER way, T -> S
+ *    (f ∘ π for π : T -> S), so ss_fmap_p2p returns, for each TARGET vertex, a SOURCE vertex.
+ *    ss_fmap_match therefore solves for the map from functions on Y to functions on X (source Y,
+ *    target X) to return Π : X -> Y. */
+#ifndef SPECSEG_FMAP_H
+#define SPECSEG_FMAP_H
+
+#include "specseg/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- wave kernel (wks.c) */
+
+/* The WKS energy filters of Aubry et al. 2011 (as in their code and pyFM): with e_min, e_max the logs
+ * of the first non-zero and the last eigenvalue, δ = (e_max − e_min)/ne, σ = sigma_factor·δ (7 in
+ * the paper), energies e_j evenly spaced in [e_min + 2σ, e_max − 2σ] (log scale). Writes the
+ * ne x k filter matrix G (column-major), G[j,i] = exp(−(e_j − log λ_i)² / 2σ²), 0 for the
+ * (numerically) zero eigenvalues (|λ| ≤ 1e-8·λ_max), so constants are filtered out.
+ * Needs k ≥ 3 and at least two distinct non-zero eigenvalues. */
+ss_status ss_wks_filters(const double *evals, int k, int ne, double sigma_factor, double *G, ss_error *err);
+
+/* WKS descriptors: out (n x ne, column-major), out[x,j] = Σ_i G[j,i] φ_i(x)², each column then
+ * normalised to unit L²(M) norm (M: n lumped masses). */
+ss_status ss_wks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
+                 double sigma_factor, double *out, ss_error *err);
+
+/* Wave-kernel filtering of nf functions F (n x nf, column-major): for each function f and energy j,
+ * the function Σ_i G[j,i] <f, φ_i>_M φ_i, normalised in L²(M). Output n x (nf·ne), column
+ * f·ne + j. A column whose filtered version is numerically zero is left zero. */
+ss_status ss_wks_filter(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
+                        double sigma_factor, int nf, const double *F, double *out, ss_error *err);
+
+/* Wave-kernel maps of landmarks (NO17): the filtered delta at each landmark, i.e.
+ * out[x, l·ne + j] = Σ_i G[j,i] φ_i(lm[l]) φ_i(x), normalised in L²(M). Output n x (nl·ne). */
+ss_status ss_wks_landmarks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
+                           double sigma_factor, int nl, const int *lm, double *out, ss_error *err);
+
+/* ------------------------------------------------------- functional map (fmap_solve.c) */
+
+/* Spectral coefficients A = Φᵀ M F (k x p) of p functions F (n x p), Φ the first k columns of evecs. */
+ss_status ss_fmap_project(int n, int k, const double *evecs, const double *M, int p, const double *F,
+                          double *A, ss_error *err);
+
+/* Multiplication operators in the reduced basis: D_i = Φᵀ M diag(f_i) Φ (k x k, symmetric) for the p
+ * functions F (n x p). D: p consecutive k x k column-major blocks (p·k·k doubles). */
+ss_status ss_fmap_mult_operators(int n, int k, const double *evecs, const double *M, int p,
+                                 const double *F, double *D, ss_error *err);
+
+/* Weights of Eq. (1):
+ *   E(C) = w_descr ‖C A − B‖² + w_lap ‖Λ_T C − C Λ_S‖² + w_dcomm Σ_i ‖C D_i^S − D_i^T C‖².
+ * fix_constant: keep the first column at C[:,0] = s·sqrt(area_T/area_S)·e_0 (the constant function
+ * maps to the constant; s = sign making evecs' first columns agree, given by const_sign) and
+ * minimise over the other columns, as pyFM does. */
+typedef struct ss_fmap_weights {
+  double w_descr, w_lap, w_dcomm;
+  int fix_constant;
+  double const_value; /* value of C[0,0] when fix_constant (s·sqrt(area_T/area_S)) */
+} ss_fmap_weights;
+
+/* Global minimiser of E(C) (k_T x k_S, column-major). Solves the k_T·k_S normal equations, assembled
+ * densely through their Kronecker structure, by Cholesky (LAPACK dpotrf). A: k_S x p, B: k_T x p
+ * (p may be 0), evals_S/T: the eigenvalues, D_S: nd blocks k_S x k_S, D_T: nd blocks k_T x k_T (nd
+ * may be 0). Fails with SS_ERR_NUMERIC when the system is singular (e.g. all weights zero). */
+ss_status ss_fmap_solve(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
+                        const double *evals_T, int nd, const double *D_S, const double *D_T,
+                        const ss_fmap_weights *w, double *C, ss_error *err);
+
+/* E(C) and its gradient dE/dC (k_T x k_S; may be NULL), e.g. to check optimality. */
+ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
+                         const double *evals_T, int nd, const double *D_S, const double *D_T,
+                         const ss_fmap_weights *w, const double *C, double *E, double *grad, ss_error *err);
+
+/* --------------------------------------------------------------- point maps (p2p.c) */
+
+/* Exact nearest neighbours: for each query point q (nq x d, column-major, leading dimension ldq)
+ * the index of the closest database point (ndb x d, leading dimension lddb) in Euclidean distance;
+ * ties go to the lower index. dist2 (may be NULL) receives the squared distances (exact
+ * Σ (q_j − b_j)² in double). ss_nn_exact clusters the database (farthest-point centres, radii) and
+ * skips clusters by the triangle inequality — spectral embeddings of surfaces are intrinsically 2-D,
+ * so few clusters survive; ss_nn_brute is the blocked-BLAS brute force (‖q‖² − 2 q·b + ‖b‖² with an
+ * exact recheck of near-ties). Both return identical results; OpenMP over queries. */
+ss_status ss_nn_exact(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
+                      double *dist2, ss_error *err);
+ss_status ss_nn_brute(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
+                      double *dist2, ss_error *err);
+
+/* Point map of a functional map C (k_T x k_S, functions S -> T): for each target vertex y, the
+ * source vertex x minimising ‖Φ_S(x) Cᵀ − Φ_T(y)‖ (rows of the first k_S / k_T eigenvectors).
+ * evecs_S: n_S x (≥ k_S) with leading dimension n_S, likewise evecs_T. map: n_T entries (T -> S). */
+ss_status ss_fmap_p2p(int n_S, int n_T, int k_S, int k_T, const double *evecs_S, const double *evecs_T,
+                      const double *C, int *map, ss_error *err);
+
+/* Functional map of a point map π : T -> S (map[n_T]): C = Φ_Tᵀ M_T Π Φ_S (k_T x k_S). */
+ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const double *evecs_S, const double *evecs_T,
+                           const double *M_T, const int *map, double *C, ss_error *err);
+
+/* ------------------------------------------------------------------ ZoomOut (zoomout.c) */
+
+/* ZoomOut (Melzi et al. 2019): from C0 (k0 x k0, functions S -> T) alternate the point map and the
+ * spectral up-sampling C ← Φ_Tᵀ M_T Π Φ_S at sizes k0+step, k0+2·step, …, kmax, then a last point
+ * map. evecs_S / evecs_T need ≥ kmax columns. map: n_T entries (T -> S). C_out (kmax x kmax) may be
+ * NULL. */
+ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
+                     const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
+
+/* ---------------------------------------------------------------- pipeline (match.c) */
+
+/* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric
+ * masses of the mesh, as ss_mesh_eigs uses) and eigenpairs (kev of them, evecs nv x kev). */
+typedef struct ss_fmap_shape {
+  const ss_mesh *mesh;
+  const double *M;
+  const double *evals;
+  const double *evecs;
+  int kev;
+} ss_fmap_shape;
+
+typedef enum ss_probe_filter {
+  SS_PROBE_RAW = 0, /* extra probe functions used as they are (ASA) */
+  SS_PROBE_WAVE = 1 /* extra probe functions filtered by the WKS energy filters (DIFF) */
+} ss_probe_filter;
+
+typedef struct ss_fmap_match_options {
+  int k;               /* basis size on both shapes (default 50) */
+  int n_energies;      /* WKS energies (default 100) */
+  double sigma_factor; /* WKS σ in energy spacings (default 7) */
+  int descr_step;      /* keep every descr_step-th descriptor column (default 5, as pyFM) */
+  double w_descr;      /* weights of Eq. (1) (defaults 30, 1e-3, 1: w_descr tuned on FAUST, pyFM uses
+                        * 0.1); w_lap is relative: the Laplacian term is divided by */
+  double w_lap;        /*   Σ (λ_T,i − λ_S,j)² so that it is scale free (as pyFM) */
+  double w_dcomm;
+  int fix_constant;    /* default 1 */
+  int zoomout_kmax;    /* 0 = no ZoomOut (default); else refine up to this size */
+  int zoomout_step;    /* default 1 */
+  int verbose;         /* timings on stderr */
+  /* The extra (segment) probe block. Measured on FAUST (BEST landmarks, k 50, seed 7, first 10
+   * pairs of bench_match, STD 0.0402): hard indicators wave-filtered, in data + commutativity
+   * terms at full weight: DIFF 0.0492 (1.22 x STD); data term only 0.0457; block normalised to the
+   * landmark block's weight 0.0463; weight 0.1 0.0404 / data only 0.0400; low-energy half of the
+   * filters 0.0430 / data only 0.0402. With the tent profile of ss_match_options.segment_profile:
+   * data + commutativity 0.0400, data only 0.0382 (0.95 x STD, better on 7/10 pairs). The
+   * segments are coarse and their boundaries differ between shapes (IoU 0.6-0.98 under the ground
+   * truth), so their products (the commutativity operators D_i) constrain C with the wrong
+   * supports: hence data term only by default. */
+  double w_extra;      /* data-term weight of the extra probes relative to w_descr (default 1) */
+  int extra_dcomm;     /* 1: their multiplication operators also enter the commutativity term (default 0) */
+} ss_fmap_match_options;
+
+void ss_fmap_match_default_options(ss_fmap_match_options *o);
+
+/* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape, the wave-kernel maps
+ * of the landmarks (lmX[i] on X ↔ lmY[i] on Y), plus nextra paired functions (extraX nX x nextra,
+ * extraY nY x nextra; e.g. segment indicators) used raw or wave-filtered. All descriptors are
+ * normalised in L²(M) and sub-sampled by descr_step; the multiplication operators of the kept
+ * WKS and landmark probes enter the commutativity term, those of the extras only with
+ * opts->extra_dcomm; the extras' data term is weighted by opts->w_extra. Output: map[nX], map[i] = vertex of Y that is the image of vertex i
+ * of X. C (may be NULL; k x k, or zoomout_kmax² with ZoomOut) receives the functional map from
+ * functions on Y to functions on X (the pull-back of map). */
+ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
+                        int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
+                        const ss_fmap_match_options *opts, int *map, double *C, ss_error *err);
+
+/* ------------------------------------------------------------- evaluation (map_error.c) */
+
+/* Geodesic error of a point map Π : X -> Y (paper §6): e_x = d_Y(Π(x), Π_GT(x)) / √area(Y) with exact
+ * geodesics (ss_geodesic_pairs: each source stops once its targets are settled, cheap for small
+ * errors). gt: ground-truth images (nX entries; NULL = identity, needs nX <= nv(Y)). sym (may be
+ * NULL): a left–right symmetry map of X (nX entries); then e_x = min(d_Y(Π(x), Π_GT(x)),
+ * d_Y(Π(x), Π_GT(sym[x]))), the paper's "sym" variant. errors (nX, may be NULL) receives e_x;
+ * mean receives their mean. */
+ss_status ss_map_geodesic_error(const ss_mesh *Y, int nX, const int *map, const int *gt, const int *sym,
+                                double *errors, double *mean, ss_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,54 @@
+/* Internals of the Table 1 runner: one prepared FAUST shape and the single place where the
+ * evaluation calls the matching pipeline (eval_match.c). */
+#ifndef SS_EVAL_INTERNAL_H
+#define SS_EVAL_INTERNAL_H
+
+#include "specseg/evaluation.h"
+#include "specseg/match.h"
+
+#define EV_NL 5 /* landmarks per set (paper: 5) */
+
+/* Everything a shape contributes to a match, computed once per shape. When loaded from the disk
+ * cache, prep.seg holds only nv, m, labels and centers (no work mesh). */
+typedef struct ev_shape {
+  int id;
+  ss_mesh mesh;
+  ss_shape_prep prep;
+  int from_cache;
+  int fps[EV_NL];          /* this shape's own FPS landmarks (input vertices) */
+  double *lmd[3];          /* per landmark set: m x EV_NL scaled distances landmark → critical point */
+  double t_prep;
+} ev_shape;
+
+typedef struct ev_context {
+  int best[EV_NL], gt[EV_NL];
+  int kev;
+  ss_match_options mopt;
+} ev_context;
+
+void ev_shape_free(ev_shape *s);
+/* Reads tr_reg_<id>.off, prepares it (segmentation, eigenpairs, FPS landmarks, landmark fields at
+ * the critical points), through the cache folder when cache_dir is not NULL. */
+ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, const ev_context *ctx, ev_shape *s,
+                        ss_error *err);
+
+/* The same for a shape whose mesh (s->mesh, s->id) is already set: segmentation + eigenpairs
+ * (ss_shape_prep_compute), FPS landmarks seeded at vertex 0, landmark fields. On failure s->mesh is
+ * kept and everything else released. */
+ss_status ev_shape_prepare(ev_shape *s, const ev_context *ctx, ss_error *err);
+
+/* GT landmarks (§6.1): FPS of EV_NL points, seeded at Ψ(seed_vertex), on the streamlined version of
+ * `m` (exact geodesics), mapped back to input vertices. */
+ss_status ev_fps_landmarks(const ss_mesh *m, const ss_segmentation *seg, const ss_segment_options *so, int seed_vertex,
+                           int *lm, ss_error *err);
+
+/* The adapter: matches X → Y with the landmark set `lmset` and `method`, map[X.nv]. Uses the
+ * landmark fields cached in the shapes and the library's pairing + functional-map calls; the result
+ * equals ss_match_prepared's (tests/test_eval.c checks it). paired receives the number of paired
+ * segments. */
+ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int method, int *map,
+                   int *paired, ss_error *err);
+/* Landmarks of a set on shape s (input vertices). */
+const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset);
+
+#endif

@@ -1,0 +1,370 @@
+/* The Table 1 runner (paper §6): pairing policies × landmark sets × methods on FAUST.
+ *
+ * Work unit = (policy, pair, landmark set): its three method rows share the pairing. The full unit
+ * list is fixed by the seed and sorted by target shape, so a shard is a contiguous slice (shards
+ * rarely share a target) and stays the same across resumed runs. Each needed shape is prepared once
+ * (in parallel); then units run in parallel grouped by target shape, whose exact error fields are
+ * computed once per group. Rows are appended (and flushed) as they finish. */
+#include "eval_internal.h"
+#include "specseg/io.h"
+
+#include <cblas.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#define NSUBJ 10
+#define NPOSE 10
+#define NSHAPES (NSUBJ * NPOSE)
+
+void ss_table1_default_options(ss_table1_options *o) {
+  memset(o, 0, sizeof *o);
+  o->npairs = 100;
+  o->seed = 1;
+  o->shard_i = 0;
+  o->shard_n = 1;
+  o->error_samples = 64;
+  o->k = 50;
+  o->policies_mask = o->lm_mask = o->methods_mask = 7;
+}
+
+typedef struct unit {
+  int policy, x, y, lmset, pair;
+} unit;
+
+static int unit_cmp(const void *pa, const void *pb) {
+  const unit *a = pa, *b = pb;
+  int ka[4] = {a->y, a->policy, a->pair, a->lmset}, kb[4] = {b->y, b->policy, b->pair, b->lmset};
+  for (int i = 0; i < 4; i++)
+    if (ka[i] != kb[i]) return ka[i] < kb[i] ? -1 : 1;
+  return 0;
+}
+
+/* done[key]: rows already in the CSV; key = ((policy*3+lm)*3+method)*NSHAPES² + x*NSHAPES + y */
+static size_t row_key(int policy, int lm, int method, int x, int y) {
+  return ((size_t)((policy * 3 + lm) * 3 + method) * NSHAPES + x) * NSHAPES + y;
+}
+
+/* Drops a partial last line left by an interrupted run, so appended rows start on a fresh line.
+ * Returns 1 when the file holds at least a header. */
+static int repair_tail(const char *path) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return 0;
+  fseek(f, 0, SEEK_END);
+  long size = ftell(f), keep = 0;
+  for (long pos = size - 1; pos >= 0; pos--) {
+    fseek(f, pos, SEEK_SET);
+    if (fgetc(f) == '\n') { keep = pos + 1; break; }
+  }
+  fclose(f);
+  if (keep < size && truncate(path, keep)) return keep > 0;
+  return keep > 0;
+}
+
+static void progress(double t0, long done, long total, int shapes_done, int shapes_total) {
+  double el = ss_time() - t0;
+  char eta[32] = "--";
+  if (done > 0) {
+    double r = el / done * (total - done);
+    snprintf(eta, sizeof eta, "%dm%02ds", (int)(r / 60), (int)fmod(r, 60));
+  }
+  int w = 30, fill = total ? (int)(w * done / total) : w;
+  char bar[64];
+  for (int i = 0; i < w; i++) bar[i] = i < fill ? '#' : '.';
+  bar[w] = 0;
+  if (shapes_done < shapes_total)
+    fprintf(stderr, "\r  preparing shapes %d/%d  %.0fs      ", shapes_done, shapes_total, el);
+  else
+    fprintf(stderr, "\r  [%s] %ld/%ld rows  %.0fs elapsed  ETA %s   ", bar, done, total, el, eta);
+  fflush(stderr);
+}
+
+static ss_status gt_landmarks(const char *dir, uint64_t seed, const ev_context *ctx, int *gt, int *shape, ss_error *err) {
+  ss_rng r;
+  ss_rng_seed(&r, seed ^ 0x6A09E667F3BCC909ull);
+  *shape = ss_rng_below(&r, NSHAPES);
+  char path[4096];
+  snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", dir, *shape);
+  ss_mesh m = {0};
+  ss_segmentation seg;
+  memset(&seg, 0, sizeof seg);
+  ss_status st = ss_read_mesh(path, &m, err);
+  if (!st) st = ss_segment(&m, &ctx->mopt.seg, &seg, err);
+  if (!st) st = ev_fps_landmarks(&m, &seg, &ctx->mopt.seg, 0, gt, err);
+  ss_segmentation_free(&seg);
+  ss_mesh_free(&m);
+  return st;
+}
+
+/* CPU seconds of the calling thread: what a row costs, whatever else the machine is doing */
+static double thread_cpu(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static int int_cmp(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
+/* The vertices the error of a map onto shape y averages over: S seeded-random vertices and their
+ * mirrors, sorted, without repeats (≤ 2S). A different sample for every target shape, so the
+ * sampling error is independent across targets and averages out over the pairs (one sample shared
+ * by all pairs would bias every row the same way). sympos[i]: position of sym(samples[i]). perm:
+ * nv scratch ints. Returns the count. */
+static int error_samples(uint64_t seed, int y, int S, int nv, const int *sym, int *perm, int *samples, int *sympos) {
+  ss_rng r;
+  ss_rng_seed(&r, seed ^ 0xBB67AE8584CAA73Bull ^ (0x3C6EF372FE94F82Bull * (uint64_t)(y + 1)));
+  if (S > nv) S = nv;
+  int ns = 0;
+  for (int i = 0; i < nv; i++) perm[i] = i;
+  for (int i = 0; i < S; i++) {
+    int j = i + ss_rng_below(&r, nv - i), t = perm[i];
+    perm[i] = perm[j], perm[j] = t;
+    samples[ns++] = perm[i];
+    samples[ns++] = sym[perm[i]];
+  }
+  qsort(samples, (size_t)ns, sizeof(int), int_cmp);
+  int k = 0;
+  for (int i = 0; i < ns; i++)
+    if (!k || samples[i] != samples[k - 1]) samples[k++] = samples[i];
+  /* the set is closed under sym by construction */
+  for (int i = 0; i < k; i++) {
+    int *f = bsearch(&sym[samples[i]], samples, (size_t)k, sizeof(int), int_cmp);
+    sympos[i] = f ? (int)(f - samples) : i;
+  }
+  return k;
+}
+
+ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err) {
+  if (new_rows) *new_rows = 0;
+  if (!o || !o->data_dir || !o->out_csv) return ss_fail(err, SS_ERR_INVALID, "table1: data folder and output needed");
+  if (o->npairs < 1 || o->shard_n < 1 || o->shard_i < 0 || o->shard_i >= o->shard_n || o->k < 3 ||
+      o->error_samples < 0 || o->error_samples > 3000)
+    return ss_fail(err, SS_ERR_INVALID, "table1: bad options (pairs %d, shard %d/%d, k %d, samples %d)", o->npairs,
+                   o->shard_i + 1, o->shard_n, o->k, o->error_samples);
+  ss_status st = SS_OK;
+  ev_context ctx;
+  memset(&ctx, 0, sizeof ctx);
+  ss_match_default_options(&ctx.mopt);
+  ctx.mopt.fmap.k = o->k;
+  ctx.kev = o->k;
+  unit *U = NULL;
+  int *px = NULL, *py = NULL, *lmb = NULL, *sym = NULL, *need = NULL;
+  unsigned char *done = NULL;
+  ev_shape *shapes = NULL;
+  ss_eval_row *old = NULL;
+  FILE *out = NULL;
+  ss_mesh m0 = {0};
+  int nlmb = 0, nold = 0, blas_threads = -1;
+  char path[4096];
+
+  /* 1. landmarks, pairs, the unit list and this shard's slice */
+  snprintf(path, sizeof path, "%s/faust/landmarks_best.txt", o->data_dir);
+  if ((st = ss_read_ints(path, &lmb, &nlmb, err))) goto done;
+  if (nlmb != EV_NL) { st = ss_fail(err, SS_ERR_PARSE, "%s: %d landmarks, %d expected", path, nlmb, EV_NL); goto done; }
+  memcpy(ctx.best, lmb, sizeof ctx.best);
+  px = malloc(sizeof(int) * (size_t)o->npairs);
+  py = malloc(sizeof(int) * (size_t)o->npairs);
+  U = malloc(sizeof(unit) * (size_t)o->npairs * 9);
+  done = calloc(row_key(2, 2, 2, NSHAPES - 1, NSHAPES - 1) + 1, 1);
+  if (!px || !py || !U || !done) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
+  int nu = 0;
+  for (int p = 0; p < 3; p++) {
+    if (!(o->policies_mask >> p & 1)) continue;
+    if ((st = ss_eval_pairs((ss_pair_policy)p, NSUBJ, NPOSE, o->npairs, o->seed, px, py, err))) goto done;
+    for (int i = 0; i < o->npairs; i++)
+      for (int l = 0; l < 3; l++)
+        if (o->lm_mask >> l & 1) U[nu++] = (unit){p, px[i], py[i], l, i};
+  }
+  qsort(U, (size_t)nu, sizeof *U, unit_cmp);
+  int u0 = (int)((long)nu * o->shard_i / o->shard_n), u1 = (int)((long)nu * (o->shard_i + 1) / o->shard_n);
+
+  /* 2. resume: rows already in the output are skipped */
+  int have_header = repair_tail(o->out_csv);
+  if (have_header) {
+    if ((st = ss_eval_csv_read(o->out_csv, &old, &nold, err))) goto done;
+    for (int i = 0; i < nold; i++)
+      if (old[i].x >= 0 && old[i].x < NSHAPES && old[i].y >= 0 && old[i].y < NSHAPES)
+        done[row_key(old[i].policy, old[i].landmarks, old[i].method, old[i].x, old[i].y)] = 1;
+  }
+  int nwork = 0;
+  long total_rows = 0;
+  for (int u = u0; u < u1; u++) {
+    int todo = 0;
+    for (int mth = 0; mth < 3; mth++)
+      if ((o->methods_mask >> mth & 1) && !done[row_key(U[u].policy, U[u].lmset, mth, U[u].x, U[u].y)]) todo++;
+    if (todo) U[nwork++] = U[u], total_rows += todo;
+  }
+  if (o->verbose)
+    fprintf(stderr, "table1: shard %d/%d: %d units, %d to do (%ld rows), %d rows already in %s\n", o->shard_i + 1,
+            o->shard_n, u1 - u0, nwork, total_rows, nold, o->out_csv);
+  if (nwork == 0) goto done;
+
+  /* 3. shared inputs: GT landmarks and the symmetry map (error samples are drawn per target below) */
+  double t_start = ss_time();
+  int gt_shape = -1;
+  /* without GT rows the GT landmarks are never used (they stay 0, which the cache key records) */
+  if ((o->lm_mask >> SS_LM_GT & 1) && (st = gt_landmarks(o->data_dir, o->seed, &ctx, ctx.gt, &gt_shape, err))) goto done;
+  if (o->verbose && gt_shape >= 0)
+    fprintf(stderr, "table1: GT landmarks from tr_reg_%03d: %d %d %d %d %d\n", gt_shape, ctx.gt[0], ctx.gt[1], ctx.gt[2],
+            ctx.gt[3], ctx.gt[4]);
+  snprintf(path, sizeof path, "%s/faust/tr_reg_000.off", o->data_dir);
+  if ((st = ss_read_mesh(path, &m0, err))) goto done;
+  const int nv = m0.nv;
+  sym = malloc(sizeof(int) * (size_t)nv);
+  if (!sym) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
+  {
+    /* BEST order: head, left hand, left foot, right foot, right hand */
+    int mir[EV_NL] = {ctx.best[0], ctx.best[4], ctx.best[3], ctx.best[2], ctx.best[1]};
+    ss_symmetry_stats ss;
+    if ((st = ss_symmetry_map(&m0, EV_NL, ctx.best, mir, sym, &ss, err))) goto done;
+    if (o->verbose)
+      fprintf(stderr, "table1: symmetry map of tr_reg_000: involution on %.1f%% of vertices, %d refined\n",
+              100 * ss.involution, ss.refined);
+  }
+  /* 4. prepare every shape this slice needs, once, in parallel */
+  need = calloc(NSHAPES, sizeof(int));
+  shapes = calloc(NSHAPES, sizeof(ev_shape));
+  if (!need || !shapes) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
+  for (int u = 0; u < nwork; u++) need[U[u].x] = need[U[u].y] = 1;
+  int nneed = 0, list[NSHAPES];
+  for (int s = 0; s < NSHAPES; s++)
+    if (need[s]) list[nneed++] = s;
+  if (o->cache_dir) mkdir(o->cache_dir, 0755);
+  /* parallelism is over shapes and pairs: BLAS calls inside run on one thread each (OpenBLAS's own
+   * pthreads would oversubscribe the cores) */
+  blas_threads = openblas_get_num_threads();
+  int failed = 0, prepared = 0;
+  ss_error perr = {{0}};
+  int nthreads = o->jobs > 0 ? o->jobs : 0;
+#ifdef _OPENMP
+  if (!nthreads) nthreads = omp_get_max_threads();
+#else
+  nthreads = 1;
+#endif
+  openblas_set_num_threads(1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
+  for (int i = 0; i < nneed; i++) {
+    if (failed) continue;
+    ss_error e;
+    if (ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e)) {
+#pragma omp critical(table1_err)
+      if (!failed) failed = 1, perr = e;
+      continue;
+    }
+#pragma omp critical(table1_progress)
+    {
+      prepared++;
+      if (o->progress) progress(t_start, 0, total_rows, prepared, nneed);
+    }
+  }
+  if (failed) {
+    st = ss_fail(err, SS_ERR_NUMERIC, "table1: preparing shapes: %s", perr.msg);
+    goto done;
+  }
+  if (o->verbose) fprintf(stderr, "%stable1: %d shapes prepared in %.1f s\n", o->progress ? "\n" : "", nneed, ss_time() - t_start);
+
+  /* 5. the units, in parallel, grouped by target shape */
+  out = fopen(o->out_csv, have_header ? "ab" : "wb");
+  if (!out) { st = ss_fail(err, SS_ERR_IO, "%s: cannot write", o->out_csv); goto done; }
+  if (!have_header) fprintf(out, "%s\n", ss_eval_csv_header());
+  fflush(out);
+  int ngroups = 0, *gstart = malloc(sizeof(int) * ((size_t)nwork + 1));
+  if (!gstart) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
+  for (int u = 0; u < nwork; u++)
+    if (!u || U[u].y != U[u - 1].y) gstart[ngroups++] = u;
+  gstart[ngroups] = nwork;
+  long rows_done = 0;
+  double t_rows = ss_time();
+#pragma omp parallel num_threads(nthreads)
+  {
+    int S = o->error_samples < nv ? o->error_samples : nv, ns = 0;
+    int *map = malloc(sizeof(int) * (size_t)nv), *ident = malloc(sizeof(int) * (size_t)nv);
+    int *samples = malloc(sizeof(int) * (2 * (size_t)S + 1)), *sympos = malloc(sizeof(int) * (2 * (size_t)S + 1));
+    double *fields = malloc(sizeof(double) * (size_t)nv * (2 * (size_t)S + 1));
+    double *d1 = malloc(sizeof(double) * (size_t)nv), *d2 = malloc(sizeof(double) * (size_t)nv);
+    if (!map || !ident || !samples || !sympos || !fields || !d1 || !d2) {
+#pragma omp critical(table1_err)
+      if (!failed) failed = 1, snprintf(perr.msg, sizeof perr.msg, "out of memory");
+    } else
+      for (int i = 0; i < nv; i++) ident[i] = i;
+#pragma omp for schedule(dynamic, 1)
+    for (int g = 0; g < ngroups; g++) {
+      if (failed) continue;
+      ss_error e;
+      const ev_shape *Y = &shapes[U[gstart[g]].y];
+      ss_geodesic_mesh *gm = NULL;
+      ss_status s2 = ss_geodesic_mesh_build(&Y->mesh, &gm, &e);
+      if (S > 0) ns = error_samples(o->seed, Y->id, S, nv, sym, map, samples, sympos);
+      if (!s2 && ns > 0) s2 = ss_geodesic_fields(gm, samples, ns, 0, fields, &e);
+      const double scale = 1.0 / sqrt(ss_mesh_area(&Y->mesh));
+      for (int u = gstart[g]; u < gstart[g + 1] && !s2; u++) {
+        const unit *w = &U[u];
+        const ev_shape *X = &shapes[w->x];
+        for (int mth = 0; mth < 3 && !s2; mth++) {
+          if (!(o->methods_mask >> mth & 1) || done[row_key(w->policy, w->lmset, mth, w->x, w->y)]) continue;
+          ss_eval_row r;
+          memset(&r, 0, sizeof r);
+          double t0 = ss_time(), c0 = thread_cpu();
+          if ((s2 = ev_match(&ctx, X, Y, w->lmset, mth, map, &r.paired, &e))) break;
+          r.seconds = ss_time() - t0;
+          r.cpu_seconds = thread_cpu() - c0;
+          double se = 0, ss2 = 0;
+          if (ns > 0) {
+            for (int i = 0; i < ns; i++) {
+              double a = fields[map[samples[i]] + (size_t)nv * i], b = fields[map[samples[i]] + (size_t)nv * sympos[i]];
+              se += a;
+              ss2 += a < b ? a : b;
+            }
+            r.samples = ns;
+          } else {
+            /* every vertex: exact distances from each image, grouped by image */
+            if ((s2 = ss_geodesic_pairs(gm, map, ident, nv, d1, &e))) break;
+            if ((s2 = ss_geodesic_pairs(gm, map, sym, nv, d2, &e))) break;
+            for (int i = 0; i < nv; i++) se += d1[i], ss2 += d1[i] < d2[i] ? d1[i] : d2[i];
+            r.samples = nv;
+          }
+          r.error = se / r.samples * scale;
+          r.error_sym = ss2 / r.samples * scale;
+          r.policy = w->policy, r.landmarks = w->lmset, r.method = mth, r.x = w->x, r.y = w->y;
+          r.segments_x = X->prep.seg.m, r.segments_y = Y->prep.seg.m;
+          char line[512];
+          ss_eval_csv_format_row(&r, line, sizeof line);
+#pragma omp critical(table1_progress)
+          {
+            fprintf(out, "%s\n", line);
+            fflush(out);
+            rows_done++;
+            if (o->progress) progress(t_rows, rows_done, total_rows, 1, 1);
+          }
+        }
+      }
+      ss_geodesic_mesh_free(gm);
+      if (s2) {
+#pragma omp critical(table1_err)
+        if (!failed) failed = 1, perr = e;
+      }
+    }
+    free(map), free(ident), free(samples), free(sympos), free(fields), free(d1), free(d2);
+  }
+  free(gstart);
+  if (o->progress) fputc('\n', stderr);
+  if (new_rows) *new_rows = (int)rows_done;
+  if (o->verbose) fprintf(stderr, "table1: %ld rows in %.1f s (%.1f s total)\n", rows_done, ss_time() - t_rows, ss_time() - t_start);
+  if (failed) st = ss_fail(err, SS_ERR_NUMERIC, "table1: %s", perr.msg);
+done:
+  if (blas_threads > 0) openblas_set_num_threads(blas_threads);
+  if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write failed", o->out_csv);
+  if (shapes)
+    for (int s = 0; s < NSHAPES; s++) ev_shape_free(&shapes[s]);
+  free(shapes), free(need), free(U), free(px), free(py), free(lmb), free(sym);
+  free(done), free(old);
+  ss_mesh_free(&m0);
+  return st;
+}

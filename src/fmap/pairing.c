@@ -1,0 +1,126 @@
+/* Pairing of the segments of two shapes (paper §6.1): critical points are compared through their
+ * exact geodesic distances to corresponding landmarks, on the streamlined (work) shapes. */
+#include "specseg/match.h"
+#include "specseg/geodesic.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void ss_segment_pairs_free(ss_segment_pairs *p) {
+  if (!p) return;
+  free(p->sx);
+  free(p->sy);
+  free(p->energy);
+  memset(p, 0, sizeof *p);
+}
+
+ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
+                                  ss_segment_pairs *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "pairing: NULL output");
+  memset(out, 0, sizeof *out);
+  if (mx < 0 || my < 0 || nl < 1 || (mx > 0 && !dX) || (my > 0 && !dY))
+    return ss_fail(err, SS_ERR_INVALID, "pairing: bad sizes (%d, %d critical points, %d landmarks)", mx, my, nl);
+  out->nx = mx;
+  out->ny = my;
+  /* the shape with fewer critical points chooses; A chooses among B */
+  int swap = mx > my;
+  int na = swap ? my : mx, nb = swap ? mx : my;
+  const double *dA = swap ? dY : dX, *dB = swap ? dX : dY;
+  int *choice = malloc(sizeof(int) * (size_t)(na > 0 ? na : 1));
+  double *energy = malloc(sizeof(double) * (size_t)(na > 0 ? na : 1));
+  int *owner = malloc(sizeof(int) * (size_t)(nb > 0 ? nb : 1)); /* index in A that keeps each b */
+  if (!choice || !energy || !owner) {
+    free(choice), free(energy), free(owner);
+    return ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
+  }
+  for (int b = 0; b < nb; b++) owner[b] = -1;
+  for (int a = 0; a < na; a++) {
+    double best = INFINITY;
+    int bi = -1;
+    for (int b = 0; b < nb; b++) {
+      double s = 0;
+      for (int i = 0; i < nl; i++) {
+        double d = dA[a + (size_t)na * i] - dB[b + (size_t)nb * i];
+        s += d * d;
+      }
+      if (s < best) best = s, bi = b; /* strict: ties go to the lower index */
+    }
+    choice[a] = bi;
+    energy[a] = sqrt(best);
+    if (bi < 0) continue; /* non-finite distances everywhere (another component) */
+    /* conservative rule: the closest voter keeps y*; the others stay unpaired */
+    if (owner[bi] < 0 || energy[a] < energy[owner[bi]]) owner[bi] = a;
+  }
+  int n = 0;
+  for (int b = 0; b < nb; b++) n += owner[b] >= 0;
+  out->sx = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+  out->sy = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+  out->energy = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+  if (!out->sx || !out->sy || !out->energy) {
+    free(choice), free(energy), free(owner);
+    ss_segment_pairs_free(out);
+    return ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
+  }
+  /* emit in increasing X segment order */
+  int p = 0;
+  if (!swap) {
+    for (int a = 0; a < na; a++)
+      if (choice[a] >= 0 && owner[choice[a]] == a) out->sx[p] = a, out->sy[p] = choice[a], out->energy[p++] = energy[a];
+  } else {
+    for (int b = 0; b < nb; b++)
+      if (owner[b] >= 0) out->sx[p] = b, out->sy[p] = owner[b], out->energy[p++] = energy[owner[b]];
+  }
+  out->n = p;
+  free(choice), free(energy), free(owner);
+  return SS_OK;
+}
+
+/* Scaled distances from the nl landmarks (work vertices) to the m critical points of one shape:
+ * d (m x nl). One full exact field per landmark, the landmarks in parallel. */
+static ss_status landmark_fields(const ss_segmentation *s, int nl, const int *lm_input, double *d, ss_error *err) {
+  const ss_mesh *w = &s->work;
+  int *src = malloc(sizeof(int) * (size_t)nl);
+  double *field = malloc(sizeof(double) * (size_t)w->nv * nl);
+  ss_geodesic_mesh *gm = NULL;
+  ss_status st = SS_OK;
+  if (!src || !field) {
+    st = ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
+    goto done;
+  }
+  for (int i = 0; i < nl; i++) {
+    if (lm_input[i] < 0 || lm_input[i] >= s->nv) {
+      st = ss_fail(err, SS_ERR_INVALID, "pairing: landmark %d: vertex %d out of range [0,%d)", i, lm_input[i], s->nv);
+      goto done;
+    }
+    src[i] = s->psi[lm_input[i]];
+  }
+  if ((st = ss_geodesic_mesh_build(w, &gm, err))) goto done;
+  if ((st = ss_geodesic_fields(gm, src, nl, 0.0, field, err))) goto done;
+  double scale = 1.0 / sqrt(ss_mesh_area(w));
+  for (int i = 0; i < nl; i++)
+    for (int c = 0; c < s->m; c++) d[c + (size_t)s->m * i] = field[s->crit[c] + (size_t)w->nv * i] * scale;
+done:
+  ss_geodesic_mesh_free(gm);
+  free(src);
+  free(field);
+  return st;
+}
+
+ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
+                           const int *lmY, ss_segment_pairs *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "pairing: NULL output");
+  memset(out, 0, sizeof *out);
+  if (!X || !Y || !X->psi || !Y->psi || !X->crit || !Y->crit || X->m < 1 || Y->m < 1)
+    return ss_fail(err, SS_ERR_INVALID, "pairing: incomplete segmentation");
+  if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "pairing: needs at least one landmark");
+  double *dX = malloc(sizeof(double) * (size_t)X->m * nl), *dY = malloc(sizeof(double) * (size_t)Y->m * nl);
+  ss_status st = SS_OK;
+  if (!dX || !dY) st = ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
+  if (!st) st = landmark_fields(X, nl, lmX, dX, err);
+  if (!st) st = landmark_fields(Y, nl, lmY, dY, err);
+  if (!st) st = ss_pair_critical_points(X->m, Y->m, nl, dX, dY, out, err);
+  free(dX);
+  free(dY);
+  return st;
+}

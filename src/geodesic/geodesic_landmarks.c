@@ -1,0 +1,57 @@
+/* Landmark fields that sharpen the lower bounds of target queries (ALT: for a landmark L and
+ * exact distances d_L, d(p,t) >= |d_L(p) - d_L(t)|). Landmarks are spread by farthest-point
+ * sampling on the edge graph (cheap; any spread works), their fields are exact. */
+#include "geodesic/vtp.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+ss_status ss_geodesic_mesh_prepare_queries(ss_geodesic_mesh *gm, int nlandmarks, ss_error *err) {
+  if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
+  if (nlandmarks < 0 || nlandmarks > SS_GEODESIC_MAX_LANDMARKS)
+    return ss_fail(err, SS_ERR_INVALID, "landmark count %d outside [0,%d]", nlandmarks, SS_GEODESIC_MAX_LANDMARKS);
+  int nv = gm->nv, K = nlandmarks < nv ? nlandmarks : nv;
+  free(gm->lm);
+  gm->lm = NULL;
+  gm->nlm = 0;
+  gm->lm_off = K == 0; /* an explicit 0 also turns the automatic preparation off */
+  if (K == 0) return SS_OK;
+  ss_mesh view = {gm->nv, gm->nf, gm->V, gm->F};
+  ss_graph g;
+  ss_status st = ss_graph_edges(&view, &g, err);
+  if (st) return st;
+  int lmk[SS_GEODESIC_MAX_LANDMARKS];
+  double *dg = malloc(sizeof(double) * (size_t)nv), *mind = malloc(sizeof(double) * (size_t)nv);
+  double *F = malloc(sizeof(double) * (size_t)nv * (size_t)K), *lm = malloc(sizeof(double) * (size_t)nv * (size_t)K);
+  if (!dg || !mind || !F || !lm) {
+    st = ss_fail(err, SS_ERR_NOMEM, "out of memory");
+    goto done;
+  }
+  /* first landmark: the vertex farthest from vertex 0 (an extremity), then farthest-point */
+  int s = 0;
+  if ((st = ss_graph_dijkstra(&g, &s, 1, 0, dg, NULL, err))) goto done;
+  for (int i = 0; i < nv; i++) mind[i] = INFINITY;
+  for (int k = 0; k < K; k++) {
+    const double *ref = k == 0 ? dg : mind;
+    int best = 0;
+    double bv = -1;
+    for (int i = 0; i < nv; i++)
+      if (isfinite(ref[i]) && ref[i] > bv) { bv = ref[i]; best = i; }
+    lmk[k] = best;
+    if ((st = ss_graph_dijkstra(&g, &best, 1, 0, dg, NULL, err))) goto done;
+    for (int i = 0; i < nv; i++) if (dg[i] < mind[i]) mind[i] = dg[i];
+  }
+  if ((st = ss_geodesic_fields(gm, lmk, K, 0, F, err))) goto done;
+  for (int v = 0; v < nv; v++)
+    for (int k = 0; k < K; k++) lm[(size_t)v * K + k] = F[(size_t)k * nv + v];
+  /* publish: the count and the contents before the pointer (queries of concurrent ss_geodesic_pairs
+   * calls on the same mesh read the pointer with acquire semantics) */
+  gm->nlm = K;
+  __atomic_store_n(&gm->lm, lm, __ATOMIC_RELEASE);
+  lm = NULL;
+done:
+  ss_graph_free(&g);
+  free(dg); free(mind); free(F); free(lm);
+  return st;
+}

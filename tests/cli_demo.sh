@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# `specseg demo` end to end: writes its shapes into a new (nested) folder, the files read back with
+# `specseg info` as closed manifolds of the right genus, the output names them, usage/IO errors.
+# Usage: cli_demo.sh PATH/TO/specseg
+set -u
+BIN=${1:?usage: $0 PATH/TO/specseg}
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+OUT="$TMP/a/b/demo"
+if "$BIN" demo -o "$OUT" > "$TMP/out" 2> "$TMP/err"; then ok; else bad "demo exit $? ($(cat "$TMP/err"))"; fi
+for s in humanoid_pose0 humanoid_pose2 sphere torus; do
+  for e in off ply; do
+    [ -s "$OUT/$s.$e" ] && ok || bad "missing $OUT/$s.$e"
+  done
+  grep -q "^  $s.off " "$TMP/out" && ok || bad "summary does not list $s.off"
+done
+# the written humanoids are closed genus-0 manifolds with identical vertex/face counts
+for s in humanoid_pose0 humanoid_pose2; do
+  "$BIN" info "$OUT/$s.ply" > "$TMP/info" 2>&1 || bad "info $s failed"
+  grep -q '^boundary_loops: 0$' "$TMP/info" && grep -q '^manifold: yes$' "$TMP/info" &&
+    grep -q '^components: 1$' "$TMP/info" && grep -q '^euler_characteristic: 2$' "$TMP/info" && ok ||
+    bad "$s info: $(tr '\n' ' ' < "$TMP/info")"
+done
+[ "$(sed -n 2p "$OUT/humanoid_pose0.off")" = "$(sed -n 2p "$OUT/humanoid_pose2.off")" ] && ok || bad "pose counts differ"
+"$BIN" info "$OUT/torus.off" | grep -q '^euler_characteristic: 0$' && ok || bad "torus chi"
+# eigenvalues are printed, the sphere's are l(l+1): 0, 2, 2, 2 to 3 digits
+grep -c '^eigenvalues' "$TMP/out" | grep -q '^4$' && ok || bad "expected 4 eigenvalue lines"
+awk '/^== sphere/{s=1} s&&/^eigenvalues/{sub(/^[^:]*: /,""); n=split($0,v," "); exit}
+     END{exit !(n>=4 && v[1]<1e-6 && v[1]>-1e-6 && (v[2]-2)^2<1e-4 && (v[4]-2)^2<1e-4)}' "$TMP/out" && ok ||
+  bad "sphere eigenvalues: $(awk '/^== sphere/{s=1} s&&/^eigenvalues/{print; exit}' "$TMP/out")"
+# running again into the same folder works (overwrites)
+"$BIN" demo -o "$OUT" > /dev/null 2>&1 && ok || bad "second run into an existing folder"
+# errors: usage (2) and a path that is a file (1)
+"$BIN" demo -o > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "-o without value should exit 2"
+"$BIN" demo extra > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "stray argument should exit 2"
+: > "$TMP/file"
+"$BIN" demo -o "$TMP/file" > /dev/null 2> "$TMP/err"; rc=$?
+[ $rc -eq 1 ] && grep -q '^specseg: error: ' "$TMP/err" && ok || bad "file as output folder: exit $rc"
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

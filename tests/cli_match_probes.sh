@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# `specseg match` with segments as probes (paper §6) on two poses of the built-in humanoid (ground
+# truth = identity): --probes std|asa|diff, --pairs file format, landmark files, errors.
+# Usage: cli_match_probes.sh PATH/TO/specseg
+set -u
+BIN=${1:?usage: $0 PATH/TO/specseg}
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+"$BIN" demo -o "$TMP/d" > "$TMP/demo.out" 2>&1 || { echo "demo failed"; exit 1; }
+grep -q '^DIFF mean geodesic error' "$TMP/demo.out" && grep -q '^STD  mean geodesic error' "$TMP/demo.out" && ok ||
+  bad "demo has no matching stage"
+X="$TMP/d/humanoid_pose0.off"
+Y="$TMP/d/humanoid_pose2.off"
+nv=$(sed -n 2p "$X" | awk '{print $1}')
+# head, hands, feet as the demo found them; written as 'i' and 'i j' lines
+sed -n 's/^landmarks (head, left hand, right hand, left foot, right foot): //p' "$TMP/demo.out" | tr ' ' '\n' > "$TMP/l"
+[ "$(grep -c . "$TMP/l")" -eq 5 ] && ok || bad "landmarks from the demo"
+{ echo "# head"; sed -n 1p "$TMP/l"; sed -n '2,5p' "$TMP/l" | awk '{print $1, $1}'; } > "$TMP/lm.txt"
+for p in std asa diff; do
+  "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --probes $p --k 30 -o "$TMP/map_$p.txt" --pairs "$TMP/pairs_$p.txt" \
+    --timings > "$TMP/out_$p" 2> "$TMP/err_$p" && ok || bad "match --probes $p: $(cat "$TMP/err_$p")"
+  [ "$(grep -c . "$TMP/map_$p.txt")" -eq "$nv" ] && ok || bad "$p: map line count"
+  awk -v n="$nv" '!($1 ~ /^[0-9]+$/ && $1 < n && NF == 1) { exit 1 }' "$TMP/map_$p.txt" && ok || bad "$p: map entries"
+  grep -q '^timing: pair ' "$TMP/err_$p" && grep -q '^timing: segment ' "$TMP/err_$p" && grep -q '^timing: total ' "$TMP/err_$p" &&
+    ok || bad "$p: timings on stderr"
+  "$BIN" error "$TMP/map_$p.txt" "$Y" > "$TMP/e_$p" 2>&1 && ok || bad "$p: specseg error"
+done
+# pairs: 'x y' input vertices, at least two pairs, same file for every probe set
+np=$(grep -c . "$TMP/pairs_diff.txt")
+[ "$np" -ge 2 ] && ok || bad "only $np pairs"
+awk -v n="$nv" '!(NF == 2 && $1 ~ /^[0-9]+$/ && $2 ~ /^[0-9]+$/ && $1 < n && $2 < n) { exit 1 }' "$TMP/pairs_diff.txt" && ok ||
+  bad "pairs format: $(head -3 "$TMP/pairs_diff.txt")"
+cmp -s "$TMP/pairs_std.txt" "$TMP/pairs_diff.txt" && ok || bad "pairs differ between probe sets"
+for p in std diff; do eval "e_$p=\$(sed -n 's/^mean_error: //p' \"\$TMP/e_$p\")"; done
+awk -v s="${e_std:-1}" -v d="${e_diff:-1}" 'BEGIN { exit !(d < 0.1 && s < 0.1) }' && ok || bad "errors std ${e_std:-?} diff ${e_diff:-?}"
+# errors: bad landmark index -> 1, bad option values -> 2
+printf '0\n%d 3\n' "$nv" > "$TMP/badlm.txt"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/badlm.txt" -o "$TMP/m.txt" > /dev/null 2> "$TMP/err"
+[ $? -eq 1 ] && grep -q '^specseg: error: .*badlm.txt:2' "$TMP/err" && ok || bad "landmark out of range on X: $(cat "$TMP/err")"
+printf '0 %d\n' "$nv" > "$TMP/badlm.txt"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/badlm.txt" -o "$TMP/m.txt" > /dev/null 2> "$TMP/err"
+[ $? -eq 1 ] && grep -q '^specseg: error: .*not on Y' "$TMP/err" && ok || bad "landmark out of range on Y: $(cat "$TMP/err")"
+printf -- '-3\n' > "$TMP/badlm.txt"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/badlm.txt" -o "$TMP/m.txt" > /dev/null 2> "$TMP/err"
+[ $? -eq 1 ] && grep -q '^specseg: error:' "$TMP/err" && ok || bad "negative landmark: $(cat "$TMP/err")"
+printf '# nothing\n\n' > "$TMP/badlm.txt"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/badlm.txt" -o "$TMP/m.txt" > /dev/null 2> "$TMP/err"
+[ $? -eq 1 ] && grep -q '^specseg: error:' "$TMP/err" && ok || bad "empty landmarks: $(cat "$TMP/err")"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/none.txt" -o "$TMP/m.txt" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "missing landmark file"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" -o "$TMP/m.txt" --k 40 --zoomout 30 > /dev/null 2>&1; [ $? -eq 2 ] && ok ||
+  bad "--zoomout below --k: want exit 2"
+"$BIN" match "$X" --landmarks "$TMP/lm.txt" -o "$TMP/m.txt" > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "one mesh: want exit 2"
+[ ! -e "$TMP/m.txt" ] && ok || bad "a failed run wrote the map"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

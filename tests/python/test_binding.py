@@ -1,0 +1,150 @@
+"""The Python binding gives the CLI's results on the same input (issue 7).
+
+usage: test_binding.py SPECSEG_BIN MESH WORKDIR [--no-match]
+Runs `specseg eigs / geodesic / segment / error / match` and the binding's eigs / geodesic / segment /
+error / match on MESH and compares; also laplacian invariants, rendering and error reporting.
+Prints "N passed, N failed" like the C tests and exits 1 on any failure."""
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+import specseg
+
+BIN, MESH, WORK = sys.argv[1], sys.argv[2], sys.argv[3]
+NO_MATCH = "--no-match" in sys.argv
+passed = failed = 0
+
+
+def check(cond, what):
+    global passed, failed
+    if cond:
+        passed += 1
+    else:
+        failed += 1
+        print("FAIL:", what, file=sys.stderr)
+
+
+def cli(*args):
+    r = subprocess.run([BIN] + [str(a) for a in args], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError("specseg %s failed (%d): %s" % (" ".join(map(str, args)), r.returncode, r.stderr))
+    return r.stdout
+
+
+def path(name):
+    return os.path.join(WORK, name)
+
+
+print("library:", specseg.library_path)
+V, F = specseg.read_mesh(MESH)
+n = V.shape[0]
+check(V.dtype == np.float64 and F.dtype == np.int32 and V.shape[1] == 3 and F.shape[1] == 3, "read_mesh types")
+
+# --- laplacian: symmetric, constants in the kernel, masses sum to the area ---
+W, M = specseg.laplacian(V, F)
+if isinstance(W, tuple):
+    indptr, indices, data = W
+    check(indptr.size == n + 1 and indices.size == data.size, "CSC triple sizes")
+else:
+    Wd = W
+    check(abs(Wd - Wd.T).max() < 1e-12, "W symmetric")
+    check(np.abs(Wd @ np.ones(n)).max() < 1e-9 * abs(Wd).max(), "W 1 = 0")
+a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+check(abs(M.sum() - area) < 1e-9 * area, "sum M = area")
+
+# --- eigs: same eigenvalues (printed %.17g) and eigenvectors up to sign ---
+K = 8
+out = cli("eigs", MESH, "-k", K, "--evecs", path("evecs.npy"))
+ev_cli = np.array([float(x) for x in out.split()])
+Xc = np.load(path("evecs.npy"))
+ev, X = specseg.eigs(V, F, K)
+check(ev_cli.shape == (K,) and np.allclose(ev, ev_cli, rtol=1e-10, atol=1e-12), "eigs: eigenvalues %s vs %s" % (ev, ev_cli))
+sgn = np.sign(np.sum(X * Xc, axis=0))
+check(Xc.shape == X.shape and np.abs(X * sgn - Xc).max() < 1e-8, "eigs: eigenvectors")
+
+# --- geodesic: exact and graph distances, two sources ---
+src = [0, n // 2]
+for method in ("exact", "graph"):
+    cli("geodesic", MESH, "--source", src[0], "--source", src[1], "--method", method, "-o", path("d.txt"))
+    dc = np.loadtxt(path("d.txt"))
+    d = specseg.geodesic(V, F, src, method=method)
+    check(dc.shape == d.shape and np.array_equal(np.isinf(d), np.isinf(dc)), "geodesic %s: shape / inf" % method)
+    fin = np.isfinite(d)
+    check(np.abs(d[fin] - dc[fin]).max() <= 1e-12 * max(1.0, d[fin].max()), "geodesic %s: values" % method)
+    check(d[src[0]] == 0 and d[src[1]] == 0, "geodesic %s: zero at the sources" % method)
+
+# --- segment: identical labels and centres ---
+cli("segment", MESH, "-o", path("labels.txt"), "--centers", path("centers.txt"))
+lab_c = np.loadtxt(path("labels.txt"), dtype=np.int64, ndmin=1)
+cen_c = np.loadtxt(path("centers.txt"), dtype=np.int64, ndmin=1)
+seg = specseg.segment(V, F)
+check(np.array_equal(seg.labels, lab_c), "segment: labels")
+check(np.array_equal(seg.centers, cen_c), "segment: centers")
+check(seg.m == cen_c.size and seg.labels.max() == seg.m - 1, "segment: count")
+check(seg.phi.shape == (seg.work_V.shape[0],) and seg.psi.shape == (n,), "segment: work arrays")
+
+# --- error: a map that moves some vertices to a neighbour ---
+mp = np.arange(n, dtype=np.int32)
+mp[F[::7, 0]] = F[::7, 1]
+np.savetxt(path("map.txt"), mp, fmt="%d")
+out = cli("error", path("map.txt"), MESH, "-o", path("e.txt"))
+ec = np.loadtxt(path("e.txt"))
+e, mean = specseg.error(mp, V, F)
+check(np.allclose(e, ec, rtol=0, atol=1e-12), "error: per-vertex errors")
+mean_cli = float(out.split(":")[1])
+check(abs(mean - mean_cli) < 1e-6 and mean > 0, "error: mean %g vs %g" % (mean, mean_cli))
+e0, m0 = specseg.error(np.arange(n), V, F)
+check(m0 == 0 and not e0.any(), "error: identity map is exact")
+
+# --- match ---
+if NO_MATCH or not hasattr(specseg.lib, "ss_match"):
+    print("SKIP: match comparison (%s)" % ("--no-match" if NO_MATCH else "no ss_match in the library"))
+else:
+    lm = [int(x) for x in np.linspace(0, n - 1, 5)]
+    np.savetxt(path("lm.txt"), lm, fmt="%d")
+    cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "-o", path("m.txt"))
+    mc = np.loadtxt(path("m.txt"), dtype=np.int64)
+    r = specseg.match(V, F, V, F, lm, k=20)
+    check(np.array_equal(r.map, mc), "match: map")
+    check(r.C.shape == (20, 20), "match: C shape")
+
+# --- render: background, shape, the labels' colours appear ---
+img = specseg.render(V, F, labels=seg.labels, size=(120, 160))
+check(img.shape == (160, 120, 3) and img.dtype == np.uint8, "render: shape")
+check((img[0, 0] == 255).all(), "render: background corner")
+check((img != 255).any(axis=2).mean() > 0.05, "render: the shape covers the image")
+# the same picture as the CLI's, pixel for pixel
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from png_check import read_png  # noqa: E402
+cli("render", MESH, "--labels", path("labels.txt"), "--size", "120x160", "--no-titles", "-o", path("c.png"))
+w, h, rows = read_png(path("c.png"))
+cimg = np.frombuffer(b"".join(bytes(r) for r in rows), np.uint8).reshape(h, w, 3)
+check(cimg.shape == img.shape and np.array_equal(cimg, img), "render: same pixels as specseg render")
+al = specseg.align_labels((seg.labels + 3) % seg.m, seg.labels)
+check(np.array_equal(al, seg.labels), "align_labels undoes a permutation")
+specseg.write_png(path("b.png"), img)
+with open(path("b.png"), "rb") as f:
+    check(f.read(8) == b"\x89PNG\r\n\x1a\n", "write_png signature")
+
+# --- errors come back as exceptions carrying the library message ---
+try:
+    specseg.read_mesh(path("missing.off"))
+    check(False, "read_mesh of a missing file raises")
+except specseg.SpecsegError as ex:
+    check("missing.off" in str(ex) and ex.status, "SpecsegError carries the message: %s" % ex)
+try:
+    specseg.eigs(V, F, n + 5)
+    check(False, "eigs with k >= n raises")
+except ValueError:
+    check(True, "")
+try:
+    specseg.geodesic(V, F[:, :2], [0])
+    check(False, "bad F shape raises")
+except ValueError:
+    check(True, "")
+
+print("%d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)

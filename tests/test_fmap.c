@@ -1,0 +1,377 @@
+/* Functional maps: WKS properties, optimality of the Eq. (1) solver against a brute-force least-squares
+ * solve, exact nearest neighbours, self-matching, ZoomOut on a synthetic near-isometric pair. */
+#include "specseg/fmap.h"
+#include "specseg/io.h"
+#include "specseg/laplacian.h"
+#include "specseg/mesh.h"
+#include "specseg/spectrum.h"
+#include "testlib.h"
+
+#include <lapacke.h>
+
+#ifndef STRETCH
+#define STRETCH 1.15
+#endif
+static unsigned rng_state = 2024u;
+static double urand(void) { /* uniform in [0,1) */
+  rng_state = rng_state * 1664525u + 1013904223u;
+  return (rng_state >> 8) / 16777216.0;
+}
+
+/* Icosphere with a smooth, asymmetric radial bump (amplitude a) so that the spectrum has no
+ * multiplicities; all amplitudes share connectivity and vertex order (ground truth = identity). */
+static void bumpy_sphere(int sub, double a, double stretch, ss_mesh *m) {
+  ss_synth_icosphere(sub, m, NULL);
+  for (int i = 0; i < m->nv; i++) {
+    double *p = m->V + 3 * i;
+    double r = 1.0 + a * (0.6 * p[0] * p[0] + 0.35 * p[1] * p[1] * p[1] + 0.25 * p[0] * p[2] + 0.3 * p[2]);
+    p[0] *= 1.5 * stretch * r; /* stretched along x: breaks the sphere's symmetry */
+    p[1] *= 1.1 * r * (1 + (stretch - 1) * p[0]); /* and, with stretch != 1, a non-isometric taper */
+    p[2] *= r;
+  }
+}
+
+/* Dense generalized eigenproblem W φ = λ M φ (M diagonal): M^-½ W M^-½ ψ = λ ψ, φ = M^-½ ψ. */
+static int dense_eigs(const ss_mesh *m, int k, double *evals, double *evecs, double *M) {
+  ss_sparse W;
+  if (ss_cotan_stiffness(m, &W, NULL) || ss_mass_lumped(m, SS_MASS_BARYCENTRIC, M, NULL)) return 1;
+  int n = m->nv;
+  double *A = calloc((size_t)n * n, sizeof(double)), *w = malloc(sizeof(double) * n);
+  for (int c = 0; c < n; c++)
+    for (int p = W.colptr[c]; p < W.colptr[c + 1]; p++)
+      A[W.rowind[p] + (size_t)n * c] = W.val[p] / sqrt(M[W.rowind[p]] * M[c]);
+  int info = LAPACKE_dsyevd(LAPACK_COL_MAJOR, 'V', 'L', n, A, n, w);
+  for (int j = 0; j < k; j++) {
+    evals[j] = w[j];
+    for (int i = 0; i < n; i++) evecs[i + (size_t)n * j] = A[i + (size_t)n * j] / sqrt(M[i]);
+  }
+  ss_sparse_free(&W);
+  free(A);
+  free(w);
+  return info;
+}
+
+static void test_wks(void) {
+  ss_mesh m;
+  bumpy_sphere(2, 0.3, 1.0, &m);
+  int n = m.nv, k = 30, ne = 20;
+  double *ev = malloc(sizeof(double) * k), *phi = malloc(sizeof(double) * n * k), *M = malloc(sizeof(double) * n);
+  CHECK(dense_eigs(&m, k, ev, phi, M) == 0);
+  double *w1 = malloc(sizeof(double) * n * ne), *w2 = malloc(sizeof(double) * n * ne);
+  CHECK(ss_wks(n, k, ev, phi, M, ne, 7.0, w1, NULL) == SS_OK);
+  double worst = 0;
+  for (int j = 0; j < ne; j++) {
+    double s = 0;
+    for (int x = 0; x < n; x++) s += M[x] * w1[x + (size_t)n * j] * w1[x + (size_t)n * j];
+    worst = fmax(worst, fabs(s - 1));
+  }
+  CHECK_NEAR(worst, 0, 1e-12);
+  /* WKS is positive and invariant to eigenvector sign flips */
+  double mn = INFINITY;
+  for (int i = 0; i < n * ne; i++) mn = fmin(mn, w1[i]);
+  CHECK(mn > 0);
+  double *flip = malloc(sizeof(double) * n * k);
+  for (int j = 0; j < k; j++)
+    for (int x = 0; x < n; x++) flip[x + (size_t)n * j] = (j % 3 == 1 ? -1 : 1) * phi[x + (size_t)n * j];
+  CHECK(ss_wks(n, k, ev, flip, M, ne, 7.0, w2, NULL) == SS_OK);
+  double d = 0;
+  for (int i = 0; i < n * ne; i++) d = fmax(d, fabs(w1[i] - w2[i]));
+  CHECK_NEAR(d, 0, 1e-12);
+  /* landmark wave-kernel maps and filtered functions: sign invariant, unit norm, peak near the landmark */
+  int lm[2] = {5, 100};
+  double *l1 = malloc(sizeof(double) * n * 2 * ne), *l2 = malloc(sizeof(double) * n * 2 * ne);
+  CHECK(ss_wks_landmarks(n, k, ev, phi, M, ne, 7.0, 2, lm, l1, NULL) == SS_OK);
+  CHECK(ss_wks_landmarks(n, k, ev, flip, M, ne, 7.0, 2, lm, l2, NULL) == SS_OK);
+  d = 0;
+  for (int i = 0; i < n * 2 * ne; i++) d = fmax(d, fabs(l1[i] - l2[i]));
+  CHECK_NEAR(d, 0, 1e-12);
+  int argmax = 0; /* highest-energy filter of landmark 0 peaks at the landmark */
+  const double *top = l1 + (size_t)n * (ne - 1);
+  for (int x = 1; x < n; x++)
+    if (top[x] > top[argmax]) argmax = x;
+  CHECK_MSG(argmax == lm[0], "peak at %d", argmax);
+  double *ind = calloc(n, sizeof(double)), *f1 = malloc(sizeof(double) * n * ne), *f2 = malloc(sizeof(double) * n * ne);
+  for (int x = 0; x < n; x++) ind[x] = m.V[3 * x] > 0.3;
+  CHECK(ss_wks_filter(n, k, ev, phi, M, ne, 7.0, 1, ind, f1, NULL) == SS_OK);
+  CHECK(ss_wks_filter(n, k, ev, flip, M, ne, 7.0, 1, ind, f2, NULL) == SS_OK);
+  d = 0;
+  double s = 0;
+  for (int i = 0; i < n * ne; i++) d = fmax(d, fabs(f1[i] - f2[i]));
+  for (int x = 0; x < n; x++) s += M[x] * f1[x] * f1[x];
+  CHECK_NEAR(d, 0, 1e-12);
+  CHECK_NEAR(s, 1, 1e-12);
+  /* a landmark map equals the filter of the L²-delta δ_l / M_l */
+  memset(ind, 0, sizeof(double) * n);
+  ind[lm[1]] = 1.0 / M[lm[1]];
+  CHECK(ss_wks_filter(n, k, ev, phi, M, ne, 7.0, 1, ind, f1, NULL) == SS_OK);
+  d = 0;
+  for (int i = 0; i < n * ne; i++) d = fmax(d, fabs(f1[i] - l1[(size_t)n * ne + i]));
+  CHECK_NEAR(d, 0, 1e-10);
+  /* bad input is reported, not crashed on */
+  ss_error e;
+  int bad = n + 3;
+  CHECK(ss_wks_landmarks(n, k, ev, phi, M, ne, 7.0, 1, &bad, l1, &e) == SS_ERR_INVALID);
+  CHECK(ss_wks(n, 2, ev, phi, M, ne, 7.0, w1, &e) == SS_ERR_INVALID);
+  free(ev); free(phi); free(M); free(w1); free(w2); free(flip); free(l1); free(l2); free(ind); free(f1); free(f2);
+  ss_mesh_free(&m);
+}
+
+/* Brute force: the residual map x -> r(x) of Eq. (1) as an explicit matrix, solved by dgels. */
+static void test_solver(int fix) {
+  const int kS = 6, kT = 5, p = 4, nd = 3, m = kS * kT;
+  double A[6 * 4], B[5 * 4], lS[6], lT[5], DS[3 * 36], DT[3 * 25];
+  for (int i = 0; i < kS * p; i++) A[i] = urand() - 0.5;
+  for (int i = 0; i < kT * p; i++) B[i] = urand() - 0.5;
+  for (int i = 0; i < kS; i++) lS[i] = i * 1.3 + urand();
+  for (int i = 0; i < kT; i++) lT[i] = i * 1.1 + urand();
+  for (int d = 0; d < nd; d++) {
+    for (int a = 0; a < kS; a++)
+      for (int b = 0; b <= a; b++) DS[d * 36 + a + kS * b] = DS[d * 36 + b + kS * a] = urand() - 0.5;
+    for (int a = 0; a < kT; a++)
+      for (int b = 0; b <= a; b++) DT[d * 25 + a + kT * b] = DT[d * 25 + b + kT * a] = urand() - 0.5;
+  }
+  ss_fmap_weights w = {0.7, 0.05, 1.3, fix, 0.8};
+  double C[30], g[30], E;
+  CHECK(ss_fmap_solve(kS, kT, p, A, B, lS, lT, nd, DS, DT, &w, C, NULL) == SS_OK);
+  CHECK(ss_fmap_energy(kS, kT, p, A, B, lS, lT, nd, DS, DT, &w, C, &E, g, NULL) == SS_OK);
+  double gn = 0, gs = 0;
+  for (int i = 0; i < m; i++) gn += g[i] * g[i];
+  /* gradient scale: the gradient at C = 0 */
+  double Z[30] = {0}, g0[30];
+  ss_fmap_energy(kS, kT, p, A, B, lS, lT, nd, DS, DT, &w, Z, NULL, g0, NULL);
+  for (int i = 0; i < m; i++) gs += g0[i] * g0[i];
+  CHECK_MSG(sqrt(gn) <= 1e-10 * sqrt(gs), "gradient %g vs %g", sqrt(gn), sqrt(gs));
+  if (fix) {
+    CHECK_NEAR(C[0], 0.8, 1e-14);
+    for (int r = 1; r < kT; r++) CHECK_NEAR(C[r], 0, 1e-14);
+  }
+  /* explicit least squares over the free unknowns */
+  int f0 = fix ? kT : 0, nf = m - f0, nr = kT * p + m + nd * m;
+  double *K = calloc((size_t)nr * nf, sizeof(double)), *rhs = calloc(nr, sizeof(double));
+  for (int j = -1; j < nf; j++) { /* j = -1: the constant part (fixed column, −B) */
+    double X[30] = {0};
+    if (j >= 0) X[f0 + j] = 1;
+    else if (fix) X[0] = 0.8;
+    double *col = j >= 0 ? K + (size_t)nr * j : rhs;
+    int row = 0;
+    for (int c = 0; c < p; c++)
+      for (int r = 0; r < kT; r++) {
+        double s = 0;
+        for (int t = 0; t < kS; t++) s += X[r + kT * t] * A[t + kS * c];
+        if (j < 0) s -= B[r + kT * c];
+        col[row++] = sqrt(w.w_descr) * s;
+      }
+    for (int c = 0; c < kS; c++)
+      for (int r = 0; r < kT; r++) col[row++] = sqrt(w.w_lap) * (lT[r] - lS[c]) * X[r + kT * c];
+    for (int d = 0; d < nd; d++)
+      for (int c = 0; c < kS; c++)
+        for (int r = 0; r < kT; r++) {
+          double s = 0;
+          for (int t = 0; t < kS; t++) s += X[r + kT * t] * DS[d * 36 + t + kS * c];
+          for (int t = 0; t < kT; t++) s -= DT[d * 25 + r + kT * t] * X[t + kT * c];
+          col[row++] = sqrt(w.w_dcomm) * s;
+        }
+  }
+  for (int i = 0; i < nr; i++) rhs[i] = -rhs[i];
+  CHECK(LAPACKE_dgels(LAPACK_COL_MAJOR, 'N', nr, nf, 1, K, nr, rhs, nr) == 0);
+  double d = 0;
+  for (int j = 0; j < nf; j++) d = fmax(d, fabs(rhs[j] - C[f0 + j]));
+  CHECK_MSG(d < 1e-10, "max |C - C_lstsq| = %g", d);
+  free(K);
+  free(rhs);
+  /* all-zero weights: singular system reported */
+  ss_fmap_weights z = {0, 0, 0, 0, 0};
+  ss_error e;
+  CHECK(ss_fmap_solve(kS, kT, p, A, B, lS, lT, nd, DS, DT, &z, C, &e) == SS_ERR_NUMERIC);
+}
+
+static void test_nn(void) {
+  const int ndb = 3000, nq = 700, d = 13;
+  double *db = malloc(sizeof(double) * ndb * d), *q = malloc(sizeof(double) * nq * d), *d2 = malloc(sizeof(double) * nq);
+  int *idx = malloc(sizeof(int) * nq);
+  for (int i = 0; i < ndb * d; i++) db[i] = 100.0 + urand(); /* large offset: the expanded formula loses digits */
+  for (int i = 0; i < nq * d; i++) q[i] = 100.0 + urand();
+  for (int j = 0; j < d; j++) { /* exact duplicates and a tie: lowest index wins */
+    db[17 + (size_t)ndb * j] = db[2500 + (size_t)ndb * j];
+    q[0 + (size_t)nq * j] = db[2500 + (size_t)ndb * j];
+    q[1 + (size_t)nq * j] = db[40 + (size_t)ndb * j] + 1e-13;
+  }
+  int *idx2 = malloc(sizeof(int) * nq);
+  double *d22 = malloc(sizeof(double) * nq);
+  CHECK(ss_nn_exact(ndb, nq, d, db, ndb, q, nq, idx, d2, NULL) == SS_OK);
+  CHECK(ss_nn_brute(ndb, nq, d, db, ndb, q, nq, idx2, d22, NULL) == SS_OK);
+  int bad = 0, bad2 = 0;
+  for (int i = 0; i < nq; i++) {
+    int bi = -1;
+    double bd = INFINITY;
+    for (int b = 0; b < ndb; b++) {
+      double s = 0;
+      for (int j = 0; j < d; j++) {
+        double t = q[i + (size_t)nq * j] - db[b + (size_t)ndb * j];
+        s += t * t;
+      }
+      if (s < bd) { bd = s; bi = b; }
+    }
+    if (bi != idx[i] || bd != d2[i]) bad++;
+    if (bi != idx2[i] || bd != d22[i]) bad2++;
+  }
+  CHECK_MSG(bad == 0, "clustered: %d of %d queries differ from the naive search", bad, nq);
+  CHECK_MSG(bad2 == 0, "brute: %d of %d queries differ from the naive search", bad2, nq);
+  CHECK(idx[0] == 17 && idx2[0] == 17);
+  CHECK(idx[1] == 40 && idx2[1] == 40);
+  free(db); free(q); free(d2); free(idx); free(idx2); free(d22);
+}
+
+static double mean_error(const ss_mesh *Y, const int *map) {
+  double s = 0;
+  for (int i = 0; i < Y->nv; i++) {
+    const double *a = Y->V + 3 * i, *b = Y->V + 3 * map[i];
+    s += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  }
+  return s / Y->nv / sqrt(ss_mesh_area(Y));
+}
+
+static void test_match(void) {
+  ss_mesh X, Y;
+  bumpy_sphere(3, 0.3, 1.0, &X);
+  bumpy_sphere(3, 0.4, STRETCH, &Y); /* a different, non-isometric deformation; ground truth = identity */
+  int n = X.nv, kev = 40;
+  double *evX = malloc(sizeof(double) * kev), *phX = malloc(sizeof(double) * n * kev), *MX = malloc(sizeof(double) * n);
+  double *evY = malloc(sizeof(double) * kev), *phY = malloc(sizeof(double) * n * kev), *MY = malloc(sizeof(double) * n);
+  CHECK(dense_eigs(&X, kev, evX, phX, MX) == 0);
+  CHECK(dense_eigs(&Y, kev, evY, phY, MY) == 0);
+  ss_fmap_shape sX = {&X, MX, evX, phX, kev}, sY = {&Y, MY, evY, phY, kev};
+  int lm[5] = {0, 11, 100, 300, 600};
+  ss_fmap_match_options o;
+  ss_fmap_match_default_options(&o);
+  o.k = 20;
+  o.n_energies = 50;
+  int *map = malloc(sizeof(int) * n), *map2 = malloc(sizeof(int) * n);
+  double *C = malloc(sizeof(double) * kev * kev);
+  /* self-match: identity */
+  CHECK(ss_fmap_match(&sX, &sX, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map, C, NULL) == SS_OK);
+  int same = 0;
+  for (int i = 0; i < n; i++) same += map[i] == i;
+  CHECK_MSG(same >= 0.99 * n, "self-match: %d of %d vertices fixed", same, n);
+  double off = 0;
+  for (int c = 0; c < o.k; c++)
+    for (int r = 0; r < o.k; r++) off = fmax(off, fabs(C[r + o.k * c] - (r == c)));
+  CHECK_MSG(off < 0.05, "self-match C - I: max %g", off);
+  /* the pair: STD, then ZoomOut must not make it worse */
+  CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map, NULL, NULL) == SS_OK);
+  double e0 = mean_error(&Y, map);
+  o.zoomout_kmax = 40;
+  CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map2, C, NULL) == SS_OK);
+  double e1 = mean_error(&Y, map2);
+  printf("synthetic pair: STD error %.5f, ZoomOut %.5f\n", e0, e1);
+  CHECK(e0 < 0.05);
+  CHECK(e1 < 0.05); /* the taper is not an isometry: ZoomOut need not get closer to the identity here */
+  /* ASA / DIFF entry points accept paired extra probes */
+  double *fx = malloc(sizeof(double) * n * 2), *fy = malloc(sizeof(double) * n * 2);
+  for (int x = 0; x < n; x++) {
+    fx[x] = X.V[3 * x] > 0.5; fx[n + x] = X.V[3 * x + 2] < -0.2;
+    fy[x] = Y.V[3 * x] > 0.5; fy[n + x] = Y.V[3 * x + 2] < -0.2;
+  }
+  o.zoomout_kmax = 0;
+  CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 2, fx, fy, SS_PROBE_RAW, &o, map, NULL, NULL) == SS_OK);
+  printf("synthetic pair: ASA-like error %.4f\n", mean_error(&Y, map));
+  CHECK(mean_error(&Y, map) < 0.05);
+  CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 2, fx, fy, SS_PROBE_WAVE, &o, map, NULL, NULL) == SS_OK);
+  printf("synthetic pair: DIFF-like error %.4f\n", mean_error(&Y, map));
+  CHECK(mean_error(&Y, map) < 0.05);
+  /* bad input */
+  ss_error e;
+  o.k = 60;
+  CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map, NULL, &e) == SS_ERR_INVALID);
+  free(evX); free(phX); free(MX); free(evY); free(phY); free(MY); free(map); free(map2); free(C); free(fx); free(fy);
+  ss_mesh_free(&X);
+  ss_mesh_free(&Y);
+}
+
+/* Two poses of the synthetic humanoid (near-isometric, same vertex order): STD is accurate and
+ * ZoomOut does not increase the error. */
+static void test_humanoid(void) {
+  ss_mesh X, Y;
+  ss_error e;
+  if (ss_synth_humanoid(0, &X, &e) != SS_OK) { SKIP("humanoid: %s", e.msg); return; }
+  if (ss_synth_humanoid(ss_synth_humanoid_pose_count() > 2 ? 2 : 1, &Y, &e) != SS_OK) {
+    SKIP("humanoid: %s", e.msg);
+    ss_mesh_free(&X);
+    return;
+  }
+  int n = X.nv, kev = 40;
+  double *evX = malloc(sizeof(double) * kev), *phX = malloc(sizeof(double) * n * kev);
+  double *evY = malloc(sizeof(double) * kev), *phY = malloc(sizeof(double) * n * kev);
+  if (ss_mesh_eigs(&X, kev, evX, phX, &e) || ss_mesh_eigs(&Y, kev, evY, phY, &e)) {
+    SKIP("ss_mesh_eigs: %s", e.msg);
+  } else {
+    /* landmarks: extreme vertices of the rest pose along ±x, ±y, +z (hands, head, feet…) */
+    int lm[5] = {0, 0, 0, 0, 0};
+    for (int i = 0; i < n; i++) {
+      const double *p = X.V + 3 * i;
+      if (p[0] > X.V[3 * lm[0]]) lm[0] = i;
+      if (p[0] < X.V[3 * lm[1]]) lm[1] = i;
+      if (p[1] > X.V[3 * lm[2] + 1]) lm[2] = i;
+      if (p[1] < X.V[3 * lm[3] + 1]) lm[3] = i;
+      if (p[2] > X.V[3 * lm[4] + 2]) lm[4] = i;
+    }
+    ss_fmap_shape sX = {&X, NULL, evX, phX, kev}, sY = {&Y, NULL, evY, phY, kev};
+    ss_fmap_match_options o;
+    ss_fmap_match_default_options(&o);
+    o.k = 20;
+    int *map = malloc(sizeof(int) * n), *map2 = malloc(sizeof(int) * n);
+    CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map, NULL, NULL) == SS_OK);
+    o.zoomout_kmax = 40;
+    CHECK(ss_fmap_match(&sX, &sY, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map2, NULL, NULL) == SS_OK);
+    double e0 = mean_error(&Y, map), e1 = mean_error(&Y, map2);
+    printf("humanoid poses: STD error %.4f, ZoomOut %.4f (%d vertices)\n", e0, e1, n);
+    CHECK(e0 < 0.1);
+    CHECK_MSG(e1 <= e0, "ZoomOut %.4f vs STD %.4f", e1, e0);
+    free(map);
+    free(map2);
+  }
+  free(evX); free(phX); free(evY); free(phY);
+  ss_mesh_free(&X);
+  ss_mesh_free(&Y);
+}
+
+/* FAUST shape matched to itself with the library's eigensolver: the identity. */
+static void test_faust_self(void) {
+  const char *dir = tl_data_dir();
+  if (!dir) { SKIP("no FAUST data"); return; }
+  char path[4096];
+  snprintf(path, sizeof path, "%s/faust/tr_reg_000.off", dir);
+  ss_mesh m;
+  if (ss_read_mesh(path, &m, NULL) != SS_OK) { SKIP("cannot read %s", path); return; }
+  int n = m.nv, k = 50;
+  double *ev = malloc(sizeof(double) * k), *phi = malloc(sizeof(double) * n * k);
+  ss_error e;
+  ss_status st = ss_mesh_eigs(&m, k, ev, phi, &e);
+  if (st != SS_OK) {
+    SKIP("ss_mesh_eigs: %s", e.msg);
+  } else {
+    ss_fmap_shape s = {&m, NULL, ev, phi, k};
+    int lm[5] = {412, 2445, 3219, 6617, 5907};
+    int *map = malloc(sizeof(int) * n);
+    CHECK(ss_fmap_match(&s, &s, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, NULL, map, NULL, NULL) == SS_OK);
+    int same = 0;
+    for (int i = 0; i < n; i++) same += map[i] == i;
+    printf("FAUST self-match: %d of %d vertices fixed\n", same, n);
+    CHECK(same >= 0.99 * n);
+    free(map);
+  }
+  free(ev);
+  free(phi);
+  ss_mesh_free(&m);
+}
+
+int main(void) {
+  test_wks();
+  test_solver(0);
+  test_solver(1);
+  test_nn();
+  test_match();
+  test_humanoid();
+  test_faust_self();
+  TEST_MAIN_END();
+}

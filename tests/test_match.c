@@ -1,0 +1,182 @@
+/* Matching with segments as probes (paper §6) on the synthetic humanoid: all poses share one vertex
+ * order, so the ground-truth map is the identity. */
+#include "specseg/fmap.h"
+#include "specseg/match.h"
+#include "specseg/mesh.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* head, left hand, right hand, left foot, right foot of the rest pose (y up, left side on +x) */
+static void humanoid_landmarks(const ss_mesh *m, int lm[5]) {
+  double best[5] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < m->nv; i++) {
+    const double *p = m->V + 3 * (size_t)i;
+    double score[5] = {p[1], p[0], -p[0], p[0] > 0.05 ? -p[1] + 0.1 * p[2] : -INFINITY,
+                       p[0] < -0.05 ? -p[1] + 0.1 * p[2] : -INFINITY};
+    for (int l = 0; l < 5; l++)
+      if (score[l] > best[l]) best[l] = score[l], lm[l] = i;
+  }
+}
+
+static void test_pair_critical_points(void) {
+  /* X has 3 points, Y 2: X chooses. x0 and x1 both nearest to y0; x1 is closer, keeps it. */
+  double dX[3 * 2] = {0.10, 0.12, 0.90, /* landmark 0 */ 0.50, 0.50, 0.20};
+  double dY[2 * 2] = {0.12, 0.88, /* landmark 0 */ 0.50, 0.21};
+  ss_segment_pairs p;
+  ss_error e;
+  CHECK(ss_pair_critical_points(3, 2, 2, dX, dY, &p, &e) == SS_OK);
+  CHECK(p.n == 2 && p.nx == 3 && p.ny == 2);
+  if (p.n == 2) {
+    CHECK(p.sx[0] == 1 && p.sy[0] == 0); /* sorted by X segment */
+    CHECK(p.sx[1] == 2 && p.sy[1] == 1);
+    CHECK_NEAR(p.energy[0], 0.0, 1e-12);
+    CHECK_NEAR(p.energy[1], sqrt(0.02 * 0.02 + 0.01 * 0.01), 1e-12);
+  }
+  ss_segment_pairs_free(&p);
+  /* swapped roles: Y (fewer) chooses, output still as (X segment, Y segment) sorted by X */
+  CHECK(ss_pair_critical_points(2, 3, 2, dY, dX, &p, &e) == SS_OK);
+  CHECK(p.n == 2);
+  if (p.n == 2) {
+    CHECK(p.sx[0] == 0 && p.sy[0] == 1);
+    CHECK(p.sx[1] == 1 && p.sy[1] == 2);
+  }
+  ss_segment_pairs_free(&p);
+  CHECK(ss_pair_critical_points(2, 3, 0, dY, dX, &p, &e) == SS_ERR_INVALID);
+}
+
+/* d(Π(x), GT(x)) / √area as per-vertex errors; returns the mean */
+static double map_error(const ss_mesh *Y, int n, const int *map, double *errors) {
+  double mean = NAN;
+  ss_error e;
+  if (ss_map_geodesic_error(Y, n, map, NULL, NULL, errors, &mean, &e)) printf("map error: %s\n", e.msg);
+  return mean;
+}
+
+int main(void) {
+  test_pair_critical_points();
+
+  ss_error e;
+  ss_mesh X = {0}, Y = {0};
+  const int poseY = 5;
+  CHECK(ss_synth_humanoid(0, &X, &e) == SS_OK);
+  CHECK(ss_synth_humanoid(poseY, &Y, &e) == SS_OK);
+  int lm[5];
+  humanoid_landmarks(&X, lm);
+  ss_match_options o;
+  ss_match_default_options(&o);
+  o.fmap.k = 40;
+  ss_shape_prep pX, pY;
+  if (ss_shape_prep_compute(&X, &o.seg, 50, &pX, &e) || ss_shape_prep_compute(&Y, &o.seg, 50, &pY, &e)) {
+    printf("prep: %s\n", e.msg);
+    CHECK(0);
+    TEST_MAIN_END();
+  }
+  printf("segments: %d (pose 0), %d (pose %d)\n", pX.seg.m, pY.seg.m, poseY);
+  CHECK(pX.seg.m >= 2 && pY.seg.m >= 2);
+
+  /* pairing a shape with itself pairs every segment with itself, at zero energy */
+  ss_segment_pairs sp;
+  CHECK(ss_pair_segments(&pX.seg, &pX.seg, 5, lm, lm, &sp, &e) == SS_OK);
+  CHECK(sp.n == pX.seg.m);
+  int self_ok = 1;
+  for (int p = 0; p < sp.n; p++) self_ok &= sp.sx[p] == p && sp.sy[p] == p && sp.energy[p] < 1e-12;
+  CHECK(self_ok);
+  ss_segment_pairs_free(&sp);
+  /* out-of-range landmark */
+  int badlm[5] = {lm[0], lm[1], X.nv, lm[3], lm[4]};
+  CHECK(ss_pair_segments(&pX.seg, &pY.seg, 5, badlm, lm, &sp, &e) == SS_ERR_INVALID);
+
+  /* the pairing across poses: most vertices lie in corresponding segments */
+  ss_match_result r[3];
+  const ss_probe_set sets[3] = {SS_PROBES_STD, SS_PROBES_ASA, SS_PROBES_DIFF};
+  double err3[3];
+  double *ev = malloc(sizeof(double) * X.nv);
+  for (int v = 0; v < 3; v++) {
+    o.probes = sets[v];
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &o, &r[v], &e) == SS_OK);
+    err3[v] = map_error(&Y, X.nv, r[v].map, NULL);
+  }
+  printf("pose 0 -> %d: %d pairs; mean geodesic error STD %.4f ASA %.4f DIFF %.4f\n", poseY, r[2].pairs.n, err3[0],
+         err3[1], err3[2]);
+  CHECK(r[2].pairs.n >= 2);
+  {
+    int *col = malloc(sizeof(int) * pX.seg.m), same = 0;
+    for (int s = 0; s < pX.seg.m; s++) col[s] = -1;
+    for (int p = 0; p < r[2].pairs.n; p++) col[r[2].pairs.sx[p]] = r[2].pairs.sy[p];
+    for (int i = 0; i < X.nv; i++) same += col[pX.seg.labels[i]] == pY.seg.labels[i];
+    printf("vertices in paired corresponding segments: %.3f\n", (double)same / X.nv);
+    CHECK(same > 0.7 * X.nv);
+    for (int p = 0; p < r[2].pairs.n; p++) /* centres are input vertices of their segments */
+      CHECK(pX.seg.labels[r[2].centerX[p]] == r[2].pairs.sx[p] && pY.seg.labels[r[2].centerY[p]] == r[2].pairs.sy[p]);
+    free(col);
+  }
+  CHECK(err3[2] < err3[0]);
+  CHECK(err3[2] < 0.1);
+  CHECK(r[2].kc == o.fmap.k && r[2].C != NULL);
+
+  /* swapping X and Y: the composition Y -> X -> Y stays near the identity on most vertices */
+  {
+    ss_match_result rb;
+    o.probes = SS_PROBES_DIFF;
+    CHECK(ss_match_prepared(&pY, &pX, 5, lm, lm, &o, &rb, &e) == SS_OK);
+    if (rb.map) {
+      int *comp = malloc(sizeof(int) * X.nv);
+      for (int x = 0; x < X.nv; x++) comp[x] = rb.map[r[2].map[x]]; /* X -> Y -> X */
+      double mean = map_error(&X, X.nv, comp, ev);
+      int close = 0;
+      for (int x = 0; x < X.nv; x++) close += ev[x] < 0.05;
+      printf("X -> Y -> X: mean %.4f, within 0.05 on %.3f of the vertices\n", mean, (double)close / X.nv);
+      CHECK(close > 0.8 * X.nv);
+      free(comp);
+    }
+    ss_match_result_free(&rb);
+  }
+
+  /* a shape matched to itself: the identity */
+  {
+    ss_match_result rs;
+    CHECK(ss_match_prepared(&pX, &pX, 5, lm, lm, &o, &rs, &e) == SS_OK);
+    int id = 0;
+    for (int x = 0; rs.map && x < X.nv; x++) id += rs.map[x] == x;
+    printf("self-match: identity on %.4f of the vertices\n", (double)id / X.nv);
+    CHECK(id >= 0.95 * X.nv);
+    ss_match_result_free(&rs);
+  }
+
+  /* ZoomOut from the DIFF map does not make it worse */
+  {
+    ss_match_result rz;
+    o.fmap.zoomout_kmax = 50;
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &o, &rz, &e) == SS_OK);
+    if (rz.map) {
+      double ez = map_error(&Y, X.nv, rz.map, NULL);
+      printf("DIFF + ZoomOut 40 -> 50: %.4f\n", ez);
+      CHECK(ez <= err3[2] * 1.05);
+      CHECK(rz.kc == 50);
+    }
+    ss_match_result_free(&rz);
+    o.fmap.zoomout_kmax = 100; /* more than computed */
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &o, &rz, &e) == SS_ERR_INVALID);
+    o.fmap.zoomout_kmax = 0;
+  }
+  /* bad input */
+  {
+    ss_match_result rr;
+    int bl[5] = {lm[0], -1, lm[2], lm[3], lm[4]};
+    CHECK(ss_match_prepared(&pX, &pY, 5, bl, lm, &o, &rr, &e) == SS_ERR_INVALID);
+    CHECK(ss_match(&X, &Y, 5, lm, bl, &o, &rr, &e) == SS_ERR_INVALID);
+    CHECK(strstr(e.msg, "landmark") != NULL);
+  }
+
+  for (int v = 0; v < 3; v++) ss_match_result_free(&r[v]);
+  free(ev);
+  ss_shape_prep_free(&pX);
+  ss_shape_prep_free(&pY);
+  ss_mesh_free(&X);
+  ss_mesh_free(&Y);
+  TEST_MAIN_END();
+}
