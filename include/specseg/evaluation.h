@@ -124,9 +124,11 @@ typedef struct ss_table1_options {
   uint64_t seed;          /* default 1 */
   int jobs;               /* parallel work units (OpenMP threads); 0 = omp default */
   int shard_i, shard_n;   /* run the shard_i-th (0-based) of shard_n slices; default 0 / 1 */
-  int error_samples;      /* 0: all vertices (slow for bad maps); else this many random vertices plus
-                             their mirrors — a different seeded sample for each target shape, whose
-                             exact fields are computed once per target (default 64) */
+  int error_samples;      /* 0 (default): exact mean over all vertices (~0.1 s per good map, ~1.5 s for
+                             the FPS rows' bad maps); else a faster estimate from this many random
+                             vertices plus their mirrors — a different seeded sample for each target
+                             shape, whose exact fields are computed once per target (64 gave -29%..+12%
+                             per row against the exact mean) */
   int k;                  /* eigenpairs of the functional map basis (default 50) */
   int policies_mask, lm_mask, methods_mask; /* bit sets of what to run (default all 7) */
   int progress;           /* 1: progress bar with ETA on stderr */

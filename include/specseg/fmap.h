@@ -148,11 +148,15 @@ typedef struct ss_fmap_match_options {
    * terms at full weight: DIFF 0.0492 (1.22 x STD); data term only 0.0457; block normalised to the
    * landmark block's weight 0.0463; weight 0.1 0.0404 / data only 0.0400; low-energy half of the
    * filters 0.0430 / data only 0.0402. With the tent profile of ss_match_options.segment_profile:
-   * data + commutativity 0.0400, data only 0.0382 (0.95 x STD, better on 7/10 pairs). The
+   * data + commutativity 0.0400, data only 0.0382 (0.95 x STD, better on 7/10 pairs); data only
+   * with w_extra 0.5: 0.0380, 2: 0.0400. On the next 10 pairs (held out, STD 0.0313): w_extra 1
+   * 0.0330, 0.5 0.0315 -> default 0.5. Gains are small and not significant: on 30 pairs with
+   * w_extra 1, STD 0.0382, ASA 0.0383, DIFF 0.0384; with the defaults (tent, data only, 0.5)
+   * STD 0.0382, ASA 0.0382, DIFF 0.0373 (0.975 x STD, better on 19/30; was DIFF 0.0452). The
    * segments are coarse and their boundaries differ between shapes (IoU 0.6-0.98 under the ground
    * truth), so their products (the commutativity operators D_i) constrain C with the wrong
    * supports: hence data term only by default. */
-  double w_extra;      /* data-term weight of the extra probes relative to w_descr (default 1) */
+  double w_extra;      /* data-term weight of the extra probes relative to w_descr (default 0.5) */
   int extra_dcomm;     /* 1: their multiplication operators also enter the commutativity term (default 0) */
 } ss_fmap_match_options;
 

@@ -32,6 +32,12 @@ ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, i
                            const int *lmY, ss_segment_pairs *out, ss_error *err);
 /* The same from precomputed landmark fields at the critical points: dX (mx x nl, column-major,
  * dX[s + mx·i] = scaled distance from landmark i to critical point s of X), likewise dY (my x nl). */
+/* The probe functions of paired segments on one shape: E (malloc'd, sg->nv x npairs, column-major),
+ * column p is segment seg[p] of sg as an indicator (profile 0) or as a tent 1 − d/R over the
+ * segment (profile 1; d = the segmentation's distance to the segment's centre, R its maximum). */
+ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, int profile, double **E,
+                            ss_error *err);
+
 ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
                                   ss_segment_pairs *out, ss_error *err);
 void ss_segment_pairs_free(ss_segment_pairs *p);

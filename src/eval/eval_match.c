@@ -10,19 +10,6 @@ const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset) {
   return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : s->fps;
 }
 
-/* indicator of each paired segment on one shape: E (n x np), column p = 1 on segment seg[p] */
-static double *indicators(int n, const int *labels, int m, int np, const int *seg) {
-  double *E = calloc((size_t)n * (np > 0 ? np : 1), sizeof(double));
-  int *col = malloc(sizeof(int) * (size_t)(m > 0 ? m : 1));
-  if (!E || !col) { free(E); free(col); return NULL; }
-  for (int s = 0; s < m; s++) col[s] = -1;
-  for (int p = 0; p < np; p++) col[seg[p]] = p;
-  for (int i = 0; i < n; i++)
-    if (labels[i] >= 0 && labels[i] < m && col[labels[i]] >= 0) E[i + (size_t)n * col[labels[i]]] = 1.0;
-  free(col);
-  return E;
-}
-
 ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int method, int *map,
                    int *paired, ss_error *err) {
   const ss_shape_prep *pX = &X->prep, *pY = &Y->prep;
@@ -33,9 +20,9 @@ ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, 
   double *EX = NULL, *EY = NULL;
   int nextra = method == SS_METHOD_STD ? 0 : pr.n;
   if (nextra > 0) {
-    EX = indicators(X->mesh.nv, pX->seg.labels, pX->seg.m, pr.n, pr.sx);
-    EY = indicators(Y->mesh.nv, pY->seg.labels, pY->seg.m, pr.n, pr.sy);
-    if (!EX || !EY) st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory for probes");
+    /* the same probe columns (indicator or tent profile) as ss_match_prepared builds */
+    st = ss_segment_probes(&pX->seg, pr.n, pr.sx, ctx->mopt.segment_profile, &EX, err);
+    if (!st) st = ss_segment_probes(&pY->seg, pr.n, pr.sy, ctx->mopt.segment_profile, &EY, err);
   }
   if (!st) {
     ss_fmap_shape sX = {&X->mesh, pX->M, pX->evals, pX->evecs, pX->kev};

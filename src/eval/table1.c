@@ -30,7 +30,7 @@ void ss_table1_default_options(ss_table1_options *o) {
   o->seed = 1;
   o->shard_i = 0;
   o->shard_n = 1;
-  o->error_samples = 64;
+  o->error_samples = 0; /* exact mean over every vertex, as the paper defines the error */
   o->k = 50;
   o->policies_mask = o->lm_mask = o->methods_mask = 7;
 }
@@ -289,11 +289,12 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
     int *samples = malloc(sizeof(int) * (2 * (size_t)S + 1)), *sympos = malloc(sizeof(int) * (2 * (size_t)S + 1));
     double *fields = malloc(sizeof(double) * (size_t)nv * (2 * (size_t)S + 1));
     double *d1 = malloc(sizeof(double) * (size_t)nv), *d2 = malloc(sizeof(double) * (size_t)nv);
-    if (!map || !ident || !samples || !sympos || !fields || !d1 || !d2) {
+    int *both = malloc(sizeof(int) * 2 * (size_t)nv); /* (x, sym(x)) target pairs */
+    if (!map || !ident || !samples || !sympos || !fields || !d1 || !d2 || !both) {
 #pragma omp critical(table1_err)
       if (!failed) failed = 1, snprintf(perr.msg, sizeof perr.msg, "out of memory");
     } else
-      for (int i = 0; i < nv; i++) ident[i] = i;
+      for (int i = 0; i < nv; i++) ident[i] = i, both[2 * i] = i, both[2 * i + 1] = sym[i];
 #pragma omp for schedule(dynamic, 1)
     for (int g = 0; g < ngroups; g++) {
       if (failed) continue;
@@ -326,8 +327,9 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
           } else {
             /* every vertex: exact distances from each image, grouped by image */
             if ((s2 = ss_geodesic_pairs(gm, map, ident, nv, d1, &e))) break;
-            if ((s2 = ss_geodesic_pairs(gm, map, sym, nv, d2, &e))) break;
-            for (int i = 0; i < nv; i++) se += d1[i], ss2 += d1[i] < d2[i] ? d1[i] : d2[i];
+            /* symmetric: each query stops at the nearer of x and its mirror (no far propagation) */
+            if ((s2 = ss_geodesic_nearest_of(gm, map, both, 2, nv, d2, &e))) break;
+            for (int i = 0; i < nv; i++) se += d1[i], ss2 += d2[i];
             r.samples = nv;
           }
           r.error = se / r.samples * scale;
@@ -351,7 +353,7 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
         if (!failed) failed = 1, perr = e;
       }
     }
-    free(map), free(ident), free(samples), free(sympos), free(fields), free(d1), free(d2);
+    free(map), free(ident), free(samples), free(sympos), free(fields), free(d1), free(d2), free(both);
   }
   free(gstart);
   if (o->progress) fputc('\n', stderr);

@@ -122,6 +122,19 @@ static void tent_profile(const ss_segmentation *sg, int n, int npairs, double *E
   }
 }
 
+ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, int profile, double **E,
+                            ss_error *err) {
+  *E = NULL;
+  if (profile < 0 || profile > 1) return ss_fail(err, SS_ERR_INVALID, "match: unknown segment profile %d", profile);
+  for (int p = 0; p < npairs; p++)
+    if (seg[p] < 0 || seg[p] >= sg->m)
+      return ss_fail(err, SS_ERR_INVALID, "match: paired segment %d out of range [0,%d)", seg[p], sg->m);
+  *E = indicators(sg->nv, sg->labels, npairs, seg);
+  if (!*E) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory for segment probes");
+  if (profile == 1 && sg->work_dist && sg->psi) tent_profile(sg, sg->nv, npairs, *E);
+  return SS_OK;
+}
+
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                             const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
   double t_start = ss_time();
@@ -173,13 +186,8 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   /* 2. functional map at size k with the chosen probes */
   int nextra = o.probes == SS_PROBES_STD ? 0 : np;
   if (nextra > 0) {
-    EX = indicators(nX, X->seg.labels, np, out->pairs.sx);
-    EY = indicators(nY, Y->seg.labels, np, out->pairs.sy);
-    if (!EX || !EY) goto nomem;
-    if (o.segment_profile == 1 && X->seg.work_dist && Y->seg.work_dist && X->seg.psi && Y->seg.psi) {
-      tent_profile(&X->seg, nX, np, EX);
-      tent_profile(&Y->seg, nY, np, EY);
-    }
+    if ((st = ss_segment_probes(&X->seg, np, out->pairs.sx, o.segment_profile, &EX, err))) goto fail;
+    if ((st = ss_segment_probes(&Y->seg, np, out->pairs.sy, o.segment_profile, &EY, err))) goto fail;
   }
   out->map = malloc(sizeof(int) * (size_t)nX);
   Ck = malloc(sizeof(double) * (size_t)k * k);
