@@ -79,7 +79,7 @@ static ss_status landmark_fields(ev_shape *s, const ev_context *ctx, ss_error *e
 static void cache_key(const ev_context *c, int id, char *key, size_t n) {
   const ss_segment_options *o = &c->mopt.seg;
   snprintf(key, n,
-           "specseg-eval-v1 faust %03d kev %d faces %d nostream %d cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d "
+           "specseg-eval-v2 faust %03d kev %d faces %d nostream %d cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d "
            "gt %d %d %d %d %d\n",
            id, c->kev, o->target_faces, o->no_streamline, o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt,
            c->best[0], c->best[1], c->best[2], c->best[3], c->best[4], c->gt[0], c->gt[1], c->gt[2], c->gt[3], c->gt[4]);
@@ -99,21 +99,27 @@ static int cache_load(const char *path, const char *key, ev_shape *s) {
   if (!f) return 0;
   char line[1024];
   int ok = fgets(line, sizeof line, f) && !strcmp(line, key);
-  int nv = 0, kev = 0, m = 0;
+  int nv = 0, kev = 0, m = 0, wn = 0;
   ss_shape_prep *p = &s->prep;
-  ok = ok && RD(&nv, 1) && RD(&kev, 1) && RD(&m, 1) && nv == s->mesh.nv && kev >= 3 && kev < nv && m >= 1 && m <= nv;
+  ok = ok && RD(&nv, 1) && RD(&kev, 1) && RD(&m, 1) && RD(&wn, 1) && nv == s->mesh.nv && kev >= 3 && kev < nv &&
+       m >= 1 && m <= nv && wn >= 1 && wn <= 16 * nv + 1000000;
   if (ok) {
     p->evals = malloc(sizeof(double) * (size_t)kev);
     p->evecs = malloc(sizeof(double) * (size_t)nv * kev);
     p->M = malloc(sizeof(double) * (size_t)nv);
     p->seg.labels = malloc(sizeof(int) * (size_t)nv);
     p->seg.centers = malloc(sizeof(int) * (size_t)m);
+    /* Ψ and the distance to the segment centres: the tent-profile segment probes need them */
+    p->seg.psi = malloc(sizeof(int) * (size_t)nv);
+    p->seg.work_dist = malloc(sizeof(double) * (size_t)wn);
     for (int i = 0; i < 3; i++) s->lmd[i] = malloc(sizeof(double) * (size_t)m * EV_NL);
-    ok = p->evals && p->evecs && p->M && p->seg.labels && p->seg.centers && s->lmd[0] && s->lmd[1] && s->lmd[2];
+    ok = p->evals && p->evecs && p->M && p->seg.labels && p->seg.centers && p->seg.psi && p->seg.work_dist &&
+         s->lmd[0] && s->lmd[1] && s->lmd[2];
     ok = ok && RD(p->evals, kev) && RD(p->evecs, (size_t)nv * kev) && RD(p->M, nv) && RD(p->seg.labels, nv) &&
-         RD(p->seg.centers, m) && RD(s->fps, EV_NL) && RD(s->lmd[0], m * EV_NL) && RD(s->lmd[1], m * EV_NL) &&
+         RD(p->seg.centers, m) && RD(p->seg.psi, nv) && RD(p->seg.work_dist, wn) && RD(s->fps, EV_NL) && RD(s->lmd[0], m * EV_NL) && RD(s->lmd[1], m * EV_NL) &&
          RD(s->lmd[2], m * EV_NL) && RD(&s->t_prep, 1) && RD(&p->t_segment, 1) && RD(&p->t_eigs, 1);
-    for (int i = 0; ok && i < nv; i++) ok = p->seg.labels[i] >= 0 && p->seg.labels[i] < m;
+    for (int i = 0; ok && i < nv; i++) ok = p->seg.labels[i] >= 0 && p->seg.labels[i] < m && p->seg.psi[i] >= 0 &&
+                                            p->seg.psi[i] < wn;
     for (int i = 0; ok && i < EV_NL; i++) ok = s->fps[i] >= 0 && s->fps[i] < nv;
   }
   fclose(f);
@@ -138,9 +144,10 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
   FILE *f = fopen(tmp, "wb");
   if (!f) return; /* the cache is an optimisation: a read-only folder only costs time */
   const ss_shape_prep *p = &s->prep;
-  int nv = s->mesh.nv, m = p->seg.m;
-  int ok = fputs(key, f) >= 0 && WR(&nv, 1) && WR(&p->kev, 1) && WR(&m, 1) && WR(p->evals, p->kev) &&
-           WR(p->evecs, (size_t)nv * p->kev) && WR(p->M, nv) && WR(p->seg.labels, nv) && WR(p->seg.centers, m) &&
+  int nv = s->mesh.nv, m = p->seg.m, wn = p->seg.work.nv;
+  int ok = p->seg.psi && p->seg.work_dist && fputs(key, f) >= 0 && WR(&nv, 1) && WR(&p->kev, 1) && WR(&m, 1) &&
+           WR(&wn, 1) && WR(p->evals, p->kev) && WR(p->evecs, (size_t)nv * p->kev) && WR(p->M, nv) &&
+           WR(p->seg.labels, nv) && WR(p->seg.centers, m) && WR(p->seg.psi, nv) && WR(p->seg.work_dist, wn) &&
            WR(s->fps, EV_NL) && WR(s->lmd[0], m * EV_NL) && WR(s->lmd[1], m * EV_NL) && WR(s->lmd[2], m * EV_NL) &&
            WR(&s->t_prep, 1) && WR(&p->t_segment, 1) && WR(&p->t_eigs, 1);
   ok = !fclose(f) && ok;

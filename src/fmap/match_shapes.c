@@ -129,9 +129,11 @@ ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *se
   for (int p = 0; p < npairs; p++)
     if (seg[p] < 0 || seg[p] >= sg->m)
       return ss_fail(err, SS_ERR_INVALID, "match: paired segment %d out of range [0,%d)", seg[p], sg->m);
+  if (profile == 1 && (!sg->work_dist || !sg->psi))
+    return ss_fail(err, SS_ERR_INVALID, "match: the tent segment profile needs the segmentation's distances");
   *E = indicators(sg->nv, sg->labels, npairs, seg);
   if (!*E) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory for segment probes");
-  if (profile == 1 && sg->work_dist && sg->psi) tent_profile(sg, sg->nv, npairs, *E);
+  if (profile == 1) tent_profile(sg, sg->nv, npairs, *E);
   return SS_OK;
 }
 
