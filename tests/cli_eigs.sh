@@ -7,12 +7,7 @@ set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 HERE=$(cd "$(dirname "$0")" && pwd)
 TESTS=${SS_TEST_DIR:-$HERE}
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 
 # regular icosahedron (12 vertices, 20 faces) and the same with an unreferenced 13th vertex
 ico() {

@@ -4,12 +4,7 @@
 # Usage: cli_error.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 s=0.70710678118654752 # edge 1: vertices (±s,0,0), (0,±s,0), (0,0,±s); area 8·√3/4 = 2√3
 cat > "$TMP/oct.off" <<MESH
 OFF

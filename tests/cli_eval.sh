@@ -5,12 +5,7 @@
 # Usage: cli_eval.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 
 # usage errors need no data
 "$BIN" eval > /dev/null 2>&1; [ $? = 2 ] && ok || bad "no mode: exit != 2"

@@ -9,12 +9,7 @@ BIN=${1:?usage: $0 PATH/TO/specseg}
 HERE=$(cd "$(dirname "$0")" && pwd)
 TESTS=${SS_TEST_DIR:-$HERE}
 CORPUS=$TESTS/data/malformed
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 
 sanitizer_clean() { ! grep -qE 'AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|runtime error:' "$1"; }
 

@@ -4,12 +4,7 @@
 # Usage: cli_match_probes.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 "$BIN" demo -o "$TMP/d" > "$TMP/demo.out" 2>&1 || { echo "demo failed"; exit 1; }
 grep -q '^DIFF mean geodesic error' "$TMP/demo.out" && grep -q '^STD  mean geodesic error' "$TMP/demo.out" && ok ||
   bad "demo has no matching stage"

@@ -7,12 +7,7 @@
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 HERE=$(cd "$(dirname "$0")" && pwd)
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 PY=""
 for p in /usr/bin/python3 python3; do command -v "$p" > /dev/null 2>&1 && { PY=$p; break; }; done
 png() { PYTHONDONTWRITEBYTECODE=1 "$PY" "$HERE/python/png_check.py" "$@"; }

@@ -4,12 +4,7 @@
 # Usage: cli_segment.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 
 "$BIN" demo -o "$TMP/demo" > /dev/null 2>&1 || bad "demo failed"
 M="$TMP/demo/humanoid_pose0.off"

@@ -4,12 +4,7 @@
 # Usage: cli_streamline.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$(dirname "$0")/lib_cli.sh"
 
 # a closed input: an octahedron
 IN="$TMP/octa.off"

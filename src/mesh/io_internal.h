@@ -16,6 +16,10 @@ ss_status io_parse_off(const char *path, const char *buf, size_t len, ss_mesh *m
 ss_status io_parse_obj(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 
+/* Read the whole file and run one of the parsers above on it (the body of ss_read_off/obj/ply). */
+typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err);
+
 /* Moves grown arrays into a mesh (shrinks to fit; frees the vectors). */
 ss_status io_finish_mesh(io_dvec *V, io_ivec *F, ss_mesh *m, const char *path, ss_error *err);
 

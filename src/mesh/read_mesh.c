@@ -77,3 +77,14 @@ ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
   free(buf);
   return st;
 }
+
+ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err) {
+  char *buf;
+  size_t len;
+  memset(m, 0, sizeof *m);
+  ss_status st = io_slurp(path, &buf, &len, err);
+  if (st) return st;
+  st = parse(path, buf, len, m, err);
+  free(buf);
+  return st;
+}

@@ -372,12 +372,5 @@ ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m
 }
 
 ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err) {
-  char *buf;
-  size_t len;
-  memset(m, 0, sizeof *m);
-  ss_status st = io_slurp(path, &buf, &len, err);
-  if (st) return st;
-  st = io_parse_ply(path, buf, len, m, err);
-  free(buf);
-  return st;
+  return io_read_with(path, io_parse_ply, m, err);
 }
