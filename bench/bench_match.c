@@ -8,6 +8,7 @@
  * Accuracy runs reuse one ss_shape_prep per shape (segmentation + 100 eigenpairs); the timed run
  * is a separate, complete ss_match per pair (DIFF, no ZoomOut). */
 #include "specseg/fmap.h"
+#include "specseg/geodesic.h"
 #include "specseg/io.h"
 #include "specseg/match.h"
 
@@ -34,6 +35,10 @@ typedef struct slot {
   ss_mesh m;
   ss_shape_prep prep;
   int loaded;
+  /* for --try (lazy): exact geodesic fields from every segment centre, on the input (cdist) and on
+   * the segmentation's work mesh pulled back through psi (wdist), n x m, divided by sqrt(area); exact
+   * distance to the nearest segment boundary (bdist, n) */
+  double *cdist, *wdist, *bdist, *gdist;
 } slot;
 
 static int load(const char *dir, int id, const ss_match_options *o, int kev, slot *s) {
@@ -49,6 +54,294 @@ static int load(const char *dir, int id, const ss_match_options *o, int kev, slo
   return 0;
 }
 
+/* ---- --try SPEC: segment-probe variants against one STD system per pair ----------------------------
+ * SPEC is comma-separated key=value: prof=ind|tent|soft|softw|window|erode|gtent|centre, par=P (tent,
+ * gtent: radius factor; soft, softw: temperature / sqrt(area); window, erode: distance from the
+ * segment boundary / sqrt(area)), filt=raw|wave, e=E0:E1:ES (WKS energies of the wave filter, default
+ * 0:100:5 = what DIFF uses), norm=col|fn (col: every column normalised, as the library does; fn: a
+ * segment's bands keep their energies relative to its strongest band), we=W (data weight relative to
+ * w_descr), wc=W (commutativity weight relative to w_dcomm; 0 = data term only), oracle=1 (Y's
+ * functions are X's carried by the ground truth: what perfectly consistent segments would give). */
+enum { P_IND, P_TENT, P_SOFT, P_SOFTW, P_WINDOW, P_ERODE, P_GTENT, P_CENTRE, P_SOFTG };
+typedef struct variant {
+  char spec[200];
+  int prof, filt, e0, e1, es, fnorm, oracle;
+  double par, we, wc, sum;
+  int wins;
+} variant;
+
+static int parse_variant(const char *spec, variant *v) {
+  memset(v, 0, sizeof *v);
+  snprintf(v->spec, sizeof v->spec, "%s", spec);
+  v->prof = P_TENT, v->par = 1, v->filt = 1, v->e0 = 0, v->e1 = 100, v->es = 5, v->we = 0.5;
+  char buf[200];
+  snprintf(buf, sizeof buf, "%s", spec);
+  for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+    char *eq = strchr(t, '=');
+    if (!eq) return 1;
+    *eq = 0;
+    const char *k = t, *val = eq + 1;
+    if (!strcmp(k, "prof")) {
+      const char *names[] = {"ind", "tent", "soft", "softw", "window", "erode", "gtent", "centre", "softg"};
+      v->prof = -1;
+      for (int i = 0; i < 9; i++)
+        if (!strcmp(val, names[i])) v->prof = i;
+      if (v->prof < 0) return 1;
+    } else if (!strcmp(k, "par")) v->par = atof(val);
+    else if (!strcmp(k, "filt")) v->filt = !strcmp(val, "wave");
+    else if (!strcmp(k, "e")) {
+      if (sscanf(val, "%d:%d:%d", &v->e0, &v->e1, &v->es) != 3) return 1;
+    } else if (!strcmp(k, "norm")) v->fnorm = !strcmp(val, "fn");
+    else if (!strcmp(k, "we")) v->we = atof(val);
+    else if (!strcmp(k, "wc")) v->wc = atof(val);
+    else if (!strcmp(k, "oracle")) v->oracle = atoi(val);
+    else return 1;
+  }
+  return v->es < 1 || v->e0 < 0 || v->e1 <= v->e0 || v->e1 > 100 || (v->prof == P_CENTRE && !v->filt);
+}
+
+static int shape_fields(slot *s) {
+  if (s->cdist) return 0;
+  const ss_segmentation *sg = &s->prep.seg;
+  const int n = s->m.nv, m = sg->m, nw = sg->work.nv;
+  ss_error e;
+  ss_geodesic_mesh *gm = NULL, *gw = NULL;
+  double *w = malloc(sizeof(double) * (size_t)nw * m);
+  s->cdist = malloc(sizeof(double) * (size_t)n * m);
+  s->wdist = malloc(sizeof(double) * (size_t)n * m);
+  s->bdist = malloc(sizeof(double) * (size_t)n);
+  int *src = malloc(sizeof(int) * (size_t)n), ns = 0;
+  if (!w || !s->cdist || !s->wdist || !s->bdist || !src) return 1;
+  if (ss_geodesic_mesh_build(&s->m, &gm, &e) || ss_geodesic_fields(gm, sg->centers, m, 0, s->cdist, &e) ||
+      ss_geodesic_mesh_build(&sg->work, &gw, &e) || ss_geodesic_fields(gw, sg->crit, m, 0, w, &e)) {
+    fprintf(stderr, "fields: %s\n", e.msg);
+    return 1;
+  }
+  /* the same on the work mesh's NPP22 graph (Dijkstra) */
+  s->gdist = malloc(sizeof(double) * (size_t)n * m);
+  double *gw1 = malloc(sizeof(double) * (size_t)nw);
+  ss_graph g;
+  if (!s->gdist || !gw1 || ss_graph_npp22(&sg->work, &g, &e)) return 1;
+  double sw0 = sqrt(ss_mesh_area(&sg->work));
+  for (int j = 0; j < m; j++) {
+    if (ss_graph_dijkstra(&g, sg->crit + j, 1, 0, gw1, NULL, &e)) return 1;
+    for (int x = 0; x < n; x++) s->gdist[x + (size_t)n * j] = sg->psi[x] >= 0 ? gw1[sg->psi[x]] / sw0 : INFINITY;
+  }
+  ss_graph_free(&g);
+  free(gw1);
+  double sa = sqrt(s->prep.area), sw = sqrt(ss_mesh_area(&sg->work));
+  for (size_t i = 0; i < (size_t)n * m; i++) s->cdist[i] /= sa;
+  for (int j = 0; j < m; j++)
+    for (int x = 0; x < n; x++)
+      s->wdist[x + (size_t)n * j] = sg->psi[x] >= 0 ? w[sg->psi[x] + (size_t)nw * j] / sw : INFINITY;
+  /* boundary vertices: an edge to another segment */
+  char *isb = calloc((size_t)n, 1);
+  for (int f = 0; f < s->m.nf; f++)
+    for (int c = 0; c < 3; c++) {
+      int a = s->m.F[3 * f + c], b = s->m.F[3 * f + (c + 1) % 3];
+      if (sg->labels[a] != sg->labels[b]) isb[a] = isb[b] = 1;
+    }
+  for (int x = 0; x < n; x++)
+    if (isb[x]) src[ns++] = x;
+  if (ss_vtp_distances(gm, src, ns, 0, s->bdist, &e)) return 1;
+  for (int x = 0; x < n; x++) s->bdist[x] /= sa;
+  free(isb), free(src), free(w);
+  ss_geodesic_mesh_free(gm), ss_geodesic_mesh_free(gw);
+  return 0;
+}
+
+/* the probe function of segment seg of shape s (n values) */
+static void profile(const slot *s, int seg, const variant *v, double *f) {
+  const ss_segmentation *sg = &s->prep.seg;
+  const int n = s->m.nv, m = sg->m;
+  const double *cd = s->cdist + (size_t)n * seg;
+  double R = 0;
+  if (v->prof == P_TENT)
+    for (int x = 0; x < n; x++)
+      if (sg->labels[x] == seg && sg->psi[x] >= 0 && sg->work_dist[sg->psi[x]] > R) R = sg->work_dist[sg->psi[x]];
+  if (v->prof == P_GTENT)
+    for (int x = 0; x < n; x++)
+      if (sg->labels[x] == seg && cd[x] > R) R = cd[x];
+  for (int x = 0; x < n; x++) {
+    int in = sg->labels[x] == seg;
+    double val = 0;
+    switch (v->prof) {
+    case P_IND: val = in; break;
+    case P_TENT: val = in && sg->psi[x] >= 0 && R > 0 ? fmax(0, 1 - sg->work_dist[sg->psi[x]] / (v->par * R)) : 0; break;
+    case P_GTENT: val = R > 0 ? fmax(0, 1 - cd[x] / (v->par * R)) : 0; break;
+    case P_WINDOW: val = in ? fmin(1, s->bdist[x] / v->par) : 0; break;
+    case P_ERODE: val = in && s->bdist[x] > v->par; break;
+    case P_SOFT:
+    case P_SOFTW:
+    case P_SOFTG: {
+      const double *D = v->prof == P_SOFT ? s->cdist : v->prof == P_SOFTW ? s->wdist : s->gdist;
+      const double *ds = D + (size_t)n * seg;
+      double dmin = INFINITY, z = 0;
+      for (int j = 0; j < m; j++) dmin = fmin(dmin, D[x + (size_t)n * j]);
+      for (int j = 0; j < m; j++) z += exp(-(D[x + (size_t)n * j] - dmin) / v->par);
+      val = isfinite(ds[x]) ? exp(-(ds[x] - dmin) / v->par) / z : 0;
+      break;
+    }
+    default: break;
+    }
+    f[x] = val;
+  }
+}
+
+/* extra probes of one shape: np segments (segs) of shape s, functions taken from shape fs (fs = s,
+ * or X for the oracle on Y) */
+static int variant_probes(const slot *s, const slot *fs, int np, const int *segs, const variant *v, int k,
+                          ss_fmap_probes *out) {
+  const int n = s->m.nv, nb = v->filt ? (v->e1 - v->e0 + v->es - 1) / v->es : 1, p = np * nb;
+  const double *ev = s->prep.evecs, *M = s->prep.M;
+  double *f = malloc(sizeof(double) * (size_t)n * np), *F = malloc(sizeof(double) * (size_t)n * p);
+  double *a = malloc(sizeof(double) * (size_t)k * np), *G = malloc(sizeof(double) * 100 * (size_t)k);
+  double *c = malloc(sizeof(double) * (size_t)k);
+  ss_error e;
+  if (!f || !F || !a || !G || !c) return 1;
+  for (int q = 0; q < np; q++) {
+    if (v->prof == P_CENTRE) {
+      int cv = fs->prep.seg.centers[segs[q]];
+      for (int i = 0; i < k; i++) a[i + (size_t)k * q] = ev[cv + (size_t)n * i];
+    } else profile(fs, segs[q], v, f + (size_t)n * q);
+  }
+  if (v->prof != P_CENTRE && ss_fmap_project(n, k, ev, M, np, f, a, &e)) return 1;
+  if (v->filt && ss_wks_filters(s->prep.evals, k, 100, 7.0, G, &e)) return 1;
+  for (int q = 0; q < np; q++) {
+    double mx = 0, *nrm = malloc(sizeof(double) * nb);
+    for (int b = 0; b < nb; b++) {
+      double *col = F + (size_t)n * (q * nb + b);
+      if (!v->filt) memcpy(col, f + (size_t)n * q, sizeof(double) * n);
+      else {
+        int j = v->e0 + b * v->es;
+        for (int i = 0; i < k; i++) c[i] = G[j + 100 * (size_t)i] * a[i + (size_t)k * q];
+        for (int x = 0; x < n; x++) {
+          double t = 0;
+          for (int i = 0; i < k; i++) t += ev[x + (size_t)n * i] * c[i];
+          col[x] = t;
+        }
+      }
+      double s2 = 0;
+      for (int x = 0; x < n; x++) s2 += M[x] * col[x] * col[x];
+      nrm[b] = sqrt(s2);
+      mx = fmax(mx, nrm[b]);
+    }
+    for (int b = 0; b < nb; b++) {
+      double sc = v->fnorm ? (mx > 0 ? 1 / mx : 0) : (nrm[b] > 1e-12 * mx ? 1 / nrm[b] : 0);
+      double *col = F + (size_t)n * (q * nb + b);
+      for (int x = 0; x < n; x++) col[x] *= sc;
+    }
+    free(nrm);
+  }
+  memset(out, 0, sizeof *out);
+  out->k = k, out->p = p, out->nd = v->wc > 0 ? p : 0;
+  out->A = malloc(sizeof(double) * (size_t)k * p);
+  if (!out->A || ss_fmap_project(n, k, ev, M, p, F, out->A, &e)) return 1;
+  if (out->nd) {
+    size_t kk = (size_t)k * (k + 1) / 2;
+    out->P = malloc(sizeof(double) * kk * p);
+    if (!out->P || ss_fmap_mult_operators_packed(n, k, ev, M, p, F, out->P, &e)) return 1;
+    /* the commutativity term is quadratic in the operators: sqrt(wc) gives it weight wc·w_dcomm */
+    for (size_t i = 0; i < kk * p; i++) out->P[i] *= sqrt(v->wc);
+  }
+  free(f), free(F), free(a), free(G), free(c);
+  return 0;
+}
+
+static int run_variants(const char *dir, unsigned seed, int npairs, int nl, const int *lm, const ss_match_options *o,
+                        int nv, variant *V, int diag) {
+  slot *S = calloc(100, sizeof(slot));
+  const int k = o->fmap.k;
+  ss_fmap_match_options fo = o->fmap;
+  fo.zoomout_kmax = 0;
+  double sum_std = 0;
+  unsigned r = seed;
+  printf("variants (k %d, weights %g %g %g):\n", k, fo.w_descr, fo.w_lap, fo.w_dcomm);
+  for (int i = 0; i < nv; i++) printf("  v%d: %s\n", i, V[i].spec);
+  for (int p = 0; p < npairs; p++) {
+    int a, b;
+    do {
+      r = r * 1664525u + 1013904223u;
+      a = (r >> 8) % 100;
+      r = r * 1664525u + 1013904223u;
+      b = (r >> 8) % 100;
+    } while (a == b);
+    if (load(dir, a, o, k, &S[a]) || load(dir, b, o, k, &S[b]) || shape_fields(&S[a]) || shape_fields(&S[b])) return 1;
+    const slot *X = &S[a], *Y = &S[b];
+    ss_error e;
+    ss_segment_pairs pr;
+    ss_fmap_shape sX = {&X->m, X->prep.M, X->prep.evals, X->prep.evecs, X->prep.kev};
+    ss_fmap_shape sY = {&Y->m, Y->prep.M, Y->prep.evals, Y->prep.evecs, Y->prep.kev};
+    ss_fmap_probes bX, bY;
+    ss_fmap_weights w;
+    ss_fmap_system *sys = NULL;
+    int *map = malloc(sizeof(int) * (size_t)X->m.nv);
+    double *Ck = malloc(sizeof(double) * (size_t)k * k), err_std;
+    if (ss_pair_segments(&X->prep.seg, &Y->prep.seg, nl, lm, lm, &pr, &e) ||
+        ss_fmap_base_probes(&sX, nl, lm, &fo, fo.w_dcomm > 0, &bX, &e) ||
+        ss_fmap_base_probes(&sY, nl, lm, &fo, fo.w_dcomm > 0, &bY, &e) || ss_fmap_pair_weights(&sX, &sY, &fo, &w, &e) ||
+        ss_fmap_system_new(k, k, Y->prep.evals, X->prep.evals, &bY, &bX, &w, &sys, &e) ||
+        ss_fmap_system_solve(sys, NULL, NULL, 0, 0, Ck, &e) || ss_fmap_match_finish(&sX, &sY, &fo, Ck, map, NULL, &e) ||
+        ss_map_geodesic_error(&Y->m, X->m.nv, map, NULL, NULL, NULL, &err_std, &e)) {
+      fprintf(stderr, "pair %d-%d: %s\n", a, b, e.msg);
+      return 1;
+    }
+    sum_std += err_std;
+    if (diag && X->m.nv == Y->m.nv) { /* per segment pair: area IoU under the ground truth, centre error */
+      printf("diag %3d -> %3d:", a, b);
+      for (int q = 0; q < pr.n; q++) {
+        double in = 0, un = 0;
+        for (int x = 0; x < X->m.nv; x++) {
+          int u = X->prep.seg.labels[x] == pr.sx[q], w2 = Y->prep.seg.labels[x] == pr.sy[q];
+          in += (u && w2) * Y->prep.M[x], un += (u || w2) * Y->prep.M[x];
+        }
+        int cx = X->prep.seg.centers[pr.sx[q]];
+        int near = -1;
+        for (int l = 0; l < nl; l++)
+          if (X->cdist[lm[l] + (size_t)X->m.nv * pr.sx[q]] < 0.25 &&
+              (near < 0 || X->cdist[lm[l] + (size_t)X->m.nv * pr.sx[q]] < X->cdist[lm[near] + (size_t)X->m.nv * pr.sx[q]]))
+            near = l;
+        printf(" [L%d %d-%d %.2f %.3f %.3f]", near, pr.sx[q], pr.sy[q], un > 0 ? in / un : 0, Y->cdist[cx + (size_t)Y->m.nv * pr.sy[q]], pr.energy[q]);
+      }
+      printf("\n");
+    }
+    printf("pair %2d: %3d -> %3d paired %d  STD %.4f", p, a, b, pr.n, err_std);
+    for (int i = 0; i < nv; i++) {
+      ss_fmap_probes xX, xY;
+      double err_v;
+      if (variant_probes(X, X, pr.n, pr.sx, &V[i], k, &xX) ||
+          variant_probes(Y, V[i].oracle ? X : Y, pr.n, V[i].oracle ? pr.sx : pr.sy, &V[i], k, &xY) ||
+          ss_fmap_system_solve(sys, &xY, &xX, V[i].we, V[i].wc > 0, Ck, &e) ||
+          ss_fmap_match_finish(&sX, &sY, &fo, Ck, map, NULL, &e) ||
+          ss_map_geodesic_error(&Y->m, X->m.nv, map, NULL, NULL, NULL, &err_v, &e)) {
+        fprintf(stderr, "pair %d-%d v%d: %s\n", a, b, i, e.msg);
+        return 1;
+      }
+      V[i].sum += err_v;
+      V[i].wins += err_v < err_std;
+      printf("  v%d %.4f", i, err_v);
+      ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
+    }
+    printf("\n");
+    fflush(stdout);
+    ss_fmap_system_free(sys);
+    ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
+    ss_segment_pairs_free(&pr);
+    free(map), free(Ck);
+  }
+  printf("mean over %d pairs (seed %u): STD %.4f\n", npairs, seed, sum_std / npairs);
+  for (int i = 0; i < nv; i++)
+    printf("  v%d %.4f  x STD %.3f  better on %d/%d  [%s]\n", i, V[i].sum / npairs, V[i].sum / sum_std, V[i].wins,
+           npairs, V[i].spec);
+  for (int i = 0; i < 100; i++)
+    if (S[i].loaded) {
+      ss_shape_prep_free(&S[i].prep), ss_mesh_free(&S[i].m);
+      free(S[i].cdist), free(S[i].wdist), free(S[i].bdist), free(S[i].gdist);
+    }
+  free(S);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   const char *dir = SS_DATA_DIR_DEFAULT;
   int npairs = 30, timing = 1, verbose = 0, zo_pairs = 1 << 30, timed_pairs = 1 << 30;
@@ -56,6 +349,8 @@ int main(int argc, char **argv) {
   ss_match_options o;
   ss_match_default_options(&o);
   o.fmap.zoomout_kmax = 100;
+  variant var[64];
+  int nvar = 0, diag = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "0";
     if (!strcmp(a, "--data")) dir = v, i++;
@@ -72,6 +367,11 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--zo-pairs")) zo_pairs = atoi(v), i++;
     else if (!strcmp(a, "--timed-pairs")) timed_pairs = atoi(v), i++;
     else if (!strcmp(a, "--verbose")) verbose = 1;
+    else if (!strcmp(a, "--diag")) diag = 1;
+    else if (!strcmp(a, "--try") && nvar < 64) {
+      if (parse_variant(v, &var[nvar++])) { fprintf(stderr, "bad --try %s\n", v); return 2; }
+      i++;
+    }
     else { fprintf(stderr, "unknown option %s\n", a); return 2; }
   }
   if (npairs < 1 || o.fmap.k < 3 || (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)) {
@@ -87,6 +387,11 @@ int main(int argc, char **argv) {
       fprintf(stderr, "landmarks: %s\n", e.msg);
       return 1;
     }
+  }
+  if (nvar) {
+    int rc = run_variants(dir, seed, npairs, nl, lm, &o, nvar, var, diag);
+    free(lm);
+    return rc;
   }
   int kev = o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : o.fmap.k;
   slot *S = calloc(100, sizeof(slot));

@@ -141,10 +141,10 @@ static int stage_spectrum(demo_ctx *c) {
 
 /* Stage (render): segment every humanoid pose and draw the segmentations side by side, like the
  * paper's Figure 3: segment colours aligned to the first pose (all poses share vertices, so the ground
- * truth is the identity), boundary triangles neutral, segment centres as black spheres. */
+ * truth is the identity), boundary triangles neutral, segment centres as black spheres, one scale. */
 static int stage_pictures(demo_ctx *c) {
-  enum { PW = 480, PH = 600, TS = 2, TITLE_H = 7 * TS + 6 * TS };
-  static const unsigned char TEXT[3] = {30, 30, 30}, CENTRE[3] = {20, 20, 20};
+  enum { PW = 480, PH = 600 };
+  static const unsigned char CENTRE[3] = {20, 20, 20};
   ss_error err = {{0}};
   int idx[DEMO_MAX_SHAPES], n = 0, rc = SS_EXIT_OK;
   for (int i = 0; i < c->nshapes; i++)
@@ -153,66 +153,60 @@ static int stage_pictures(demo_ctx *c) {
   printf("== segmentation pictures ==\n");
   ss_segmentation seg[DEMO_MAX_SHAPES];
   memset(seg, 0, sizeof seg);
-  unsigned char *img = malloc(3 * (size_t)PW * PH), *canvas = malloc(3 * (size_t)n * PW * (PH + TITLE_H));
-  unsigned char *frgb = NULL, *mrgb = NULL;
-  double *mk = NULL;
-  if (!img || !canvas) { rc = cli_error("demo: out of memory"); goto out; }
-  ss_render_options o;
-  ss_render_default_options(&o);
-  o.width = PW, o.height = PH, o.azimuth = 25, o.elevation = 10;
-  double scale = 0;
+  ss_panel P[DEMO_MAX_SHAPES];
+  memset(P, 0, sizeof P);
+  char title[DEMO_MAX_SHAPES][96];
+  unsigned char *frgb[DEMO_MAX_SHAPES] = {NULL}, *mrgb[DEMO_MAX_SHAPES] = {NULL}, *canvas = NULL;
+  double *mk[DEMO_MAX_SHAPES] = {NULL};
   for (int k = 0; k < n; k++) {
     const demo_shape *s = &c->shapes[idx[k]];
+    const ss_mesh *m = &s->mesh;
     double t = ss_time();
-    if (ss_segment(&s->mesh, NULL, &seg[k], &err)) { rc = cli_error("demo: %s: segment: %s", s->name, err.msg); goto out; }
+    if (ss_segment(m, NULL, &seg[k], &err)) { rc = cli_error("demo: %s: segment: %s", s->name, err.msg); goto out; }
     if (k > 0 && seg[k].nv == seg[0].nv && ss_labels_align(seg[k].labels, seg[0].labels, seg[k].nv, &err)) {
       rc = cli_error("demo: %s: %s", s->name, err.msg);
       goto out;
     }
     printf("%s: %d segments in %.2f s\n", s->name, seg[k].m, ss_time() - t);
-    double sk = ss_render_fit_scale(&s->mesh, &o);
-    if (k == 0 || (sk > 0 && sk < scale)) scale = sk;
-  }
-  o.scale = scale; /* one scale: the poses compare */
-  ss_image_fill(canvas, n * PW, PH + TITLE_H, o.background);
-  double t = ss_time();
-  for (int k = 0; k < n; k++) {
-    const ss_mesh *m = &c->shapes[idx[k]].mesh;
-    free(frgb); free(mk); free(mrgb);
-    frgb = malloc(3 * (size_t)m->nf + 1);
-    mk = malloc(sizeof(double) * 3 * (size_t)seg[k].m + 1);
-    mrgb = malloc(3 * (size_t)seg[k].m + 1);
-    if (!frgb || !mk || !mrgb) { rc = cli_error("demo: out of memory"); goto out; }
-    if (ss_segmentation_face_colors(m, seg[k].labels, NULL, frgb, &err)) { rc = cli_error("demo: %s", err.msg); goto out; }
+    frgb[k] = malloc(3 * (size_t)m->nf + 1);
+    mk[k] = malloc(sizeof(double) * 3 * (size_t)seg[k].m + 1);
+    mrgb[k] = malloc(3 * (size_t)seg[k].m + 1);
+    if (!frgb[k] || !mk[k] || !mrgb[k]) { rc = cli_error("demo: out of memory"); goto out; }
+    if (ss_segmentation_face_colors(m, seg[k].labels, NULL, frgb[k], &err)) { rc = cli_error("demo: %s", err.msg); goto out; }
     for (int j = 0; j < seg[k].m; j++) {
-      memcpy(mk + 3 * (size_t)j, m->V + 3 * (size_t)seg[k].centers[j], 3 * sizeof(double));
-      memcpy(mrgb + 3 * (size_t)j, CENTRE, 3);
+      memcpy(mk[k] + 3 * (size_t)j, m->V + 3 * (size_t)seg[k].centers[j], 3 * sizeof(double));
+      memcpy(mrgb[k] + 3 * (size_t)j, CENTRE, 3);
     }
-    ss_render_scene sc;
-    ss_render_scene_init(&sc, m);
-    sc.face_rgb = frgb;
-    sc.nmarkers = seg[k].m, sc.markers = mk, sc.marker_rgb = mrgb;
-    if (ss_render(&sc, &o, img, &err)) { rc = cli_error("demo: render: %s", err.msg); goto out; }
-    ss_image_blit(canvas, n * PW, PH + TITLE_H, img, PW, PH, k * PW, 0);
-    char title[96];
-    snprintf(title, sizeof title, "%s (%d)", c->shapes[idx[k]].name, seg[k].m);
-    ss_draw_text(canvas, n * PW, PH + TITLE_H, k * PW + (PW - ss_text_width(title, TS)) / 2, PH + 2 * TS, TS, TEXT, title);
+    ss_render_scene_init(&P[k].scene, m);
+    P[k].scene.face_rgb = frgb[k];
+    P[k].scene.nmarkers = seg[k].m, P[k].scene.markers = mk[k], P[k].scene.marker_rgb = mrgb[k];
+    snprintf(title[k], sizeof title[k], "%s (%d)", s->name, seg[k].m);
+    P[k].title = title[k];
   }
+  ss_render_options o;
+  ss_render_default_options(&o);
+  o.width = PW, o.height = PH, o.azimuth = 25, o.elevation = 10;
+  ss_panel_layout L; /* one row, titles, one scale: the poses compare */
+  ss_panel_layout_init(&L);
+  int w, h;
+  double t = ss_time();
+  if (ss_render_panels(P, n, &o, &L, &canvas, &w, &h, &err)) { rc = cli_error("demo: render: %s", err.msg); goto out; }
   char path[4096];
   const char *file = "humanoid_segments.png";
   if (demo_path(c, file, path, sizeof path)) { rc = cli_error("demo: output path too long"); goto out; }
-  if (ss_write_png(path, canvas, n * PW, PH + TITLE_H, &err)) { rc = cli_error("demo: %s", err.msg); goto out; }
+  if (ss_write_png(path, canvas, w, h, &err)) { rc = cli_error("demo: %s", err.msg); goto out; }
   demo_record(c, file, "segmentations of the humanoid poses (colours aligned)");
   printf("rendered %d panels %dx%d in %.3f s -> %s\n\n", n, PW, PH, ss_time() - t, file);
 out:
-  for (int k = 0; k < n; k++) ss_segmentation_free(&seg[k]);
-  free(img); free(canvas); free(frgb); free(mk); free(mrgb);
+  for (int k = 0; k < n; k++) ss_segmentation_free(&seg[k]), free(frgb[k]), free(mk[k]), free(mrgb[k]);
+  free(canvas);
   return rc;
 }
 
 /* Stage (matching, paper §6): the first humanoid pose matched to the second with five landmarks at
- * the head, hands and feet (extreme vertices of the rest pose: y up, left side on +x), STD vs DIFF
- * probes, errors against the identity ground truth. */
+ * the head, hands and feet (extreme vertices of the rest pose: y up, left side on +x), STD, ASA and
+ * DIFF probes, errors against the identity ground truth, drawn like the paper's Figure 9
+ * (ss_render_map_comparison: colour transfer through each map above, per-vertex error below). */
 static int stage_match(demo_ctx *c) {
   int ia = -1, ib = -1;
   for (int i = 0; i < c->nshapes; i++)
@@ -249,29 +243,68 @@ static int stage_match(demo_ctx *c) {
   printf("shapes prepared (segmentation + %d eigenpairs each) in %.2f s\n", o.fmap.k, ss_time() - t);
   int rc = SS_EXIT_OK;
   static const char *names[3] = {"STD", "ASA", "DIFF"};
-  for (int v = 0; v < 3 && rc == SS_EXIT_OK; v++) {
-    ss_match_result r;
-    double e = 0;
+  ss_match_result r[3];
+  memset(r, 0, sizeof r);
+  double e[3] = {0}, *errs = malloc(sizeof(double) * 3 * (size_t)X->nv + 1);
+  int *ident = malloc(sizeof(int) * (size_t)X->nv + 1);
+  unsigned char *img = NULL;
+  if (!errs || !ident) { rc = cli_error("demo: out of memory"); goto out; }
+  for (int v = 0; v < 3; v++) {
     o.probes = v == 0 ? SS_PROBES_STD : v == 1 ? SS_PROBES_ASA : SS_PROBES_DIFF;
     t = ss_time();
-    if (ss_match_prepared(&pa, &pb, 5, lm, lm, &o, &r, &err) ||
-        ss_map_geodesic_error(Y, r.nX, r.map, NULL, NULL, NULL, &e, &err)) {
+    if (ss_match_prepared(&pa, &pb, 5, lm, lm, &o, &r[v], &err) ||
+        ss_map_geodesic_error(Y, r[v].nX, r[v].map, NULL, NULL, errs + (size_t)v * X->nv, &e[v], &err)) {
       rc = cli_error("demo: match: %s", err.msg);
-      break;
+      goto out;
     }
-    if (v == 0) printf("%d of %d/%d segments paired\n", r.pairs.n, r.pairs.nx, r.pairs.ny);
-    printf("%-4s mean geodesic error %.4f (/sqrt(area), exact geodesics; %.2f s)\n", names[v], e, ss_time() - t);
+    if (v == 0) printf("%d of %d/%d segments paired\n", r[v].pairs.n, r[v].pairs.nx, r[v].pairs.ny);
+    printf("%-4s mean geodesic error %.4f (/sqrt(area), exact geodesics; %.2f s)\n", names[v], e[v], ss_time() - t);
     if (v == 2) {
       char file[96], path[4096];
       snprintf(file, sizeof file, "map_%s_to_%s.txt", c->shapes[ia].name, c->shapes[ib].name);
-      if (demo_path(c, file, path, sizeof path) || ss_write_ints(path, r.map, r.nX, &err))
+      if (demo_path(c, file, path, sizeof path) || ss_write_ints(path, r[v].map, r[v].nX, &err)) {
         rc = cli_error("demo: match: cannot write %s", file);
-      else
-        demo_record(c, file, "DIFF point map (line i = vertex of pose B)");
+        goto out;
+      }
+      demo_record(c, file, "DIFF point map (line i = vertex of pose B)");
     }
-    ss_match_result_free(&r);
   }
+
+  /* the picture: poses share vertices, so the ground truth is the identity */
+  for (int i = 0; i < X->nv; i++) ident[i] = i;
+  char heading[160];
+  snprintf(heading, sizeof heading, "synthetic humanoid, pose %d to pose %d: 5 landmarks (head, hands, feet), %d segment pairs",
+           c->shapes[ia].humanoid_pose, c->shapes[ib].humanoid_pose, r[0].pairs.n);
+  ss_map_comparison fig;
+  ss_map_comparison_init(&fig, X, Y);
+  fig.x_name = c->shapes[ia].name, fig.y_name = c->shapes[ib].name, fig.heading = heading;
+  fig.nmaps = 3;
+  for (int v = 0; v < 3; v++)
+    fig.map[v] = r[v].map, fig.error[v] = errs + (size_t)v * X->nv, fig.mean_error[v] = e[v], fig.method[v] = names[v];
+  fig.gt = ident;
+  fig.nlandmarks = 5, fig.landmarks_x = fig.landmarks_y = lm;
+  fig.segments_x = pa.seg.m, fig.segments_y = pb.seg.m;
+  fig.labels_x = pa.seg.labels, fig.labels_y = pb.seg.labels;
+  fig.centers_x = pa.seg.centers, fig.centers_y = pb.seg.centers;
+  fig.npairs = r[0].pairs.n, fig.pair_x = r[0].pairs.sx, fig.pair_y = r[0].pairs.sy; /* same for every probe set */
+  ss_render_options ro;
+  ss_render_default_options(&ro);
+  /* the segment gallery's panels and view: the spread arms fit, the raised leg shows */
+  ro.width = 480, ro.height = 600, ro.azimuth = 25, ro.elevation = 10;
+  int w, h;
+  double hi;
+  char path[4096];
+  const char *file = "humanoid_matching.png";
+  t = ss_time();
+  if (ss_render_map_comparison(&fig, &ro, &img, &w, &h, &hi, &err)) { rc = cli_error("demo: render: %s", err.msg); goto out; }
+  if (demo_path(c, file, path, sizeof path)) { rc = cli_error("demo: output path too long"); goto out; }
+  if (ss_write_png(path, img, w, h, &err)) { rc = cli_error("demo: %s", err.msg); goto out; }
+  demo_record(c, file, "STD/ASA/DIFF maps: colour transfer and error heat maps");
+  printf("rendered %dx%d in %.3f s (error scale 0..%g) -> %s\n", w, h, ss_time() - t, hi, file);
+out:
   printf("\n");
+  for (int v = 0; v < 3; v++) ss_match_result_free(&r[v]);
+  free(errs), free(ident), free(img);
   ss_shape_prep_free(&pa);
   ss_shape_prep_free(&pb);
   return rc;
@@ -287,7 +320,10 @@ int cmd_demo(int argc, char **argv) {
     if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
       printf("usage: %s\nBuilds a synthetic humanoid in two poses (same connectivity: ground truth = identity),\n"
              "a sphere and a torus, writes them as OFF and PLY into DIR (created if missing), and prints\n"
-             "their mesh facts and first Laplace-Beltrami eigenvalues. No data or download needed.\n",
+             "their mesh facts and first Laplace-Beltrami eigenvalues, segments the poses\n"
+             "(humanoid_segments.png) and matches them with STD, ASA and DIFF probes (the DIFF map as text;\n"
+             "humanoid_matching.png: colour transfer and error heat maps, like the paper's Figure 9).\n"
+             "No data or download needed.\n",
              usage);
       return SS_EXIT_OK;
     }

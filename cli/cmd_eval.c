@@ -1,8 +1,9 @@
-/* specseg eval: reproduce the paper's evaluation (Table 1, §5 coherency, §5 timings). */
+/* specseg eval: reproduce the paper's evaluation (Table 1, §5 coherency, §5 timings, Figures 3, 9–11). */
 #include "cli.h"
 #include "specseg/evaluation.h"
 #include "specseg/io.h"
 #include "specseg/match.h"
+#include "specseg/render.h"
 
 #include <dirent.h>
 #ifdef __GLIBC__
@@ -13,6 +14,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -22,7 +24,9 @@ static const char *USAGE =
     "                   [--landmarks best,gt,fps] [--methods std,asa,diff] [--quiet]\n"
     "       specseg eval merge CSV... [--out ALL.csv]\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
-    "       specseg eval --timings --data DIR [--shapes N]";
+    "       specseg eval --timings --data DIR [--shapes N]\n"
+    "       specseg eval --figures OUTDIR --data DIR [--landmarks best,gt,fps] [--pair X,Y] [--size WxH]\n"
+    "                   [--gallery-count N | --gallery-only] [--seed S] [--k K] [--cache DIR]";
 
 /* "a,b,c" of names → bit set; -1 on an unknown name */
 static int parse_set(const char *s, int (*parse)(const char *)) {
@@ -279,12 +283,61 @@ static int run_timings(const char *dir, int nshapes) {
   return rc;
 }
 
+/* ---- Figures 3 and 9–11 ------------------------------------------------------------------------ */
+
+static double cpu_now(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+/* Figure 3 (gallery), then one map figure per landmark set: Figure 9 (BEST), 10 (GT), 11 (FPS), each
+ * for the first pair of the policy the paper's figure shows (random, subj, pose) under the seed,
+ * unless --pair fixes it. */
+static int run_figures(const char *data, const char *outdir, const char *cache, int lm_mask, int px, int py,
+                       int width, int height, int gallery, int maps, uint64_t seed, int k) {
+  if (mkdir(outdir, 0755) && errno != EEXIST) return cli_error("%s: cannot create: %s", outdir, strerror(errno));
+  char path[4096];
+  ss_error e;
+  ss_render_options ro;
+  ss_render_default_options(&ro);
+  if (gallery > 0) {
+    ro.width = width > 0 ? width : 360, ro.height = height > 0 ? height : 720;
+    snprintf(path, sizeof path, "%s/faust_gallery.png", outdir);
+    int seg[100];
+    double c0 = cpu_now(), t0 = ss_time();
+    if (ss_eval_faust_gallery(data, gallery, &ro, path, seg, &e)) return cli_error("%s", e.msg);
+    printf("%s: Figure 3, segmentations of tr_reg_000..%03d, segments", path, gallery - 1);
+    for (int i = 0; i < gallery; i++) printf(" %d", seg[i]);
+    printf(" (%.1f s CPU, %.1f s)\n", cpu_now() - c0, ss_time() - t0);
+    fflush(stdout);
+  }
+  if (!maps) return SS_EXIT_OK;
+  static const int figno[3] = {9, 10, 11};
+  static const ss_pair_policy policy[3] = {SS_POLICY_RANDOM, SS_POLICY_SUBJ, SS_POLICY_POSE};
+  ro.width = width > 0 ? width : 300, ro.height = height > 0 ? height : 600;
+  for (int l = 0; l < 3; l++) {
+    if (!(lm_mask >> l & 1)) continue;
+    int x = px, y = py;
+    if (x < 0 && ss_eval_pairs(policy[l], 10, 10, 1, seed, &x, &y, &e)) return cli_error("%s", e.msg);
+    snprintf(path, sizeof path, "%s/figure%d_%03d_%03d.png", outdir, figno[l], x, y);
+    ss_map_figure f;
+    double c0 = cpu_now(), t0 = ss_time();
+    if (ss_eval_map_figure(data, cache, seed, k, l, x, y, &ro, path, &f, &e)) return cli_error("%s", e.msg);
+    printf("%s: Figure %d, FAUST %s landmarks, %s pair tr_reg_%03d -> tr_reg_%03d: mean error STD %.4f ASA %.4f "
+           "DIFF %.4f; %d of %d/%d segments paired (%d right); heat scale 0..%g (%.1f s CPU, %.1f s)\n",
+           path, figno[l], ss_lm_set_name((ss_lm_set)l), px < 0 ? ss_pair_policy_name(policy[l]) : "given", x, y,
+           f.mean_error[0], f.mean_error[1], f.mean_error[2], f.paired, f.segments_x, f.segments_y, f.paired_right, f.error_scale,
+           cpu_now() - c0, ss_time() - t0);
+    fflush(stdout);
+  }
+  return SS_EXIT_OK;
+}
+
 int cmd_eval(int argc, char **argv) {
   if (argc >= 2 && !strcmp(argv[1], "merge")) return cmd_merge(argc - 1, argv + 1);
   ss_table1_options o;
   ss_table1_default_options(&o);
   o.out_csv = "specseg_table1.csv";
   int table1 = 0, coherency = 0, timings = 0, quiet = 0, nshapes = 100;
+  const char *figures = NULL;
+  int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -293,6 +346,24 @@ int cmd_eval(int argc, char **argv) {
     else if (!strcmp(a, "--coherency")) coherency = 1;
     else if (!strcmp(a, "--timings")) timings = 1;
     else if (!strcmp(a, "--quiet")) quiet = 1;
+    else if (!strcmp(a, "--figures")) { NEEDV(); figures = v; }
+    else if (!strcmp(a, "--gallery-only")) gallery_only = 1;
+    else if (!strcmp(a, "--gallery-count")) { NEEDV(); if (cli_parse_int(v, 0, 100, &gallery)) return cli_usage("--gallery-count: integer in [0,100]"); }
+    else if (!strcmp(a, "--pair")) {
+      NEEDV();
+      char buf[64], *c;
+      snprintf(buf, sizeof buf, "%s", v);
+      if (!(c = strchr(buf, ','))) return cli_usage("--pair: X,Y (FAUST shape numbers 0..99)");
+      *c = 0;
+      if (cli_parse_int(buf, 0, 99, &pair_x) || cli_parse_int(c + 1, 0, 99, &pair_y) || pair_x == pair_y)
+        return cli_usage("--pair: X,Y (two different FAUST shape numbers 0..99)");
+    } else if (!strcmp(a, "--size")) {
+      NEEDV();
+      char buf[64], *c;
+      snprintf(buf, sizeof buf, "%s", v);
+      if (!(c = strchr(buf, 'x')) || (*c = 0, cli_parse_int(buf, 16, 4096, &fig_w)) || cli_parse_int(c + 1, 16, 4096, &fig_h))
+        return cli_usage("--size: WxH per panel, each between 16 and 4096");
+    }
     else if (!strcmp(a, "--data")) { NEEDV(); o.data_dir = v; }
     else if (!strcmp(a, "--out") || !strcmp(a, "-o")) { NEEDV(); o.out_csv = v; }
     else if (!strcmp(a, "--cache")) { NEEDV(); o.cache_dir = v; }
@@ -316,13 +387,17 @@ int cmd_eval(int argc, char **argv) {
         return cli_usage("--shard: I/N with 1 <= I <= N (e.g. 3/8)");
       o.shard_i = si - 1, o.shard_n = sn;
     } else if (!strcmp(a, "--policies")) { NEEDV(); if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_usage("--policies: comma list of random,subj,pose"); }
-    else if (!strcmp(a, "--landmarks")) { NEEDV(); if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_usage("--landmarks: comma list of best,gt,fps"); }
+    else if (!strcmp(a, "--landmarks")) { NEEDV(); lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_usage("--landmarks: comma list of best,gt,fps"); }
     else if (!strcmp(a, "--methods")) { NEEDV(); if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_usage("--methods: comma list of std,asa,diff"); }
     else return cli_usage("unknown option '%s'\n       specseg %s", a, USAGE);
 #undef NEEDV
   }
-  if (table1 + coherency + timings != 1) return cli_usage("choose one of --table1, --coherency, --timings\n       specseg %s", USAGE);
+  if (table1 + coherency + timings + !!figures != 1)
+    return cli_usage("choose one of --table1, --coherency, --timings, --figures\n       specseg %s", USAGE);
   if (!o.data_dir) return cli_usage("--data DIR is required\n       specseg %s", USAGE);
+  if (figures) /* map figures: BEST (Figure 9) unless --landmarks says otherwise */
+    return run_figures(o.data_dir, figures, o.cache_dir, lm_given ? o.lm_mask : 1 << SS_LM_BEST, pair_x, pair_y, fig_w,
+                       fig_h, gallery_only && gallery == 0 ? 10 : gallery, !gallery_only, o.seed, o.k);
   if (coherency) return run_coherency(o.data_dir, o.jobs);
   if (timings) return run_timings(o.data_dir, nshapes);
 #ifdef __GLIBC__

@@ -3,7 +3,6 @@
 #include "cli.h"
 #include "specseg/match.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,82 +10,6 @@
 
 static const char *USAGE = "specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] "
                            "-o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings]";
-
-/* LM.txt: one landmark a line, "i" (same vertex on both shapes) or "i j"; '#' starts a comment.
- * Returns 0 and malloc'd arrays, or 1 with a message in msg. */
-static int read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, char *msg, size_t msz) {
-  FILE *f = fopen(path, "r");
-  if (!f) {
-    snprintf(msg, msz, "%s: %s", path, strerror(errno));
-    return 1;
-  }
-  int cap = 0, cnt = 0, line = 0, rc = 0;
-  int *a = NULL, *b = NULL, *ln = NULL;
-  char buf[4096];
-  while (fgets(buf, sizeof buf, f)) {
-    line++;
-    if (!strchr(buf, '\n') && !feof(f)) {
-      snprintf(msg, msz, "%s:%d: line too long", path, line);
-      rc = 1;
-      break;
-    }
-    char *h = strchr(buf, '#');
-    if (h) *h = '\0';
-    long v[3];
-    int nv = 0;
-    char *p = buf;
-    for (;;) {
-      while (isspace((unsigned char)*p)) p++;
-      if (!*p) break;
-      char *end;
-      errno = 0;
-      long x = strtol(p, &end, 10);
-      if (end == p || errno || (*end && !isspace((unsigned char)*end)) || nv == 3) {
-        nv = -1;
-        break;
-      }
-      v[nv++] = x;
-      p = end;
-    }
-    if (nv == 0) continue;
-    if (nv < 0 || nv > 2 || v[0] < 0 || v[0] > 2000000000L || (nv == 2 && (v[1] < 0 || v[1] > 2000000000L))) {
-      snprintf(msg, msz, "%s:%d: expected one or two non-negative vertex indices", path, line);
-      rc = 1;
-      break;
-    }
-    if (cnt == cap) {
-      cap = cap ? 2 * cap : 16;
-      int *na = realloc(a, sizeof(int) * (size_t)cap), *nb = na ? realloc(b, sizeof(int) * (size_t)cap) : NULL;
-      int *nn = nb ? realloc(ln, sizeof(int) * (size_t)cap) : NULL;
-      if (na) a = na;
-      if (nb) b = nb;
-      if (nn) ln = nn;
-      if (!na || !nb || !nn) {
-        snprintf(msg, msz, "%s: out of memory", path);
-        rc = 1;
-        break;
-      }
-    }
-    a[cnt] = (int)v[0];
-    b[cnt] = (int)(nv == 2 ? v[1] : v[0]);
-    ln[cnt] = line;
-    cnt++;
-  }
-  if (!rc && ferror(f)) snprintf(msg, msz, "%s: read error", path), rc = 1;
-  fclose(f);
-  if (!rc && cnt == 0) snprintf(msg, msz, "%s: no landmark", path), rc = 1;
-  if (rc) {
-    free(a);
-    free(b);
-    free(ln);
-    return 1;
-  }
-  *lx = a;
-  *ly = b;
-  *lines = ln;
-  *n = cnt;
-  return 0;
-}
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
@@ -152,9 +75,9 @@ int cmd_match(int argc, char **argv) {
   ss_mesh X = {0}, Y = {0};
   ss_match_result res = {0};
   int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
-  char msg[1024];
   double t0 = ss_time();
-  if (read_landmarks(lmp, &lx, &ly, &lline, &nl, msg, sizeof msg)) return cli_error("%s", msg);
+  /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
+  if (ss_read_landmarks_lines(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
   if (ss_read_mesh(xp, &X, &err) || ss_read_mesh(yp, &Y, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;

@@ -3,7 +3,9 @@
  *                [--isolines N] ...
  * Pictures of segmentations, scalar fields, maps and map errors; several meshes become side-by-side
  * panels drawn at one common scale. Per-mesh files (--labels, --scalar, --map, --error, --centers,
- * --landmarks) are given either once (used for every mesh) or once per mesh, in mesh order. */
+ * --landmarks) are given either once (used for every mesh) or once per mesh, in mesh order. A
+ * two-column landmark file ("i j", as `specseg match` takes) gives column 1 to the first mesh and
+ * column 2 to the second (or to the --target of --map). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,7 +52,6 @@ static const unsigned char NEUTRAL[3] = {225, 225, 220};   /* boundary triangles
 static const unsigned char CENTRE_RGB[3] = {20, 20, 20};
 /* landmarks: white on segment colours, blue on colormaps (whose low end is white) */
 static const unsigned char LANDMARK_RGB[3] = {250, 250, 250}, LANDMARK_RGB_CMAP[3] = {40, 90, 230};
-static const unsigned char TEXT_RGB[3] = {30, 30, 30};
 
 static void stem(const char *path, char *out, size_t n) {
   const char *b = strrchr(path, '/');
@@ -100,58 +101,54 @@ static int read_ints_n(const char *path, int want, int **out, int *n) {
   return 0;
 }
 
-static int add_markers(panel *p, const char *path, const unsigned char rgb[3]) {
-  int *idx = NULL, n = 0;
-  if (read_ints_n(path, -1, &idx, &n)) return -1;
+/* Spheres at the n vertices idx of the panel's mesh. */
+static int add_marker_list(panel *p, const char *path, const int *idx, int n, const unsigned char rgb[3]) {
   for (int k = 0; k < n; k++)
-    if (idx[k] < 0 || idx[k] >= p->mesh.nv) {
-      int bad = idx[k];
-      free(idx);
-      return cli_error("%s: vertex %d out of range (the mesh has %d vertices)", path, bad, p->mesh.nv);
-    }
+    if (idx[k] < 0 || idx[k] >= p->mesh.nv)
+      return cli_error("%s: vertex %d out of range (%s has %d vertices)", path, idx[k], p->path, p->mesh.nv);
   double *M = realloc(p->markers, sizeof(double) * 3 * (size_t)(p->nmarkers + n + 1));
   unsigned char *C = M ? realloc(p->mrgb, 3 * (size_t)(p->nmarkers + n + 1)) : NULL;
   if (M) p->markers = M;
   if (C) p->mrgb = C;
-  if (!M || !C) {
-    free(idx);
-    return cli_error("out of memory");
-  }
+  if (!M || !C) return cli_error("out of memory");
   for (int k = 0; k < n; k++) {
     memcpy(p->markers + 3 * (size_t)(p->nmarkers + k), p->mesh.V + 3 * (size_t)idx[k], 3 * sizeof(double));
     memcpy(p->mrgb + 3 * (size_t)(p->nmarkers + k), rgb, 3);
   }
   p->nmarkers += n;
+  return 0;
+}
+
+static int add_markers(panel *p, const char *path, const unsigned char rgb[3]) {
+  int *idx = NULL, n = 0;
+  if (read_ints_n(path, -1, &idx, &n)) return -1;
+  int rc = add_marker_list(p, path, idx, n, rgb);
   free(idx);
-  return 0;
+  return rc;
 }
 
-/* Per-vertex colours from the normalised coordinates (the "texture" transferred by a map). */
-static void coordinate_colors(const ss_mesh *m, unsigned char *rgb) {
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (int i = 0; i < m->nv; i++)
-    for (int d = 0; d < 3; d++) {
-      double v = m->V[3 * (size_t)i + d];
-      if (v < lo[d]) lo[d] = v;
-      if (v > hi[d]) hi[d] = v;
-    }
-  for (int i = 0; i < m->nv; i++)
-    for (int d = 0; d < 3; d++) {
-      double t = hi[d] > lo[d] ? (m->V[3 * (size_t)i + d] - lo[d]) / (hi[d] - lo[d]) : 0.5;
-      rgb[3 * (size_t)i + d] = (unsigned char)lround(255 * (0.12 + 0.85 * t));
-    }
+/* Landmarks from a one- or two-column file: column (1 or 2) of it. */
+static int add_landmarks(panel *p, const char *path, int column, const unsigned char rgb[3]) {
+  int *lx = NULL, *ly = NULL, n = 0;
+  ss_error err = {{0}};
+  if (ss_read_landmarks(path, &lx, &ly, &n, NULL, &err)) return cli_error("%s", err.msg);
+  int rc = add_marker_list(p, path, column == 2 ? ly : lx, n, rgb);
+  free(lx);
+  free(ly);
+  return rc;
 }
 
-static int scalar_colors(panel *p, ss_colormap_kind kind, double lo, double hi) {
-  p->vrgb = malloc(3 * (size_t)p->mesh.nv + 1);
-  if (!p->vrgb) return cli_error("out of memory");
-  for (int i = 0; i < p->mesh.nv; i++) {
-    double v = p->scalar[i];
-    unsigned char *c = p->vrgb + 3 * (size_t)i;
-    if (!isfinite(v)) c[0] = c[1] = c[2] = 150; /* unreached / undefined */
-    else ss_colormap_kind_rgb(kind, hi > lo ? (v - lo) / (hi - lo) : 0, c);
+/* Columns of a landmark file (1 or 2); 0 after an error message. */
+static int landmark_columns(const char *path) {
+  int *lx = NULL, *ly = NULL, n = 0, cols = 0;
+  ss_error err = {{0}};
+  if (ss_read_landmarks(path, &lx, &ly, &n, &cols, &err)) {
+    cli_error("%s", err.msg);
+    return 0;
   }
-  return 0;
+  free(lx);
+  free(ly);
+  return cols;
 }
 
 int cmd_render(int argc, char **argv) {
@@ -175,7 +172,8 @@ int cmd_render(int argc, char **argv) {
              "Several meshes become panels (--cols N per row, default all in one row) at a common scale;\n"
              "per-mesh files are given once for all meshes or once per mesh. --size is per panel\n"
              "(default 800x800). --centers / --landmarks: vertex indices drawn as black / white (blue on\n"
-             "colormaps) spheres.\n"
+             "colormaps) spheres; a landmark file with 'i j' lines (as specseg match takes) puts column 1 on\n"
+             "the first mesh and column 2 on the second (or on the --map target).\n"
              "--match-colors REF: permute segment ids to agree with REF labels (same vertex order).\n"
              "--range LO,HI fixes the colour scale of --scalar / --error.\n",
              usage);
@@ -261,20 +259,34 @@ int cmd_render(int argc, char **argv) {
       return cli_usage("%s\n%s given %d times for %d meshes (give it once or once per mesh)", usage, names[k],
                        all[k]->n, nm);
 
+  /* a two-column landmark file: column 1 on the first mesh, column 2 on the second (or the target) */
+  int lm_two = 0;
+  if (landmarks.n == 1) {
+    int c = landmark_columns(landmarks.v[0]);
+    if (c == 0) return SS_EXIT_FAIL;
+    lm_two = c == 2;
+    if (lm_two && mode != MODE_MAP && mode != MODE_ERROR && nm > 2)
+      return cli_usage("%s\n%s has two columns (first and second shape) but %d meshes are given", usage,
+                       landmarks.v[0], nm);
+  }
+  const unsigned char *lm_rgb = mode == MODE_LABELS || mode == MODE_PLAIN ? LANDMARK_RGB : LANDMARK_RGB_CMAP;
+
   ss_error err = {{0}};
   int rc = SS_EXIT_OK, np = 0, nref = 0, *ints = NULL, *refl = NULL, *gt = NULL, *sym = NULL;
   panel *P = calloc((size_t)nm + 1, sizeof(panel));
+  ss_panel *SP = calloc((size_t)nm + 1, sizeof(ss_panel));
   ss_mesh Y = {0};
-  unsigned char *img = NULL, *canvas = NULL;
-  double t0 = ss_time(), t_render = 0;
-  if (!P) return cli_error("out of memory");
+  unsigned char *canvas = NULL;
+  double t0 = ss_time();
+  if (!P || !SP) { free(P); free(SP); return cli_error("out of memory"); }
   if (target && ss_read_mesh(target, &Y, &err)) { rc = cli_error("%s", err.msg); goto done; }
   if (mode == MODE_MAP) { /* the target, coloured by its coordinates, is the first panel */
     P[0].path = target;
     if (ss_mesh_copy(&Y, &P[0].mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
     if (!(P[0].vrgb = malloc(3 * (size_t)Y.nv + 1))) { rc = cli_error("out of memory"); goto done; }
-    coordinate_colors(&Y, P[0].vrgb);
+    ss_coordinate_colors(&Y, P[0].vrgb);
     stem(target, P[0].title, sizeof P[0].title);
+    if (lm_two && add_landmarks(&P[0], landmarks.v[0], 2, LANDMARK_RGB_CMAP)) { rc = SS_EXIT_FAIL; goto done; }
     np = 1;
   }
   if (mode == MODE_ERROR) {
@@ -330,7 +342,7 @@ int cmd_render(int argc, char **argv) {
         }
       if (mode == MODE_MAP) {
         if (!(p->vrgb = malloc(3 * (size_t)nv + 1))) { rc = cli_error("out of memory"); goto done; }
-        for (int v = 0; v < nv; v++) memcpy(p->vrgb + 3 * (size_t)v, P[0].vrgb + 3 * (size_t)ints[v], 3);
+        if (ss_map_transfer_colors(nv, ints, Y.nv, P[0].vrgb, p->vrgb, &err)) { rc = cli_error("%s: %s", mp, err.msg); goto done; }
       } else {
         if (!(p->scalar = malloc(sizeof(double) * (size_t)nv + 1))) { rc = cli_error("out of memory"); goto done; }
         double mean = 0;
@@ -355,7 +367,9 @@ int cmd_render(int argc, char **argv) {
           if (p->scalar[v] > hi) hi = p->scalar[v];
         }
     if (pick(&centers, i) && add_markers(p, pick(&centers, i), CENTRE_RGB)) { rc = SS_EXIT_FAIL; goto done; }
-    if (pick(&landmarks, i) && add_markers(p, pick(&landmarks, i), mode == MODE_LABELS || mode == MODE_PLAIN ? LANDMARK_RGB : LANDMARK_RGB_CMAP)) { rc = SS_EXIT_FAIL; goto done; }
+    /* sources of --map / --error are all "the first shape"; otherwise mesh 2 takes column 2 */
+    int lm_col = lm_two && mode != MODE_MAP && mode != MODE_ERROR && i == 1 ? 2 : 1;
+    if (pick(&landmarks, i) && add_landmarks(p, pick(&landmarks, i), lm_col, lm_rgb)) { rc = SS_EXIT_FAIL; goto done; }
   }
   int bar = mode == MODE_SCALAR || mode == MODE_ERROR;
   if (bar) {
@@ -363,61 +377,44 @@ int cmd_render(int argc, char **argv) {
     if (mode == MODE_ERROR && !have_range) lo = 0; /* errors: the scale starts at a perfect map */
     if (!(lo <= hi)) lo = 0, hi = 1;
     if (!(hi > lo)) hi = lo + 1;
-    for (int k = 0; k < np; k++)
-      if (scalar_colors(&P[k], mode == MODE_ERROR ? SS_CMAP_HEAT : SS_CMAP_VIRIDIS, lo, hi)) { rc = SS_EXIT_FAIL; goto done; }
+    for (int k = 0; k < np; k++) {
+      if (!(P[k].vrgb = malloc(3 * (size_t)P[k].mesh.nv + 1))) { rc = cli_error("out of memory"); goto done; }
+      ss_scalar_colors(P[k].scalar, P[k].mesh.nv, mode == MODE_ERROR ? SS_CMAP_HEAT : SS_CMAP_VIRIDIS, lo, hi, P[k].vrgb);
+    }
   }
 
   ss_render_options o;
   ss_render_default_options(&o);
   o.width = width, o.height = height, o.azimuth = az, o.elevation = el, o.supersample = ss;
-  /* one scale for all panels so sizes compare */
-  double scale = INFINITY;
   for (int k = 0; k < np; k++) {
-    double s = ss_render_fit_scale(&P[k].mesh, &o);
-    if (s > 0 && s < scale) scale = s;
-  }
-  o.scale = isfinite(scale) ? scale : 0;
-  if (cols <= 0 || cols > np) cols = np;
-  int rows = (np + cols - 1) / cols;
-  int ts = height >= 600 ? 2 + (height - 600) / 400 : 1; /* text scale */
-  int title_h = titles ? 7 * ts + 6 * ts : 0;
-  int bar_w = bar ? (width / 4 > 40 * ts ? width / 4 : 40 * ts) : 0;
-  long cw = (long)cols * width + bar_w, ch = (long)rows * (height + title_h);
-  if (cw > 32768 || ch > 32768) { rc = cli_error("image would be %ldx%ld pixels; use a smaller --size", cw, ch); goto done; }
-  img = malloc(3 * (size_t)width * height);
-  canvas = malloc(3 * (size_t)cw * ch);
-  if (!img || !canvas) { rc = cli_error("out of memory for a %ldx%ld image", cw, ch); goto done; }
-  ss_image_fill(canvas, (int)cw, (int)ch, o.background);
-  for (int k = 0; k < np; k++) {
-    ss_render_scene sc;
-    ss_render_scene_init(&sc, &P[k].mesh);
-    sc.vertex_rgb = P[k].vrgb;
-    sc.face_rgb = P[k].frgb;
+    ss_render_scene *sc = &SP[k].scene;
+    ss_render_scene_init(sc, &P[k].mesh);
+    sc->vertex_rgb = P[k].vrgb;
+    sc->face_rgb = P[k].frgb;
     if (mode == MODE_SCALAR && isolines > 0) {
-      sc.scalar = P[k].scalar;
-      sc.isolines = isolines;
-      sc.scalar_min = lo, sc.scalar_max = hi;
+      sc->scalar = P[k].scalar;
+      sc->isolines = isolines;
+      sc->scalar_min = lo, sc->scalar_max = hi;
     }
-    sc.nmarkers = P[k].nmarkers;
-    sc.markers = P[k].markers;
-    sc.marker_rgb = P[k].mrgb;
-    double t = ss_time();
-    if (ss_render(&sc, &o, img, &err)) { rc = cli_error("%s: %s", P[k].path, err.msg); goto done; }
-    t_render += ss_time() - t;
-    int px = (k % cols) * width, py = (k / cols) * (height + title_h);
-    ss_image_blit(canvas, (int)cw, (int)ch, img, width, height, px, py);
-    if (titles) {
-      int tw = ss_text_width(P[k].title, ts);
-      ss_draw_text(canvas, (int)cw, (int)ch, px + (width - tw) / 2, py + height + 2 * ts, ts, TEXT_RGB, P[k].title);
-    }
+    sc->nmarkers = P[k].nmarkers;
+    sc->markers = P[k].markers;
+    sc->marker_rgb = P[k].mrgb;
+    SP[k].title = P[k].title;
   }
-  if (bar) {
-    int bh = (int)(0.6 * rows * height), bx = cols * width + 4 * ts, by = (int)(ch - bh) / 2;
-    ss_draw_colorbar(canvas, (int)cw, (int)ch, bx, by, 6 * ts + 8, bh, mode == MODE_ERROR ? SS_CMAP_HEAT : SS_CMAP_VIRIDIS,
-                     lo, hi, mode == MODE_ERROR ? "error" : "", ts, TEXT_RGB);
-  }
+  ss_panel_layout L; /* one scale for all panels so sizes compare */
+  ss_panel_layout_init(&L);
+  L.cols = cols;
+  L.titles = titles;
+  L.colorbar = bar;
+  L.bar_kind = mode == MODE_ERROR ? SS_CMAP_HEAT : SS_CMAP_VIRIDIS;
+  L.bar_lo = lo, L.bar_hi = hi;
+  L.bar_title = mode == MODE_ERROR ? "error" : "";
+  int cw, ch;
+  double t_render = ss_time();
+  if (ss_render_panels(SP, np, &o, &L, &canvas, &cw, &ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  t_render = ss_time() - t_render;
   if (ss_write_png(out, canvas, (int)cw, (int)ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
-  printf("%d panel%s %dx%d rendered in %.3f s (total %.3f s) -> %s (%ldx%ld)\n", np, np == 1 ? "" : "s", width,
+  printf("%d panel%s %dx%d rendered in %.3f s (total %.3f s) -> %s (%dx%d)\n", np, np == 1 ? "" : "s", width,
          height, t_render, ss_time() - t0, out, cw, ch);
   if (fflush(stdout) != 0) rc = cli_error("cannot write to standard output");
 done:
@@ -425,7 +422,7 @@ done:
     ss_mesh_free(&P[k].mesh);
     free(P[k].vrgb); free(P[k].frgb); free(P[k].scalar); free(P[k].markers); free(P[k].mrgb);
   }
-  free(P); free(ints); free(refl); free(gt); free(sym); free(img); free(canvas);
+  free(P); free(SP); free(ints); free(refl); free(gt); free(sym); free(canvas);
   ss_mesh_free(&Y);
   return rc;
 }

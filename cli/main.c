@@ -72,7 +72,7 @@ static const command commands[] = {
     {"segment", cmd_segment, "MESH -o LABELS [--centers F] [--ply F] [--faces N] [--no-streamline] [--timings]"},
     {"match", cmd_match, "X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] -o MAP.txt [--fmap C.npy] [--pairs P.txt] [--timings]"},
     {"error", cmd_error, "MAP.txt Y [--gt GT.txt] [--sym SYM.txt] [-o E.txt]  geodesic error of a map"},
-    {"eval", cmd_eval, "--data DIR --table1|--coherency|--timings [...] | merge CSV...  the paper's evaluation"},
+    {"eval", cmd_eval, "--data DIR --table1|--coherency|--timings|--figures OUTDIR [...] | merge CSV...  the paper's evaluation"},
     {"render", cmd_render, "MESH [MESH2 ...] -o OUT.png [--labels L | --scalar F | --map M --target Y | --error M --target Y]  pictures"},
 };
 

@@ -87,6 +87,39 @@ awk '{ print (NR % 3 == 0) ? 0 : $1 }' "$TMP/id.txt" > "$TMP/bad.txt"
 "$BIN" render "$M" --error "$TMP/bad.txt" --target "$M" --size 200x300 -o "$TMP/err2.png" > /dev/null 2>&1 && ok || bad "error 2"
 [ -z "$PY" ] || { [ "$(png "$TMP/err2.png" red 200)" -gt 50 ] && ok || bad "bad map shows no red"; }
 
+# ---- two-column landmark files ("i j", as `specseg match` takes): column 1 on the first mesh, column 2
+# on the second (or on the --target of --map); the same pictures as one-column files per mesh ----
+NV2=$(sed -n 2p "$M2" | awk '{print $1}')
+printf '# i j\n0 %d\n%d 7\n' $((NV2 - 1)) $((NV / 2)) > "$TMP/lm2.txt"
+printf '0\n%d\n' $((NV / 2)) > "$TMP/lma.txt"
+printf '%d\n7\n' $((NV2 - 1)) > "$TMP/lmb.txt"
+R=(--size 120x160 --no-titles)
+"$BIN" render "$M" "$M2" --labels "$TMP/l.txt" --labels "$TMP/l2.txt" --landmarks "$TMP/lm2.txt" "${R[@]}" -o "$TMP/lm2.png" > /dev/null 2>&1 &&
+  ok || bad "render with a two-column landmark file"
+"$BIN" render "$M" "$M2" --labels "$TMP/l.txt" --labels "$TMP/l2.txt" --landmarks "$TMP/lma.txt" --landmarks "$TMP/lmb.txt" "${R[@]}" -o "$TMP/lmab.png" > /dev/null 2>&1 &&
+  ok || bad "render with per-mesh landmark files"
+cmp -s "$TMP/lm2.png" "$TMP/lmab.png" && ok || bad "two-column file and per-mesh columns give different pictures"
+"$BIN" render "$M" "$M2" --labels "$TMP/l.txt" --labels "$TMP/l2.txt" "${R[@]}" -o "$TMP/nolm.png" > /dev/null 2>&1
+cmp -s "$TMP/lm2.png" "$TMP/nolm.png" && bad "landmarks drew nothing" || ok
+# one mesh: column 1 only
+"$BIN" render "$M" --labels "$TMP/l.txt" --landmarks "$TMP/lm2.txt" "${R[@]}" -o "$TMP/lm1.png" > /dev/null 2>&1 && ok || bad "one mesh, two columns"
+"$BIN" render "$M" --labels "$TMP/l.txt" --landmarks "$TMP/lma.txt" "${R[@]}" -o "$TMP/lm1a.png" > /dev/null 2>&1
+cmp -s "$TMP/lm1.png" "$TMP/lm1a.png" && ok || bad "one mesh: two-column file is not its first column"
+# column 2 out of range: fine for one mesh (unused), an error for two meshes and for a --map target
+printf '0 %d\n' "$NV2" > "$TMP/lmbad.txt"
+"$BIN" render "$M" --landmarks "$TMP/lmbad.txt" "${R[@]}" -o "$TMP/x.png" > /dev/null 2>&1 && ok || bad "one mesh used column 2"
+"$BIN" render "$M" "$M2" --landmarks "$TMP/lmbad.txt" "${R[@]}" -o "$TMP/x.png" > /dev/null 2> "$TMP/e"
+[ $? = 1 ] && grep -q "vertex $NV2 out of range" "$TMP/e" && ok || bad "two meshes: column 2 not checked on mesh 2: $(cat "$TMP/e")"
+"$BIN" render "$M" --map "$TMP/id.txt" --target "$M2" --landmarks "$TMP/lmbad.txt" "${R[@]}" -o "$TMP/x.png" > /dev/null 2>&1
+[ $? = 1 ] && ok || bad "--map: column 2 not used on the target"
+"$BIN" render "$M" --map "$TMP/id.txt" --target "$M2" --landmarks "$TMP/lm2.txt" "${R[@]}" -o "$TMP/x.png" > /dev/null 2>&1 &&
+  ok || bad "--map with a two-column landmark file"
+"$BIN" render "$M" "$M2" "$M" --landmarks "$TMP/lm2.txt" "${R[@]}" -o "$TMP/x.png" > /dev/null 2>&1
+[ $? = 2 ] && ok || bad "three meshes with a two-column file: exit != 2"
+printf '0 1 2\n' > "$TMP/lm3.txt"
+"$BIN" render "$M" --landmarks "$TMP/lm3.txt" "${R[@]}" -o "$TMP/x.png" > /dev/null 2> "$TMP/e"
+[ $? = 1 ] && grep -q "lm3.txt:1:" "$TMP/e" && ok || bad "three columns: $(cat "$TMP/e")"
+
 # ---- errors ----
 expect() { # expect CODE ARGS...
   local want=$1; shift

@@ -298,6 +298,39 @@ static void test_adapter(void) {
         CHECK(paired == res.pairs.n);
         ss_match_result_free(&res);
       }
+    /* all three methods at once (shared pairing and normal equations), with the shapes' cached base
+     * probes: the same maps as one method at a time */
+    int *mm = malloc(sizeof(int) * 3 * (size_t)n), *maps[3] = {mm, mm + n, mm + 2 * (size_t)n};
+    CHECK(ev_shape_probes(&X, &ctx, 7, &e) == SS_OK && ev_shape_probes(&Y, &ctx, 7, &e) == SS_OK);
+    CHECK(X.base[SS_LM_FPS].p > 0 && Y.base[SS_LM_BEST].nd == Y.base[SS_LM_BEST].p);
+    double cpu[3];
+    int paired = -1;
+    CHECK(ev_match_methods(&ctx, &X, &Y, SS_LM_FPS, 7, maps, cpu, &paired, &e) == SS_OK);
+    for (int mth = 0; mth < 3; mth++) {
+      int p2 = -1, diff = 0;
+      CHECK(ev_match(&ctx, &X, &Y, SS_LM_FPS, mth, m1, &p2, &e) == SS_OK);
+      for (int i = 0; i < n; i++) diff += m1[i] != maps[mth][i];
+      CHECK_MSG(diff == 0 && p2 == paired, "method %d: %d vertices differ between joint and single runs", mth, diff);
+      CHECK(cpu[mth] > 0);
+    }
+    /* batched exact errors == the library's per-map error (sym: an arbitrary vertex map) */
+    int *sym = malloc(sizeof(int) * (size_t)n);
+    for (int i = 0; i < n; i++) sym[i] = n - 1 - i;
+    ss_geodesic_mesh *gm = NULL;
+    double sum[3], sum_sym[3];
+    CHECK(ss_geodesic_mesh_build(&Y.mesh, &gm, &e) == SS_OK);
+    CHECK(ev_batch_errors(gm, Y.mesh.V, n, sym, 3, (const int *const *)maps, sum, sum_sym, &e) == SS_OK);
+    for (int mth = 0; mth < 3; mth++) {
+      double mean, mean_sym, scale = sqrt(ss_mesh_area(&Y.mesh));
+      CHECK(ss_map_geodesic_error(&Y.mesh, n, maps[mth], NULL, NULL, NULL, &mean, &e) == SS_OK);
+      CHECK(ss_map_geodesic_error(&Y.mesh, n, maps[mth], NULL, sym, NULL, &mean_sym, &e) == SS_OK);
+      CHECK_NEAR(sum[mth] / n / scale, mean, 1e-12 * mean);
+      CHECK_NEAR(sum_sym[mth] / n / scale, mean_sym, 1e-12 * mean);
+      CHECK(sum_sym[mth] <= sum[mth] * (1 + 1e-12));
+    }
+    ss_geodesic_mesh_free(gm);
+    free(sym);
+    free(mm);
     free(m1);
   }
   ev_shape_free(&X);

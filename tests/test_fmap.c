@@ -222,6 +222,182 @@ static void test_nn(void) {
   free(db); free(q); free(d2); free(idx); free(idx2); free(d22);
 }
 
+/* Points on a torus embedded in 30 dimensions by harmonics of decreasing weight (like a spectral
+ * embedding: intrinsically 2-D), on a 2^-20 grid so that every squared distance is exact in double
+ * and all engines must agree bit for bit. */
+static void torus_points(int n, int d, double noise, double *X) {
+  for (int i = 0; i < n; i++) {
+    double u = 2 * M_PI * urand(), v = 2 * M_PI * urand();
+    for (int j = 0; j < d; j++) {
+      int a = 1 + j / 4, b = (j / 2) % 3;
+      double t = a * u + b * v, x = (j % 2 ? sin(t) : cos(t)) / (1 + 0.2 * j) + noise * (urand() - 0.5);
+      X[i + (size_t)n * j] = round(x * 1048576.0) / 1048576.0;
+    }
+  }
+}
+
+static int naive_nn(int ndb, int d, const double *db, const double *q, int nq, int i, double *d2) {
+  int bi = -1;
+  double bd = INFINITY;
+  for (int b = 0; b < ndb; b++) {
+    double s = 0;
+    for (int j = 0; j < d; j++) {
+      double t = q[i + (size_t)nq * j] - db[b + (size_t)ndb * j];
+      s += t * t;
+    }
+    if (s < bd) { bd = s; bi = b; }
+  }
+  *d2 = bd;
+  return bi;
+}
+
+/* ss_nn_exact_guided: any guess, any partition, the same answer as the naive search (ties to the
+ * lower index), also with the guess array reused as the output; and the same as ss_nn_exact on
+ * NaN input. */
+static void test_nn_guided(void) {
+  const int ndb = 3000, nq = 800, d = 30;
+  double *db = malloc(sizeof(double) * ndb * d), *q = malloc(sizeof(double) * nq * d);
+  double *d2 = malloc(sizeof(double) * nq), *ref2 = malloc(sizeof(double) * nq);
+  int *idx = malloc(sizeof(int) * nq), *ref = malloc(sizeof(int) * nq), *guess = malloc(sizeof(int) * nq);
+  int *part = malloc(sizeof(int) * ndb);
+  torus_points(ndb, d, 0.0, db);
+  torus_points(nq, d, 0.05, q);
+  for (int j = 0; j < d; j++) { /* duplicates 17 = 2500 = query 0; query 1 next to 40 */
+    db[17 + (size_t)ndb * j] = db[2500 + (size_t)ndb * j];
+    q[0 + (size_t)nq * j] = db[2500 + (size_t)ndb * j];
+    q[1 + (size_t)nq * j] = db[40 + (size_t)ndb * j] + (j == 3 ? 1.0 / 1048576.0 : 0.0);
+  }
+  for (int i = 0; i < nq; i++) ref[i] = naive_nn(ndb, d, db, q, nq, i, &ref2[i]);
+  CHECK(ref[0] == 17 && ref[1] == 40);
+  const char *what[] = {"FPS partition, no guess", "FPS partition, random guess", "own partition, exact guess",
+                        "partition of 2 coordinates, guess aliasing the output", "random labels, random guess",
+                        "one cluster, worst guess"};
+  for (int c = 0; c < 6; c++) {
+    const int *pp = NULL, *gg = NULL;
+    if (c >= 2) {
+      if (c == 2) CHECK(ss_nn_partition(ndb, d, db, ndb, 0, part, NULL) == SS_OK);
+      if (c == 3) CHECK(ss_nn_partition(ndb, 2, db, ndb, 40, part, NULL) == SS_OK);
+      for (int b = 0; b < ndb; b++) {
+        if (c == 4) part[b] = (int)(urand() * 50);
+        if (c == 5) part[b] = 0;
+      }
+      pp = part;
+    }
+    for (int i = 0; i < nq; i++) {
+      if (c == 1 || c == 4) guess[i] = (int)(urand() * ndb);
+      if (c == 2) guess[i] = ref[i];
+      if (c == 5) guess[i] = 2500; /* the higher-index duplicate for query 0 */
+    }
+    if (c == 1 || c == 2 || c == 4 || c == 5) gg = guess;
+    int *out = idx;
+    if (c == 3) { /* guess = previous answer, in place */
+      for (int i = 0; i < nq; i++) idx[i] = (i * 7919) % ndb;
+      gg = out = idx;
+    }
+    CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, q, nq, pp, gg, out, d2, NULL) == SS_OK);
+    int bad = 0;
+    for (int i = 0; i < nq; i++) bad += out[i] != ref[i] || d2[i] != ref2[i];
+    CHECK_MSG(bad == 0, "%s: %d of %d queries differ from the naive search", what[c], bad, nq);
+  }
+  CHECK(ss_nn_exact(ndb, nq, d, db, ndb, q, nq, idx, d2, NULL) == SS_OK);
+  int bad = 0;
+  for (int i = 0; i < nq; i++) bad += idx[i] != ref[i] || d2[i] != ref2[i];
+  CHECK_MSG(bad == 0, "ss_nn_exact on the torus: %d of %d queries differ", bad, nq);
+  /* a partition's labels are valid and cover the clusters asked for */
+  CHECK(ss_nn_partition(ndb, d, db, ndb, 37, part, NULL) == SS_OK);
+  int lo = ndb, hi = -1;
+  for (int b = 0; b < ndb; b++) { lo = part[b] < lo ? part[b] : lo; hi = part[b] > hi ? part[b] : hi; }
+  CHECK(lo == 0 && hi == 36);
+  /* bad guesses and labels are reported, not followed */
+  ss_error e;
+  guess[5] = ndb;
+  CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, q, nq, NULL, guess, idx, NULL, &e) == SS_ERR_INVALID);
+  guess[5] = 0;
+  part[7] = -1;
+  CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, q, nq, part, guess, idx, NULL, &e) == SS_ERR_INVALID);
+  /* NaN in a database point and a query: guided = unguided */
+  db[99 + (size_t)ndb * 4] = NAN;
+  q[7 + (size_t)nq * 2] = NAN;
+  CHECK(ss_nn_exact(ndb, nq, d, db, ndb, q, nq, ref, ref2, NULL) == SS_OK);
+  CHECK(ss_nn_partition(ndb, d, db, ndb, 0, part, NULL) == SS_OK);
+  for (int i = 0; i < nq; i++) guess[i] = i % 3 ? 99 : (int)(urand() * ndb);
+  CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, q, nq, part, guess, idx, d2, NULL) == SS_OK);
+  bad = 0;
+  for (int i = 0; i < nq; i++) bad += idx[i] != ref[i] || (d2[i] != ref2[i] && !(isnan(d2[i]) && isnan(ref2[i])));
+  CHECK_MSG(bad == 0, "NaN input: %d of %d queries differ", bad, nq);
+  CHECK(ref[7] == 0 && isnan(ref2[7]));
+  /* fewer dimensions than frame directions, or points in a 2-D coordinate plane of 8 dimensions, on
+   * a coarse grid (many exact ties) */
+  for (int dd = 1; dd <= 4; dd++) {
+    int flat = dd == 4;
+    if (flat) dd = 8;
+    for (int i = 0; i < ndb * dd; i++) db[i] = flat && (i / ndb) % 4 != 1 ? 0.0 : floor(urand() * 64) / 8;
+    for (int i = 0; i < nq * dd; i++) q[i] = flat && (i / nq) % 4 != 1 ? 0.0 : floor(urand() * 64) / 8;
+    for (int i = 0; i < nq; i++) guess[i] = (int)(urand() * ndb);
+    CHECK(ss_nn_exact_guided(ndb, nq, dd, db, ndb, q, nq, NULL, guess, idx, d2, NULL) == SS_OK);
+    bad = 0;
+    for (int i = 0; i < nq; i++) {
+      double r2;
+      bad += idx[i] != naive_nn(ndb, dd, db, q, nq, i, &r2) || d2[i] != r2;
+    }
+    CHECK_MSG(bad == 0, "d = %d: %d of %d queries differ from the naive search", dd, bad, nq);
+    if (flat) break;
+  }
+  free(db); free(q); free(d2); free(ref2); free(idx); free(ref); free(guess); free(part);
+}
+
+/* ss_zoomout (warm-started searches, one partition) against the plain loop of ss_fmap_p2p and
+ * ss_fmap_from_p2p: the same maps and bit-identical functional maps. */
+static void test_zoomout_exact(void) {
+  ss_mesh X, Y;
+  bumpy_sphere(4, 0.3, 1.0, &X);
+  bumpy_sphere(4, 0.4, STRETCH, &Y);
+  int n = X.nv, k0 = 15, kmax = 40;
+  double *evX = malloc(sizeof(double) * kmax), *phX = malloc(sizeof(double) * n * kmax);
+  double *evY = malloc(sizeof(double) * kmax), *phY = malloc(sizeof(double) * n * kmax), *MX = malloc(sizeof(double) * n);
+  ss_error e;
+  if (ss_mesh_eigs(&X, kmax, evX, phX, &e) || ss_mesh_eigs(&Y, kmax, evY, phY, &e) ||
+      ss_mass_lumped(&X, SS_MASS_BARYCENTRIC, MX, &e)) {
+    SKIP("eigenpairs: %s", e.msg);
+  } else {
+    /* C0 (functions on Y -> X): signs of the diagonal only, a rough start ZoomOut has to repair */
+    double *C0 = calloc((size_t)k0 * k0, sizeof(double)), *C1 = malloc(sizeof(double) * kmax * kmax);
+    double *C2 = malloc(sizeof(double) * kmax * kmax);
+    for (int i = 0; i < k0; i++) {
+      double s = 0;
+      for (int x = 0; x < n; x++) s += MX[x] * phX[x + (size_t)n * i] * phY[x + (size_t)n * i];
+      C0[i + k0 * i] = s < 0 ? -1 : 1;
+    }
+    int *m1 = malloc(sizeof(int) * n), *m2 = malloc(sizeof(int) * n), *m0 = malloc(sizeof(int) * n);
+    for (int step = 1; step <= 4; step += 3) {
+      CHECK(ss_zoomout(n, n, phY, phX, MX, k0, C0, kmax, step, m1, C1, NULL) == SS_OK);
+      memcpy(C2, C0, sizeof(double) * k0 * k0);
+      int k = k0, changed = 0;
+      while (k < kmax) {
+        CHECK(ss_fmap_p2p(n, n, k, k, phY, phX, C2, m2, NULL) == SS_OK);
+        if (k > k0)
+          for (int x = 0; x < n; x++) changed += m2[x] != m0[x];
+        memcpy(m0, m2, sizeof(int) * n);
+        k = k + step < kmax ? k + step : kmax;
+        CHECK(ss_fmap_from_p2p(n, n, k, k, phY, phX, MX, m2, C2, NULL) == SS_OK);
+      }
+      CHECK(ss_fmap_p2p(n, n, k, k, phY, phX, C2, m2, NULL) == SS_OK);
+      int same = 0, fixed = 0;
+      for (int x = 0; x < n; x++) { same += m1[x] == m2[x]; fixed += m2[x] == x; }
+      double dc = 0;
+      for (int i = 0; i < kmax * kmax; i++) dc = fmax(dc, fabs(C1[i] - C2[i]));
+      printf("zoomout %d -> %d step %d: %d of %d map entries as the plain loop (%d changed along the way, %d "
+             "fixed points), max |dC| %g\n", k0, kmax, step, same, n, changed, fixed, dc);
+      CHECK(same == n);
+      CHECK(dc == 0);
+    }
+    free(C0); free(C1); free(C2); free(m0); free(m1); free(m2);
+  }
+  free(evX); free(phX); free(evY); free(phY); free(MX);
+  ss_mesh_free(&X);
+  ss_mesh_free(&Y);
+}
+
 static double mean_error(const ss_mesh *Y, const int *map) {
   double s = 0;
   for (int i = 0; i < Y->nv; i++) {
@@ -370,7 +546,9 @@ int main(void) {
   test_solver(0);
   test_solver(1);
   test_nn();
+  test_nn_guided();
   test_match();
+  test_zoomout_exact();
   test_humanoid();
   test_faust_self();
   TEST_MAIN_END();

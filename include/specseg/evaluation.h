@@ -10,6 +10,7 @@
 
 #include "specseg/core.h"
 #include "specseg/geodesic.h"
+#include "specseg/render.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -155,6 +156,34 @@ typedef struct ss_coherency_result {
  * share connectivity). paths: n mesh files. jobs as above. */
 ss_status ss_eval_coherency_set(const char *name, int n, const char *const *paths, int jobs,
                                 ss_coherency_result *res, ss_error *err);
+
+/* ---- Pictures: the paper's Figures 3 and 9–11 ------------------------------------------------- */
+
+/* Figure 3: segmentations of FAUST tr_reg_000 .. tr_reg_<count-1> (ss_segment, default options),
+ * segment ids aligned to tr_reg_000's (ss_labels_align; FAUST shares vertex order, ground truth =
+ * identity), boundary triangles neutral, centres as black spheres, 5 panels a row at one common scale,
+ * written to `png`. o: one panel (size, view). segments (may be NULL): count segment counts. */
+ss_status ss_eval_faust_gallery(const char *data_dir, int count, const ss_render_options *o, const char *png,
+                                int *segments, ss_error *err);
+
+typedef struct ss_map_figure {
+  int x, y, lmset;         /* the pair tr_reg_x -> tr_reg_y and its ss_lm_set */
+  double mean_error[3];    /* STD, ASA, DIFF: mean exact geodesic error / sqrt(area(Y)) over all vertices */
+  double error_scale;      /* top of the shared heat scale (errors above it are saturated) */
+  int paired, segments_x, segments_y;
+  int paired_right;        /* pairs the ground truth confirms (most of X's segment maps into Y's) */
+  int width, height;       /* of the PNG */
+} ss_map_figure;
+
+/* Figures 9–11: the pair x -> y matched with STD, ASA and DIFF exactly as the Table 1 rows are
+ * (per-shape preparation through cache_dir when not NULL, landmark set lmset — GT from `seed` as the
+ * runner draws it —, basis size k), drawn in 5 x 2 panels: top, the target Y coloured by its
+ * coordinates (ss_coordinate_colors), X pulled back through each map, and X's segments; bottom, X
+ * pulled back through the ground truth, each map's per-vertex error heat map (one shared scale, drawn
+ * beside), and Y's segments (paired segments share a colour, unpaired ones grey); landmarks white,
+ * segment centres black. info may be NULL. */
+ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64_t seed, int k, int lmset, int x,
+                             int y, const ss_render_options *o, const char *png, ss_map_figure *info, ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -56,6 +56,11 @@ ss_status ss_fmap_project(int n, int k, const double *evecs, const double *M, in
 ss_status ss_fmap_mult_operators(int n, int k, const double *evecs, const double *M, int p,
                                  const double *F, double *D, ss_error *err);
 
+/* The same, packed: column i of P (k(k+1)/2 x p) holds the upper triangle of D_i, entry (a, b) with
+ * a <= b at index b(b+1)/2 + a. This is what the solver consumes. */
+ss_status ss_fmap_mult_operators_packed(int n, int k, const double *evecs, const double *M, int p, const double *F,
+                                        double *P, ss_error *err);
+
 /* Weights of Eq. (1):
  *   E(C) = w_descr ‖C A − B‖² + w_lap ‖Λ_T C − C Λ_S‖² + w_dcomm Σ_i ‖C D_i^S − D_i^T C‖².
  * fix_constant: keep the first column at C[:,0] = s·sqrt(area_T/area_S)·e_0 (the constant function
@@ -68,12 +73,42 @@ typedef struct ss_fmap_weights {
 } ss_fmap_weights;
 
 /* Global minimiser of E(C) (k_T x k_S, column-major). Solves the k_T·k_S normal equations, assembled
- * densely through their Kronecker structure, by Cholesky (LAPACK dpotrf). A: k_S x p, B: k_T x p
+ * densely through their Kronecker structure, by Cholesky (ss_fmap_system below). A: k_S x p, B: k_T x p
  * (p may be 0), evals_S/T: the eigenvalues, D_S: nd blocks k_S x k_S, D_T: nd blocks k_T x k_T (nd
  * may be 0). Fails with SS_ERR_NUMERIC when the system is singular (e.g. all weights zero). */
 ss_status ss_fmap_solve(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
                         const double *evals_T, int nd, const double *D_S, const double *D_T,
                         const ss_fmap_weights *w, double *C, ss_error *err);
+
+/* Probe functions of one shape in its reduced basis — all Eq. (1) needs from that side: the spectral
+ * coefficients A (k x p) and the packed multiplication operators (ss_fmap_mult_operators_packed) of
+ * the first nd probes, P (k(k+1)/2 x nd; NULL when nd = 0). Both sides of a pair must have the same
+ * p and nd, column i of one corresponding to column i of the other. */
+typedef struct ss_fmap_probes {
+  int k, p, nd;
+  double *A;
+  double *P;
+} ss_fmap_probes;
+
+void ss_fmap_probes_free(ss_fmap_probes *pr); /* frees A and P, zeroes the struct */
+
+/* The normal equations of Eq. (1) for a pair's base probes (source S, target T), assembled once so
+ * that several extra-probe blocks can be solved against them (STD / ASA / DIFF differ only in the
+ * segments). Opaque; read-only after ss_fmap_system_new, so solves may run concurrently. About
+ * 8·(k_S·k_T)² bytes (50 MB at k = 50); k_S·k_T is limited to 40,000 unknowns. */
+typedef struct ss_fmap_system ss_fmap_system;
+
+ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const double *evals_T, const ss_fmap_probes *S,
+                             const ss_fmap_probes *T, const ss_fmap_weights *w, ss_fmap_system **out, ss_error *err);
+
+/* Global minimiser C (k_T x k_S) of E(C) plus the extra block's terms: data term weighted by
+ * w_extra·w_descr and, when extra_dcomm, its operators in the commutativity term. S_extra and
+ * T_extra may both be NULL (the base problem alone). Cholesky in single precision with iterative
+ * refinement in double (LAPACK dsposv): double-accurate. */
+ss_status ss_fmap_system_solve(const ss_fmap_system *sys, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
+                               double w_extra, int extra_dcomm, double *C, ss_error *err);
+
+void ss_fmap_system_free(ss_fmap_system *sys);
 
 /* E(C) and its gradient dE/dC (k_T x k_S; may be NULL), e.g. to check optimality. */
 ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
@@ -85,14 +120,28 @@ ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const double 
 /* Exact nearest neighbours: for each query point q (nq x d, column-major, leading dimension ldq)
  * the index of the closest database point (ndb x d, leading dimension lddb) in Euclidean distance;
  * ties go to the lower index. dist2 (may be NULL) receives the squared distances (exact
- * Σ (q_j − b_j)² in double). ss_nn_exact clusters the database (farthest-point centres, radii) and
- * skips clusters by the triangle inequality — spectral embeddings of surfaces are intrinsically 2-D,
- * so few clusters survive; ss_nn_brute is the blocked-BLAS brute force (‖q‖² − 2 q·b + ‖b‖² with an
- * exact recheck of near-ties). Both return identical results; OpenMP over queries. */
+ * Σ (q_j − b_j)² in double). ss_nn_exact clusters the database (farthest-point centres, radii, a
+ * 3-D local frame per cluster) and skips clusters and points by the triangle inequality — spectral
+ * embeddings of surfaces are intrinsically 2-D, so few survive; ss_nn_brute is the blocked-BLAS
+ * brute force (‖q‖² − 2 q·b + ‖b‖² with an exact recheck of near-ties). Both return identical
+ * results; OpenMP over queries. */
 ss_status ss_nn_exact(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
                       double *dist2, ss_error *err);
 ss_status ss_nn_brute(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
                       double *dist2, ss_error *err);
+
+/* ss_nn_exact for repeated searches (ZoomOut), same results. part (ndb entries, may be NULL: then
+ * computed as ss_nn_exact does) is a partition of the database into clusters, labels in [0, ndb):
+ * any partition keeps the search exact, compact ones make it fast. guess (nq entries, may be NULL,
+ * may be the same array as idx) is a database index per query, e.g. the previous match: its
+ * distance bounds the search from the start. Small databases (< 256 points) are searched by brute
+ * force. */
+ss_status ss_nn_exact_guided(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq,
+                             const int *part, const int *guess, int *idx, double *dist2, ss_error *err);
+
+/* The partition ss_nn_exact uses: nc clusters (nc <= 0: ~1.5 √n) of the n points X (n x d, leading
+ * dimension ldx) around farthest-point seeds, each point labelled with its nearest seed (part[n]). */
+ss_status ss_nn_partition(int n, int d, const double *X, int ldx, int nc, int *part, ss_error *err);
 
 /* Point map of a functional map C (k_T x k_S, functions S -> T): for each target vertex y, the
  * source vertex x minimising ‖Φ_S(x) Cᵀ − Φ_T(y)‖ (rows of the first k_S / k_T eigenvectors).
@@ -161,6 +210,34 @@ typedef struct ss_fmap_match_options {
 } ss_fmap_match_options;
 
 void ss_fmap_match_default_options(ss_fmap_match_options *o);
+
+/* Base probes of one shape (WKS descriptors and the wave-kernel maps of its nl landmarks lm), as
+ * ss_fmap_match builds them: the virtual column list [WKS | landmark 1 | … | landmark nl]
+ * (n_energies columns per item) sub-sampled by descr_step, each column normalised in L²(M); their
+ * coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
+ * multiplication operators. They depend on the shape and its landmarks only, so an evaluation can
+ * build them once per shape and landmark set. opts NULL: defaults. */
+ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
+                              int with_operators, ss_fmap_probes *out, ss_error *err);
+
+/* Extra probes (nextra functions, extra n x nextra), as they follow the base probes of nl
+ * landmarks: SS_PROBE_WAVE continues the virtual column list (every function filtered by the WKS
+ * energies, the same sub-sampling), SS_PROBE_RAW keeps them as they are; normalised in L²(M). */
+ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const double *extra, ss_probe_filter filter,
+                               const ss_fmap_match_options *opts, int with_operators, ss_fmap_probes *out,
+                               ss_error *err);
+
+/* The weights of Eq. (1) for the pair (source Y, target X) as ss_fmap_match uses them: opts' weights,
+ * the Laplacian term made scale free (divided by Σ (λ_X,r − λ_Y,c)²), the constant column fixed to
+ * ±sqrt(area_X / area_Y) with the sign that makes the first eigenvectors agree. */
+ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
+                               ss_fmap_weights *w, ss_error *err);
+
+/* Point map (and functional map) from a solved C at size opts->k: the nearest-neighbour map, or
+ * ZoomOut up to opts->zoomout_kmax. X is the target of C's functions (the source of the point
+ * map), as in ss_fmap_match. C_out as there. */
+ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
+                               const double *Ck, int *map, double *C_out, ss_error *err);
 
 /* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape, the wave-kernel maps
  * of the landmarks (lmX[i] on X ↔ lmY[i] on Y), plus nextra paired functions (extraX nX x nextra,

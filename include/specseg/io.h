@@ -42,6 +42,15 @@ ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err);
 ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status ss_write_doubles(const char *path, const double *v, int n, ss_error *err);
+/* Landmark file: one landmark a line, "i" (same vertex on both shapes) or "i j" (i on the first shape,
+ * j on the second); '#' comments and blank lines skipped. *lx, *ly: n malloc'd vertex indices (ly =
+ * lx on one-column lines). columns (may be NULL): 2 when any line has two indices, else 1. Errors
+ * "PATH:LINE: what" (negative or non-integer index, three values); an empty file is SS_ERR_PARSE. */
+ss_status ss_read_landmarks(const char *path, int **lx, int **ly, int *n, int *columns, ss_error *err);
+/* The same, with *lines (NULL: not wanted): the n malloc'd 1-based line numbers of the landmarks, so a
+ * caller that checks them against its meshes can say "PATH:LINE: ..." too. */
+ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
+                                  ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -101,6 +101,92 @@ int ss_text_width(const char *text, int scale);
 void ss_draw_colorbar(unsigned char *rgb, int w, int h, int x, int y, int bw, int bh, ss_colormap_kind kind,
                       double lo, double hi, const char *title, int text_scale, const unsigned char text_rgb[3]);
 
+/* ---- colours of maps and fields (map_colors.c, scalar_colors.c) -------------------------------- */
+
+/* Smooth per-vertex colours from the positions normalised to the bounding box (x → red, y → green,
+ * z → blue, each in [0.12, 0.97] of full scale): the "texture" a map transfers. rgb: 3*nv bytes. */
+void ss_coordinate_colors(const ss_mesh *m, unsigned char *rgb);
+/* The same with a smooth 3-D checker pattern darkening half of its cells (cell size period/2 times
+ * the bounding-box diagonal): shows where a map shifts or turns a part (e.g. the head) by less than
+ * the colour ramps can reveal. period <= 0: plain ss_coordinate_colors. */
+void ss_coordinate_pattern_colors(const ss_mesh *m, double period, unsigned char *rgb);
+/* Colour transfer through a point map (pull-back): out[i] = target_rgb[map[i]] for the nx source
+ * vertices. SS_ERR_INVALID on a map entry outside [0, ny). */
+ss_status ss_map_transfer_colors(int nx, const int *map, int ny, const unsigned char *target_rgb, unsigned char *out,
+                                 ss_error *err);
+/* Per-vertex colours of a field: colormap `kind` over [lo, hi] (clamped); non-finite values grey. */
+void ss_scalar_colors(const double *v, int n, ss_colormap_kind kind, double lo, double hi, unsigned char *rgb);
+
+/* ---- panels: several scenes on one image (panels.c) ------------------------------------------- */
+
+typedef struct ss_panel {
+  ss_render_scene scene; /* scene.mesh NULL: an empty cell */
+  const char *title;     /* written under the panel; NULL or "": none */
+} ss_panel;
+
+typedef struct ss_panel_layout {
+  int cols;                  /* panels per row; <= 0 (default) or > n: all in one row */
+  int titles;                /* 1 (default): a line of text under each panel */
+  int common_scale;          /* 1 (default): all panels at the smallest fit scale (unless o->scale > 0) */
+  int colorbar;              /* 1: a colour bar right of the grid for bar_kind over [bar_lo, bar_hi] */
+  ss_colormap_kind bar_kind;
+  double bar_lo, bar_hi;
+  const char *bar_title;
+  int bar_row;               /* -1 (default): the bar centred on the grid; r >= 0: beside row r only */
+  const char *heading;       /* NULL (default): none; else a line of text above the grid */
+} ss_panel_layout;
+
+void ss_panel_layout_init(ss_panel_layout *l);
+
+/* Renders the n panels, o->width x o->height pixels each, row by row into a grid (text scale grows
+ * with the panel height) and returns the malloc'd image in *rgb (*width x *height). SS_ERR_INVALID on
+ * bad sizes or an image beyond 32768 pixels a side or 10^8 pixels; ss_render's errors for the
+ * scenes. */
+ss_status ss_render_panels(const ss_panel *panels, int n, const ss_render_options *o, const ss_panel_layout *l,
+                           unsigned char **rgb, int *width, int *height, ss_error *err);
+
+/* ---- a comparison of point maps X -> Y, as the paper's Figures 9–11 (map_comparison.c) ---------- */
+
+#define SS_MAP_COMPARISON_MAX 4
+
+/* What the figure shows. Start from ss_map_comparison_init; maps, errors and means are required,
+ * everything else optional (NULL / 0: not drawn). */
+typedef struct ss_map_comparison {
+  const ss_mesh *x, *y;                        /* the maps go from X's vertices to Y's */
+  const char *x_name, *y_name;                 /* in the titles "Y NAME" and "X NAME via GT" */
+  int nmaps;                                   /* 1..SS_MAP_COMPARISON_MAX */
+  const int *map[SS_MAP_COMPARISON_MAX];       /* x->nv entries: line i = vertex of Y for vertex i of X */
+  const double *error[SS_MAP_COMPARISON_MAX];  /* x->nv per-vertex errors (e.g. ss_map_geodesic_error's) */
+  double mean_error[SS_MAP_COMPARISON_MAX];    /* written under each heat map */
+  const char *method[SS_MAP_COMPARISON_MAX];   /* e.g. "STD": titles "STD" and "STD mean 0.0312" */
+  const int *gt;                 /* ground truth X -> Y (x->nv): X pulled back through it, bottom left */
+  double error_max;              /* top of the shared heat scale; <= 0 (default): the pooled 95th
+                                    percentile of all errors rounded up to 1, 2, 2.5 or 5 x 10^k */
+  double checker_period;         /* Y's colours: ss_coordinate_pattern_colors(period); default 0.06 */
+  int nlandmarks;                /* white spheres on Y and on X's colour transfers */
+  const int *landmarks_x, *landmarks_y;
+  /* segments (labels_x NULL: no segment column): labels 0..segments-1 per vertex (-1: none), centres
+   * drawn black (NULL: none); paired segments (pair_x[p] on X with pair_y[p] on Y) share a colour,
+   * unpaired ones and boundary triangles are grey */
+  int segments_x, segments_y;
+  const int *labels_x, *labels_y, *centers_x, *centers_y;
+  int npairs;
+  const int *pair_x, *pair_y;
+  const char *heading;           /* a line above the panels; NULL: none */
+} ss_map_comparison;
+
+void ss_map_comparison_init(ss_map_comparison *c, const ss_mesh *x, const ss_mesh *y);
+
+/* Two rows of o->width x o->height panels at one scale (ss_render_panels): top, Y coloured by its
+ * coordinates, then X pulled back through each map (colour transfer), then X's segments; bottom, X
+ * pulled back through the ground truth (what a perfect map shows above; an empty cell without gt),
+ * each map's error as a heat map on the shared scale with its colour bar beside the row, then Y's
+ * segments. Returns the malloc'd image in *rgb (*width x *height) and the scale's top in *error_max
+ * (may be NULL). SS_ERR_INVALID on a missing map, a map, gt, landmark, label, centre or pair out of
+ * range; ss_render_panels' errors. */
+ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_options *o, unsigned char **rgb,
+                                   int *width, int *height, double *error_max, ss_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -17,6 +17,7 @@ typedef struct ev_shape {
   int from_cache;
   int fps[EV_NL];          /* this shape's own FPS landmarks (input vertices) */
   double *lmd[3];          /* per landmark set: m x EV_NL scaled distances landmark → critical point */
+  ss_fmap_probes base[3];  /* per landmark set: WKS + landmark probes (ev_shape_probes; p = 0 until then) */
   double t_prep;
 } ev_shape;
 
@@ -48,7 +49,28 @@ ss_status ev_fps_landmarks(const ss_mesh *m, const ss_segmentation *seg, const s
  * segments. */
 ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int method, int *map,
                    int *paired, ss_error *err);
+/* The same for several methods of one pair and landmark set (bit 1 << method of methods_mask), sharing
+ * the pairing, the base probes and the assembled normal equations: maps[method] (X.nv each) is
+ * written for every method in the mask, with the CPU seconds of its own solve + point map plus an
+ * equal share of the shared part in cpu[method] (may be NULL). Identical maps to ev_match. */
+ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                           int *const maps[3], double cpu[3], int *paired, ss_error *err);
+
+/* Exact error sums of nmaps maps onto one target (ground truth identity): sum[r] = Σ_x d(maps[r][x], x),
+ * sum_sym[r] = Σ_x min(d(maps[r][x], x), d(maps[r][x], sym[x])), every distinct (image, vertex) pair
+ * queried once (batch_errors.c). V: the target's vertex positions (3 x nv). */
+ss_status ev_batch_errors(const ss_geodesic_mesh *gm, const double *V, int nv, const int *sym, int nmaps, const int *const *maps,
+                          double *sum, double *sum_sym, ss_error *err);
+
+/* Builds s->base[set] for the landmark sets in lm_mask (once per shape, not cached on disk). */
+ss_status ev_shape_probes(ev_shape *s, const ev_context *ctx, int lm_mask, ss_error *err);
+
 /* Landmarks of a set on shape s (input vertices). */
 const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset);
+
+/* GT landmarks for a seed (gt_landmarks.c): FPS on the seeded-random FAUST shape *shape, seeded at
+ * vertex 0 (the Table 1 runner's and the figures' GT set). */
+ss_status ev_gt_landmarks(const char *data_dir, uint64_t seed, const ev_context *ctx, int *gt, int *shape,
+                          ss_error *err);
 
 #endif

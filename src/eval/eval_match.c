@@ -1,39 +1,116 @@
 /* The one place where the evaluation calls the matching pipeline (issue 5's ss_match_prepared,
- * decomposed so that the per-shape landmark fields are computed once per shape instead of once per
- * pair and method: pairing from cached fields, segment indicators, ss_fmap_match). */
+ * decomposed so that what depends on one shape is computed once per shape and what depends on one
+ * pair once per pair): landmark fields at the critical points (per shape, cached), base probes
+ * (per shape and landmark set), pairing and the assembled normal equations (per pair and landmark
+ * set, shared by STD / ASA / DIFF), then one solve and point map per method. The library calls are
+ * the ones ss_match_prepared makes, so the maps are the same (tests/test_eval.c checks it). */
 #include "eval_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset) {
   return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : s->fps;
 }
 
-ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int method, int *map,
-                   int *paired, ss_error *err) {
+static ss_fmap_shape fmap_shape(const ev_shape *s) {
+  ss_fmap_shape f = {&s->mesh, s->prep.M, s->prep.evals, s->prep.evecs, s->prep.kev};
+  return f;
+}
+
+static ss_fmap_match_options fmap_options(const ev_context *ctx) {
+  ss_fmap_match_options fo = ctx->mopt.fmap;
+  fo.verbose = 0;
+  return fo;
+}
+
+ss_status ev_shape_probes(ev_shape *s, const ev_context *ctx, int lm_mask, ss_error *err) {
+  ss_fmap_shape f = fmap_shape(s);
+  ss_fmap_match_options fo = fmap_options(ctx);
+  for (int set = 0; set < 3; set++) {
+    if (!(lm_mask >> set & 1) || s->base[set].p > 0) continue;
+    ss_status st = ss_fmap_base_probes(&f, EV_NL, ev_landmarks(ctx, s, set), &fo, fo.w_dcomm > 0, &s->base[set], err);
+    if (st) return st;
+  }
+  return SS_OK;
+}
+
+/* the calling thread's CPU seconds (the evaluation runs pairs in parallel) */
+static double thread_cpu(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                           int *const maps[3], double cpu[3], int *paired, ss_error *err) {
   const ss_shape_prep *pX = &X->prep, *pY = &Y->prep;
+  const double c_start = thread_cpu();
+  ss_fmap_shape sX = fmap_shape(X), sY = fmap_shape(Y);
+  ss_fmap_match_options fo = fmap_options(ctx);
+  const int k = fo.k, ops = fo.w_dcomm > 0, xops = ops && fo.extra_dcomm;
+  const int *lmX = ev_landmarks(ctx, X, lmset), *lmY = ev_landmarks(ctx, Y, lmset);
   ss_segment_pairs pr;
   ss_status st = ss_pair_critical_points(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &pr, err);
   if (st) return st;
   *paired = pr.n;
-  double *EX = NULL, *EY = NULL;
-  int nextra = method == SS_METHOD_STD ? 0 : pr.n;
-  if (nextra > 0) {
+  ss_fmap_probes ownX = {0}, ownY = {0}, xX = {0}, xY = {0};
+  ss_fmap_system *sys = NULL;
+  double *EX = NULL, *EY = NULL, *Ck = malloc(sizeof(double) * (size_t)k * k), c_method[3] = {0};
+  if (!Ck) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
+  /* base probes: the shapes' own (ev_shape_probes), else built here */
+  const ss_fmap_probes *bX = &X->base[lmset], *bY = &Y->base[lmset];
+  if (bX->p == 0) {
+    if ((st = ss_fmap_base_probes(&sX, EV_NL, lmX, &fo, ops, &ownX, err))) goto done;
+    bX = &ownX;
+  }
+  if (bY->p == 0) {
+    if ((st = ss_fmap_base_probes(&sY, EV_NL, lmY, &fo, ops, &ownY, err))) goto done;
+    bY = &ownY;
+  }
+  /* source S = Y, target T = X (see ss_fmap_match) */
+  ss_fmap_weights w;
+  if ((st = ss_fmap_pair_weights(&sX, &sY, &fo, &w, err))) goto done;
+  if ((st = ss_fmap_system_new(k, k, pY->evals, pX->evals, bY, bX, &w, &sys, err))) goto done;
+  if ((methods_mask & ~1) && pr.n > 0) {
     /* the same probe columns (indicator or tent profile) as ss_match_prepared builds */
-    st = ss_segment_probes(&pX->seg, pr.n, pr.sx, ctx->mopt.segment_profile, &EX, err);
-    if (!st) st = ss_segment_probes(&pY->seg, pr.n, pr.sy, ctx->mopt.segment_profile, &EY, err);
+    if ((st = ss_segment_probes(&pX->seg, pr.n, pr.sx, ctx->mopt.segment_profile, &EX, err))) goto done;
+    if ((st = ss_segment_probes(&pY->seg, pr.n, pr.sy, ctx->mopt.segment_profile, &EY, err))) goto done;
   }
-  if (!st) {
-    ss_fmap_shape sX = {&X->mesh, pX->M, pX->evals, pX->evecs, pX->kev};
-    ss_fmap_shape sY = {&Y->mesh, pY->M, pY->evals, pY->evecs, pY->kev};
-    ss_fmap_match_options fo = ctx->mopt.fmap;
-    fo.verbose = 0;
-    st = ss_fmap_match(&sX, &sY, EV_NL, ev_landmarks(ctx, X, lmset), ev_landmarks(ctx, Y, lmset), nextra, EX, EY,
-                       method == SS_METHOD_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW, &fo, map, NULL, err);
+  const double c_shared = thread_cpu() - c_start;
+  int nm = 0;
+  for (int mth = 0; mth < 3; mth++) {
+    if (!(methods_mask >> mth & 1)) continue;
+    nm++;
+    double c0 = thread_cpu();
+    int nextra = mth == SS_METHOD_STD ? 0 : pr.n;
+    if (nextra > 0) {
+      ss_probe_filter f = mth == SS_METHOD_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
+      if ((st = ss_fmap_extra_probes(&sX, EV_NL, nextra, EX, f, &fo, xops, &xX, err))) goto done;
+      if ((st = ss_fmap_extra_probes(&sY, EV_NL, nextra, EY, f, &fo, xops, &xY, err))) goto done;
+    }
+    st = ss_fmap_system_solve(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, fo.w_extra, fo.extra_dcomm, Ck, err);
+    ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
+    if (st) goto done;
+    fo.zoomout_kmax = 0;
+    if ((st = ss_fmap_match_finish(&sX, &sY, &fo, Ck, maps[mth], NULL, err))) goto done;
+    c_method[mth] = thread_cpu() - c0;
   }
-  free(EX);
-  free(EY);
+  if (cpu)
+    for (int mth = 0; mth < 3; mth++) cpu[mth] = (methods_mask >> mth & 1) ? c_method[mth] + c_shared / nm : 0.0;
+done:
+  ss_fmap_system_free(sys);
+  ss_fmap_probes_free(&ownX), ss_fmap_probes_free(&ownY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
+  free(EX), free(EY), free(Ck);
   ss_segment_pairs_free(&pr);
   return st;
+}
+
+ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int method, int *map,
+                   int *paired, ss_error *err) {
+  if (method < 0 || method > 2) return ss_fail(err, SS_ERR_INVALID, "eval: unknown method %d", method);
+  int *maps[3] = {NULL, NULL, NULL};
+  maps[method] = map;
+  return ev_match_methods(ctx, X, Y, lmset, 1 << method, maps, NULL, paired, err);
 }

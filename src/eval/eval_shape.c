@@ -15,7 +15,7 @@ void ev_shape_free(ev_shape *s) {
   if (!s) return;
   ss_shape_prep_free(&s->prep);
   ss_mesh_free(&s->mesh);
-  for (int i = 0; i < 3; i++) free(s->lmd[i]);
+  for (int i = 0; i < 3; i++) free(s->lmd[i]), ss_fmap_probes_free(&s->base[i]);
   memset(s, 0, sizeof *s);
 }
 

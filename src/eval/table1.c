@@ -86,30 +86,6 @@ static void progress(double t0, long done, long total, int shapes_done, int shap
   fflush(stderr);
 }
 
-static ss_status gt_landmarks(const char *dir, uint64_t seed, const ev_context *ctx, int *gt, int *shape, ss_error *err) {
-  ss_rng r;
-  ss_rng_seed(&r, seed ^ 0x6A09E667F3BCC909ull);
-  *shape = ss_rng_below(&r, NSHAPES);
-  char path[4096];
-  snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", dir, *shape);
-  ss_mesh m = {0};
-  ss_segmentation seg;
-  memset(&seg, 0, sizeof seg);
-  ss_status st = ss_read_mesh(path, &m, err);
-  if (!st) st = ss_segment(&m, &ctx->mopt.seg, &seg, err);
-  if (!st) st = ev_fps_landmarks(&m, &seg, &ctx->mopt.seg, 0, gt, err);
-  ss_segmentation_free(&seg);
-  ss_mesh_free(&m);
-  return st;
-}
-
-/* CPU seconds of the calling thread: what a row costs, whatever else the machine is doing */
-static double thread_cpu(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
 static int int_cmp(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
 
 /* The vertices the error of a map onto shape y averages over: S seeded-random vertices and their
@@ -210,7 +186,7 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
   double t_start = ss_time();
   int gt_shape = -1;
   /* without GT rows the GT landmarks are never used (they stay 0, which the cache key records) */
-  if ((o->lm_mask >> SS_LM_GT & 1) && (st = gt_landmarks(o->data_dir, o->seed, &ctx, ctx.gt, &gt_shape, err))) goto done;
+  if ((o->lm_mask >> SS_LM_GT & 1) && (st = ev_gt_landmarks(o->data_dir, o->seed, &ctx, ctx.gt, &gt_shape, err))) goto done;
   if (o->verbose && gt_shape >= 0)
     fprintf(stderr, "table1: GT landmarks from tr_reg_%03d: %d %d %d %d %d\n", gt_shape, ctx.gt[0], ctx.gt[1], ctx.gt[2],
             ctx.gt[3], ctx.gt[4]);
@@ -253,7 +229,8 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
   for (int i = 0; i < nneed; i++) {
     if (failed) continue;
     ss_error e;
-    if (ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e)) {
+    if (ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e) ||
+        ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e)) {
 #pragma omp critical(table1_err)
       if (!failed) failed = 1, perr = e;
       continue;
@@ -280,21 +257,24 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
   for (int u = 0; u < nwork; u++)
     if (!u || U[u].y != U[u - 1].y) gstart[ngroups++] = u;
   gstart[ngroups] = nwork;
+  int maxgroup = 0; /* units in the largest group: its maps are held until their errors are known */
+  for (int g = 0; g < ngroups; g++) maxgroup = gstart[g + 1] - gstart[g] > maxgroup ? gstart[g + 1] - gstart[g] : maxgroup;
   long rows_done = 0;
   double t_rows = ss_time();
 #pragma omp parallel num_threads(nthreads)
   {
     int S = o->error_samples < nv ? o->error_samples : nv, ns = 0;
-    int *map = malloc(sizeof(int) * (size_t)nv), *ident = malloc(sizeof(int) * (size_t)nv);
+    int maxrows = 3 * (maxgroup > 0 ? maxgroup : 1);
+    int *mapbuf = malloc(sizeof(int) * (size_t)maxrows * nv), *scratch = malloc(sizeof(int) * (size_t)nv);
     int *samples = malloc(sizeof(int) * (2 * (size_t)S + 1)), *sympos = malloc(sizeof(int) * (2 * (size_t)S + 1));
     double *fields = malloc(sizeof(double) * (size_t)nv * (2 * (size_t)S + 1));
-    double *d1 = malloc(sizeof(double) * (size_t)nv), *d2 = malloc(sizeof(double) * (size_t)nv);
-    int *both = malloc(sizeof(int) * 2 * (size_t)nv); /* (x, sym(x)) target pairs */
-    if (!map || !ident || !samples || !sympos || !fields || !d1 || !d2 || !both) {
+    ss_eval_row *rows = malloc(sizeof(ss_eval_row) * (size_t)maxrows);
+    const int **rmap = malloc(sizeof(int *) * (size_t)maxrows);
+    double *sum = malloc(sizeof(double) * (size_t)maxrows), *sum_sym = malloc(sizeof(double) * (size_t)maxrows);
+    if (!mapbuf || !scratch || !samples || !sympos || !fields || !rows || !rmap || !sum || !sum_sym) {
 #pragma omp critical(table1_err)
       if (!failed) failed = 1, snprintf(perr.msg, sizeof perr.msg, "out of memory");
-    } else
-      for (int i = 0; i < nv; i++) ident[i] = i, both[2 * i] = i, both[2 * i + 1] = sym[i];
+    }
 #pragma omp for schedule(dynamic, 1)
     for (int g = 0; g < ngroups; g++) {
       if (failed) continue;
@@ -302,49 +282,67 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
       const ev_shape *Y = &shapes[U[gstart[g]].y];
       ss_geodesic_mesh *gm = NULL;
       ss_status s2 = ss_geodesic_mesh_build(&Y->mesh, &gm, &e);
-      if (S > 0) ns = error_samples(o->seed, Y->id, S, nv, sym, map, samples, sympos);
+      if (S > 0) ns = error_samples(o->seed, Y->id, S, nv, sym, scratch, samples, sympos);
       if (!s2 && ns > 0) s2 = ss_geodesic_fields(gm, samples, ns, 0, fields, &e);
       const double scale = 1.0 / sqrt(ss_mesh_area(&Y->mesh));
+      /* a. every map of this target: the units' methods share pairing, probes and normal equations */
+      int nr = 0;
       for (int u = gstart[g]; u < gstart[g + 1] && !s2; u++) {
         const unit *w = &U[u];
         const ev_shape *X = &shapes[w->x];
-        for (int mth = 0; mth < 3 && !s2; mth++) {
-          if (!(o->methods_mask >> mth & 1) || done[row_key(w->policy, w->lmset, mth, w->x, w->y)]) continue;
-          ss_eval_row r;
-          memset(&r, 0, sizeof r);
-          double t0 = ss_time(), c0 = thread_cpu();
-          if ((s2 = ev_match(&ctx, X, Y, w->lmset, mth, map, &r.paired, &e))) break;
-          r.seconds = ss_time() - t0;
-          r.cpu_seconds = thread_cpu() - c0;
-          double se = 0, ss2 = 0;
-          if (ns > 0) {
-            for (int i = 0; i < ns; i++) {
-              double a = fields[map[samples[i]] + (size_t)nv * i], b = fields[map[samples[i]] + (size_t)nv * sympos[i]];
+        int mask = 0, paired = 0;
+        for (int mth = 0; mth < 3; mth++)
+          if ((o->methods_mask >> mth & 1) && !done[row_key(w->policy, w->lmset, mth, w->x, w->y)]) mask |= 1 << mth;
+        if (!mask) continue;
+        int *maps[3] = {mapbuf + (size_t)nv * nr, mapbuf + (size_t)nv * (nr + 1), mapbuf + (size_t)nv * (nr + 2)};
+        double cpu[3], t0 = ss_time();
+        if ((s2 = ev_match_methods(&ctx, X, Y, w->lmset, mask, maps, cpu, &paired, &e))) break;
+        const double wall = (ss_time() - t0) / __builtin_popcount(mask);
+        int slot = 0;
+        for (int mth = 0; mth < 3; mth++) {
+          if (!(mask >> mth & 1)) continue;
+          if (maps[mth] != mapbuf + (size_t)nv * (nr + slot))
+            memcpy(mapbuf + (size_t)nv * (nr + slot), maps[mth], sizeof(int) * (size_t)nv);
+          ss_eval_row *r = &rows[nr + slot];
+          memset(r, 0, sizeof *r);
+          r->paired = paired, r->seconds = wall, r->cpu_seconds = cpu[mth];
+          r->policy = w->policy, r->landmarks = w->lmset, r->method = mth, r->x = w->x, r->y = w->y;
+          r->segments_x = X->prep.seg.m, r->segments_y = Y->prep.seg.m;
+          rmap[nr + slot] = mapbuf + (size_t)nv * (nr + slot);
+          slot++;
+        }
+        nr += slot;
+      }
+      /* b. their errors: exact over every vertex, each distinct (image, vertex) pair of the target's
+       * maps queried once; or over the target's seeded sample */
+      if (!s2 && nr > 0) {
+        if (ns > 0) {
+          for (int i = 0; i < nr; i++) {
+            double se = 0, ss2 = 0;
+            for (int j = 0; j < ns; j++) {
+              double a = fields[rmap[i][samples[j]] + (size_t)nv * j], b = fields[rmap[i][samples[j]] + (size_t)nv * sympos[j]];
               se += a;
               ss2 += a < b ? a : b;
             }
-            r.samples = ns;
-          } else {
-            /* every vertex: exact distances from each image, grouped by image */
-            if ((s2 = ss_geodesic_pairs(gm, map, ident, nv, d1, &e))) break;
-            /* symmetric: each query stops at the nearer of x and its mirror (no far propagation) */
-            if ((s2 = ss_geodesic_nearest_of(gm, map, both, 2, nv, d2, &e))) break;
-            for (int i = 0; i < nv; i++) se += d1[i], ss2 += d2[i];
-            r.samples = nv;
+            sum[i] = se, sum_sym[i] = ss2;
+            rows[i].samples = ns;
           }
-          r.error = se / r.samples * scale;
-          r.error_sym = ss2 / r.samples * scale;
-          r.policy = w->policy, r.landmarks = w->lmset, r.method = mth, r.x = w->x, r.y = w->y;
-          r.segments_x = X->prep.seg.m, r.segments_y = Y->prep.seg.m;
-          char line[512];
-          ss_eval_csv_format_row(&r, line, sizeof line);
+        } else {
+          s2 = ev_batch_errors(gm, Y->mesh.V, nv, sym, nr, rmap, sum, sum_sym, &e);
+          for (int i = 0; i < nr; i++) rows[i].samples = nv;
+        }
+      }
+      for (int i = 0; i < nr && !s2; i++) {
+        rows[i].error = sum[i] / rows[i].samples * scale;
+        rows[i].error_sym = sum_sym[i] / rows[i].samples * scale;
+        char line[512];
+        ss_eval_csv_format_row(&rows[i], line, sizeof line);
 #pragma omp critical(table1_progress)
-          {
-            fprintf(out, "%s\n", line);
-            fflush(out);
-            rows_done++;
-            if (o->progress) progress(t_rows, rows_done, total_rows, 1, 1);
-          }
+        {
+          fprintf(out, "%s\n", line);
+          fflush(out);
+          rows_done++;
+          if (o->progress) progress(t_rows, rows_done, total_rows, 1, 1);
         }
       }
       ss_geodesic_mesh_free(gm);
@@ -353,7 +351,7 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
         if (!failed) failed = 1, perr = e;
       }
     }
-    free(map), free(ident), free(samples), free(sympos), free(fields), free(d1), free(d2), free(both);
+    free(mapbuf), free(scratch), free(samples), free(sympos), free(fields), free(rows), free(rmap), free(sum), free(sum_sym);
   }
   free(gstart);
   if (o->progress) fputc('\n', stderr);

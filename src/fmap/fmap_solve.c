@@ -1,20 +1,9 @@
-/* The functional map of Eq. (1) (Nogneng & Ovsjanikov 2017), solved exactly.
- *
- * With x = vec(C) (column-major, index r + k_T·c), E(C) = xᵀ N x − 2 bᵀ x + const where
- *   N = w_d (A Aᵀ ⊗ I) + w_l diag((λ_T,r − λ_S,c)²)
- *     + w_c Σ_i [ (D_i^S)² ⊗ I + I ⊗ (D_i^T)² − 2 D_i^S ⊗ D_i^T ],   b = w_d vec(B Aᵀ)
- * (the D's are symmetric). The only expensive block, Σ_i D_i^S ⊗ D_i^T, is one dgemm of the packed
- * upper triangles of the D's, so at k = 50 with ~100–200 probes the dense assembly plus a Cholesky
- * factorisation of the 2500 x 2500 system costs a few GFlop and no iteration count depends on the
- * conditioning. On FAUST (k = 50, 120 probes) N has a condition number of ~3e3 (LAPACK dpocon), so
- * CG to a 1e-8 relative residual needs a few hundred iterations; each costs either a pass over the
- * assembled 50 MB N (memory bound, ~5–10 ms) or 4·k³·p ≈ 0.1 GFlop in operator form — both slower
- * than the one 5 GFlop, compute-bound Cholesky (0.35–0.4 s single-threaded on this loaded machine,
- * assembly included). */
+/* Eq. (1) (Nogneng & Ovsjanikov 2017): spectral coefficients of probes, their multiplication
+ * operators, the exact minimiser for explicit operator blocks (through fmap_system.c) and the energy
+ * with its gradient (to check optimality). */
 #include "specseg/fmap.h"
 
 #include <cblas.h>
-#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,8 +27,10 @@ static inline size_t pk(int a, int b) { /* packed upper-triangle index, a <= b *
 
 /* Packed D's: P (kk x p), column i = upper triangle of D_i. Vertices in blocks so the product table
  * φ_a φ_b stays small; one dgemm per block. */
-static ss_status packed_operators(int n, int k, const double *evecs, const double *M, int p, const double *F,
-                                  double *P, ss_error *err) {
+ss_status ss_fmap_mult_operators_packed(int n, int k, const double *evecs, const double *M, int p, const double *F,
+                                        double *P, ss_error *err) {
+  if (n < 1 || k < 1 || p < 0) return ss_fail(err, SS_ERR_INVALID, "operators: bad sizes");
+  if (p == 0) return SS_OK;
   const int kk = k * (k + 1) / 2, nb = 512;
   double *Q = malloc(sizeof(double) * (size_t)nb * kk), *W = malloc(sizeof(double) * (size_t)nb * p);
   if (!Q || !W) { free(Q); free(W); return ss_fail(err, SS_ERR_NOMEM, "operators: out of memory"); }
@@ -68,7 +59,7 @@ ss_status ss_fmap_mult_operators(int n, int k, const double *evecs, const double
   const int kk = k * (k + 1) / 2;
   double *P = malloc(sizeof(double) * (size_t)kk * p);
   if (!P) return ss_fail(err, SS_ERR_NOMEM, "operators: out of memory");
-  ss_status st = packed_operators(n, k, evecs, M, p, F, P, err);
+  ss_status st = ss_fmap_mult_operators_packed(n, k, evecs, M, p, F, P, err);
   if (!st)
     for (int i = 0; i < p; i++) {
       double *Di = D + (size_t)k * k * i;
@@ -77,15 +68,6 @@ ss_status ss_fmap_mult_operators(int n, int k, const double *evecs, const double
     }
   free(P);
   return st;
-}
-
-/* Σ_i D_i² (k x k) */
-static void sum_squares(int k, int nd, const double *D, double *S) {
-  memset(S, 0, sizeof(double) * (size_t)k * k);
-  for (int i = 0; i < nd; i++) {
-    const double *Di = D + (size_t)k * k * i;
-    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, k, k, k, 1.0, Di, k, Di, k, 1.0, S, k);
-  }
 }
 
 static ss_status check_args(int k_S, int k_T, int p, const double *A, const double *B, int nd, const double *D_S,
@@ -98,112 +80,36 @@ static ss_status check_args(int k_S, int k_T, int p, const double *A, const doub
   return SS_OK;
 }
 
+/* packed upper triangles of nd full symmetric k x k blocks */
+static double *pack_blocks(int k, int nd, const double *D) {
+  const size_t kk = (size_t)k * (k + 1) / 2;
+  double *P = malloc(sizeof(double) * kk * (nd > 0 ? nd : 1));
+  if (!P) return NULL;
+  for (int i = 0; i < nd; i++) {
+    const double *Di = D + (size_t)k * k * i;
+    for (int b = 0; b < k; b++)
+      for (int a = 0; a <= b; a++) P[pk(a, b) + kk * i] = Di[a + (size_t)k * b];
+  }
+  return P;
+}
+
 ss_status ss_fmap_solve(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
                         const double *evals_T, int nd, const double *D_S, const double *D_T,
                         const ss_fmap_weights *w, double *C, ss_error *err) {
   ss_status st = check_args(k_S, k_T, p, A, B, nd, D_S, D_T, w, err);
   if (st) return st;
-  const size_t m = (size_t)k_S * k_T;
-  const int kkS = k_S * (k_S + 1) / 2, kkT = k_T * (k_T + 1) / 2;
-  double *N = calloc(m * m, sizeof(double)), *rhs = calloc(m, sizeof(double));
-  double *SS = calloc((size_t)k_S * k_S, sizeof(double)), *ST = calloc((size_t)k_T * k_T, sizeof(double));
-  double *PS = NULL, *PT = NULL, *H = NULL;
-  if (!N || !rhs || !SS || !ST) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
-
-  /* S-side blocks (act on columns of C): w_d A Aᵀ + w_c Σ (D^S)², same for every row r */
-  if (p > 0 && w->w_descr > 0)
-    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_S, k_S, p, w->w_descr, A, k_S, A, k_S, 0.0, SS, k_S);
-  if (nd > 0 && w->w_dcomm > 0) {
-    double *tmp = malloc(sizeof(double) * (size_t)k_T * k_T > sizeof(double) * (size_t)k_S * k_S
-                             ? sizeof(double) * (size_t)k_T * k_T
-                             : sizeof(double) * (size_t)k_S * k_S);
-    if (!tmp) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory"); goto done; }
-    sum_squares(k_S, nd, D_S, tmp);
-    cblas_daxpy(k_S * k_S, w->w_dcomm, tmp, 1, SS, 1);
-    sum_squares(k_T, nd, D_T, tmp);
-    cblas_daxpy(k_T * k_T, w->w_dcomm, tmp, 1, ST, 1);
-    free(tmp);
-  }
-  for (int c2 = 0; c2 < k_S; c2++)
-    for (int c1 = 0; c1 < k_S; c1++) {
-      double v = SS[c1 + (size_t)k_S * c2];
-      if (v == 0) continue;
-      for (int r = 0; r < k_T; r++) N[(r + (size_t)k_T * c1) + m * (r + (size_t)k_T * c2)] += v;
-    }
-  /* T-side blocks (act on rows): w_c Σ (D^T)², same for every column c */
-  for (int c = 0; c < k_S; c++)
-    for (int r2 = 0; r2 < k_T; r2++)
-      for (int r1 = 0; r1 < k_T; r1++)
-        N[(r1 + (size_t)k_T * c) + m * (r2 + (size_t)k_T * c)] += ST[r1 + (size_t)k_T * r2];
-  /* Laplacian commutativity: diagonal */
-  if (w->w_lap > 0)
-    for (int c = 0; c < k_S; c++)
-      for (int r = 0; r < k_T; r++) {
-        double d = evals_T[r] - evals_S[c];
-        size_t i = r + (size_t)k_T * c;
-        N[i + m * i] += w->w_lap * d * d;
-      }
-  /* cross term −2 w_c Σ_i D_i^S ⊗ D_i^T: H = P_S P_Tᵀ on packed triangles */
-  if (nd > 0 && w->w_dcomm > 0) {
-    PS = malloc(sizeof(double) * (size_t)kkS * nd);
-    PT = malloc(sizeof(double) * (size_t)kkT * nd);
-    H = malloc(sizeof(double) * (size_t)kkS * kkT);
-    if (!PS || !PT || !H) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory"); goto done; }
-    for (int i = 0; i < nd; i++) {
-      const double *Ds = D_S + (size_t)k_S * k_S * i, *Dt = D_T + (size_t)k_T * k_T * i;
-      for (int b = 0; b < k_S; b++)
-        for (int a = 0; a <= b; a++) PS[pk(a, b) + (size_t)kkS * i] = Ds[a + (size_t)k_S * b];
-      for (int b = 0; b < k_T; b++)
-        for (int a = 0; a <= b; a++) PT[pk(a, b) + (size_t)kkT * i] = Dt[a + (size_t)k_T * b];
-    }
-    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, kkS, kkT, nd, -2.0 * w->w_dcomm, PS, kkS, PT, kkT, 0.0, H,
-                kkS);
-    /* N[(r,c1),(r2,c2)] += H[(c1,c2),(r,r2)] */
-#pragma omp parallel for schedule(static)
-    for (int c2 = 0; c2 < k_S; c2++)
-      for (int r2 = 0; r2 < k_T; r2++) {
-        double *col = N + m * (r2 + (size_t)k_T * c2);
-        for (int c1 = 0; c1 < k_S; c1++) {
-          size_t hs = c1 <= c2 ? pk(c1, c2) : pk(c2, c1);
-          for (int r = 0; r < k_T; r++) {
-            size_t ht = r <= r2 ? pk(r, r2) : pk(r2, r);
-            col[r + (size_t)k_T * c1] += H[hs + (size_t)kkS * ht];
-          }
-        }
-      }
-  }
-  /* right-hand side w_d vec(B Aᵀ) */
-  if (p > 0 && w->w_descr > 0)
-    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_T, k_S, p, w->w_descr, B, k_T, A, k_S, 0.0, rhs, k_T);
-  /* fixed first column: move it to the right-hand side, keep the system SPD */
-  if (w->fix_constant) {
-    for (int r = 0; r < k_T; r++) {
-      double v = r == 0 ? w->const_value : 0.0;
-      size_t j = r;
-      if (v != 0)
-        for (size_t i = 0; i < m; i++) rhs[i] -= N[i + m * j] * v;
-    }
-    for (int r = 0; r < k_T; r++) {
-      size_t j = r;
-      for (size_t i = 0; i < m; i++) N[i + m * j] = N[j + m * i] = 0.0;
-      N[j + m * j] = 1.0;
-      rhs[j] = r == 0 ? w->const_value : 0.0;
-    }
-  }
-  lapack_int info = LAPACKE_dposv(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)m, rhs, (lapack_int)m);
-  if (info != 0) {
-    st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dposv info %d)", (int)info);
+  ss_fmap_probes S = {k_S, p, nd, (double *)A, NULL}, T = {k_T, p, nd, (double *)B, NULL};
+  ss_fmap_system *sys = NULL;
+  if (nd > 0 && (!(S.P = pack_blocks(k_S, nd, D_S)) || !(T.P = pack_blocks(k_T, nd, D_T)))) {
+    st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
     goto done;
   }
-  memcpy(C, rhs, sizeof(double) * m);
+  if (!(st = ss_fmap_system_new(k_S, k_T, evals_S, evals_T, &S, &T, w, &sys, err)))
+    st = ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, C, err);
 done:
-  free(N);
-  free(rhs);
-  free(SS);
-  free(ST);
-  free(PS);
-  free(PT);
-  free(H);
+  ss_fmap_system_free(sys);
+  free(S.P);
+  free(T.P);
   return st;
 }
 

@@ -1,13 +1,18 @@
 /* Exact nearest neighbours by cluster pruning.
  *
  * The database is split into ~1.5 √n clusters around farthest-point seeds (in the embedding, so it
- * works for any point set); each cluster keeps its centroid c, its radius R and every member's
- * distance r_b to c. A query q first scans the cluster of its nearest centroid, then skips any
- * cluster with ‖q − c‖ − R above the best distance so far and any point with |‖q − c‖ − r_b| above
- * it (triangle inequality), with bounds widened by the rounding error of the BLAS-computed ‖q − c‖ so
- * that the true neighbour is never pruned. Distances themselves are exact Σ (q_j − b_j)². Spectral
- * embeddings of surfaces are 2-D manifolds in 30–100 dimensions: on FAUST a query evaluates
- * ~100–250 of 6,890 points. */
+ * works for any point set); each cluster keeps its centroid c, its radius R and a local frame (see
+ * nn_index). A query q first scans the cluster of its nearest centroid, then every cluster with
+ * ‖q − c‖ − R not above the best distance so far; inside a cluster the frame bound skips most
+ * points. Bounds are widened by their rounding errors so that the true neighbour is never pruned;
+ * distances themselves are exact Σ (q_j − b_j)². Spectral embeddings of surfaces are 2-D manifolds
+ * in 30–100 dimensions: on FAUST a query opens ~5–10 of 124 clusters and evaluates ~5–15 of 6,890
+ * points.
+ *
+ * ss_nn_exact_guided serves ZoomOut, which searches once per iteration: a guess per query (the
+ * previous iteration's match) bounds the search before the first cluster, and the partition is
+ * given (one for all iterations) instead of re-seeded, which was a quarter of the cost. Any partition
+ * keeps the search exact; compact ones make it fast. */
 #include "specseg/fmap.h"
 
 #include <cblas.h>
@@ -29,170 +34,392 @@ static double d2row(int d, const double *a, const double *b) {
   return s;
 }
 
-ss_status ss_nn_exact(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
-                      double *dist2, ss_error *err) {
-  if (ndb < 1 || nq < 0 || d < 1 || lddb < ndb || ldq < nq)
-    return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: bad sizes (ndb %d, nq %d, d %d)", ndb, nq, d);
-  if (nq == 0) return SS_OK;
-  if (ndb < 256) return ss_nn_brute(ndb, nq, d, db, lddb, q, ldq, idx, dist2, err);
-  int nc = (int)(NN_CLUSTER_FACTOR * sqrt((double)ndb));
-  double *P = malloc(sizeof(double) * (size_t)ndb * d), *Pc = malloc(sizeof(double) * (size_t)ndb * d);
-  double *cen = calloc((size_t)nc * d, sizeof(double));
-  double *R = calloc(nc, sizeof(double)), *rp = malloc(sizeof(double) * ndb);
-  int *asg = malloc(sizeof(int) * ndb), *start = calloc((size_t)nc + 1, sizeof(int)), *orig = malloc(sizeof(int) * ndb);
-  if (!P || !Pc || !cen || !R || !rp || !asg || !start || !orig) {
-    free(P); free(Pc); free(cen); free(R); free(rp); free(asg); free(start); free(orig);
-    return ss_fail(err, SS_ERR_NOMEM, "nearest neighbours: out of memory");
-  }
-  /* row-major copy: one point per contiguous row */
-  for (int j = 0; j < d; j++)
-    for (int b = 0; b < ndb; b++) P[(size_t)b * d + j] = db[b + (size_t)lddb * j];
-  { /* farthest-point seeds (better spread than random seeds or Lloyd-refined ones: measured faster
-     * searches on FAUST at k = 50..100); every point then joins its nearest seed (one dgemm). Any
-     * partition keeps the search exact; compact clusters only make it faster. */
-    double *Sd = malloc(sizeof(double) * (size_t)nc * d), *DS = malloc(sizeof(double) * (size_t)ndb * nc);
-    double *sn = malloc(sizeof(double) * nc), *mind = malloc(sizeof(double) * ndb);
-    if (!Sd || !DS || !sn || !mind) {
-      free(Sd); free(DS); free(sn); free(mind);
-      free(P); free(Pc); free(cen); free(R); free(rp); free(asg); free(start); free(orig);
-      return ss_fail(err, SS_ERR_NOMEM, "nearest neighbours: out of memory");
-    }
-    for (int b = 0; b < ndb; b++) mind[b] = INFINITY;
-    int cur = 0;
-    for (int c = 0; c < nc; c++) {
-      const double *sp = P + (size_t)cur * d;
-      sn[c] = 0;
-      for (int j = 0; j < d; j++) {
-        Sd[c + (size_t)nc * j] = sp[j];
-        sn[c] += sp[j] * sp[j];
-      }
-      int far = 0;
-      double fd = -1;
-#pragma omp parallel
-      {
-        int lf = 0;
-        double lfd = -1;
-#pragma omp for schedule(static)
-        for (int x = 0; x < ndb; x++) {
-          double e = d2row(d, sp, P + (size_t)x * d);
-          if (e < mind[x]) mind[x] = e;
-          if (mind[x] > lfd) { lfd = mind[x]; lf = x; }
-        }
-#pragma omp critical
-        if (lfd > fd || (lfd == fd && lf < far)) { fd = lfd; far = lf; }
-      }
-      cur = far; /* duplicates (fd = 0) only leave some clusters empty */
-    }
-    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, ndb, nc, d, 1.0, db, lddb, Sd, nc, 0.0, DS, ndb);
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < ndb; b++) {
-      int bc = 0;
-      double bv = INFINITY;
-      for (int c = 0; c < nc; c++) {
-        double v = sn[c] - 2.0 * DS[b + (size_t)ndb * c];
-        if (v < bv) { bv = v; bc = c; }
-      }
-      asg[b] = bc;
-    }
+static int default_clusters(int n) { return (int)(NN_CLUSTER_FACTOR * sqrt((double)n)); }
+
+/* Farthest-point seeds (better spread than random seeds or Lloyd-refined ones: measured faster
+ * searches on FAUST at k = 50..100); every point then joins its nearest seed (one dgemm). Any
+ * partition keeps the search exact; compact clusters only make it faster. P: row-major copy of X. */
+static int fps_partition(int n, int d, int nc, const double *P, const double *X, int ldx, int *asg) {
+  double *Sd = malloc(sizeof(double) * (size_t)nc * d), *DS = malloc(sizeof(double) * (size_t)n * nc);
+  double *sn = malloc(sizeof(double) * nc), *mind = malloc(sizeof(double) * n);
+  if (!Sd || !DS || !sn || !mind) {
     free(Sd); free(DS); free(sn); free(mind);
+    return 1;
   }
-  /* bucket by cluster, centroids, radii */
-  for (int b = 0; b < ndb; b++) start[asg[b] + 1]++;
-  for (int c = 0; c < nc; c++) start[c + 1] += start[c];
-  {
-    int *fill = malloc(sizeof(int) * nc);
-    if (!fill) {
-      free(P); free(Pc); free(cen); free(R); free(rp); free(asg); free(start); free(orig);
-      return ss_fail(err, SS_ERR_NOMEM, "nearest neighbours: out of memory");
-    }
-    memcpy(fill, start, sizeof(int) * nc);
-    for (int b = 0; b < ndb; b++) { /* ascending b within each cluster: ties resolve to the lower index */
-      int slot = fill[asg[b]]++;
-      orig[slot] = b;
-      memcpy(Pc + (size_t)slot * d, P + (size_t)b * d, sizeof(double) * d);
-    }
-    free(fill);
-  }
+  for (int b = 0; b < n; b++) mind[b] = INFINITY;
+  int cur = 0;
   for (int c = 0; c < nc; c++) {
-    double *cc = cen + (size_t)c * d;
-    int cnt = start[c + 1] - start[c];
-    for (int s = start[c]; s < start[c + 1]; s++)
-      for (int j = 0; j < d; j++) cc[j] += Pc[(size_t)s * d + j];
-    for (int j = 0; j < d; j++) cc[j] /= cnt > 0 ? cnt : 1;
-    for (int s = start[c]; s < start[c + 1]; s++) {
-      rp[s] = sqrt(d2row(d, cc, Pc + (size_t)s * d));
-      R[c] = fmax(R[c], rp[s]);
+    const double *sp = P + (size_t)cur * d;
+    sn[c] = 0;
+    for (int j = 0; j < d; j++) {
+      Sd[c + (size_t)nc * j] = sp[j];
+      sn[c] += sp[j] * sp[j];
+    }
+    /* serial: a parallel loop per seed meant ~120 barriers per call, each costing a time slice
+     * whenever the machine is shared (ZoomOut took up to 70 s instead of 3) */
+    int far = 0;
+    double fd = -1;
+    for (int x = 0; x < n; x++) {
+      double e = d2row(d, sp, P + (size_t)x * d);
+      if (e < mind[x]) mind[x] = e;
+      if (mind[x] > fd) { fd = mind[x]; far = x; }
+    }
+    cur = far; /* duplicates (fd = 0) only leave some clusters empty */
+  }
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, n, nc, d, 1.0, X, ldx, Sd, nc, 0.0, DS, n);
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < n; b++) {
+    int bc = 0;
+    double bv = INFINITY;
+    for (int c = 0; c < nc; c++) {
+      double v = sn[c] - 2.0 * DS[b + (size_t)n * c];
+      if (v < bv) { bv = v; bc = c; }
+    }
+    asg[b] = bc;
+  }
+  free(Sd); free(DS); free(sn); free(mind);
+  return 0;
+}
+
+ss_status ss_nn_partition(int n, int d, const double *X, int ldx, int nc, int *part, ss_error *err) {
+  if (n < 1 || d < 1 || ldx < n) return ss_fail(err, SS_ERR_INVALID, "nn partition: bad sizes (n %d, d %d)", n, d);
+  if (nc <= 0) nc = default_clusters(n);
+  if (nc < 1) nc = 1;
+  if (nc > n) nc = n;
+  double *P = malloc(sizeof(double) * (size_t)n * d);
+  if (!P) return ss_fail(err, SS_ERR_NOMEM, "nn partition: out of memory");
+  for (int j = 0; j < d; j++)
+    for (int b = 0; b < n; b++) P[(size_t)b * d + j] = X[b + (size_t)ldx * j];
+  int bad = fps_partition(n, d, nc, P, X, ldx, part);
+  free(P);
+  return bad ? ss_fail(err, SS_ERR_NOMEM, "nn partition: out of memory") : SS_OK;
+}
+
+/* The database bucketed by cluster: rows of Pc (row-major, cluster by cluster, ascending original
+ * index inside a cluster so that ties resolve to the lower index), centroids c, radii R, and a local
+ * frame per cluster: NN_FRAME orthonormal directions U (pivoted Gram–Schmidt of the centred members,
+ * close to their principal plane: the embedding is a 2-D surface) with every member's coordinates
+ * y_b = Uᵀ(b − c) and off-frame residual h_b = ‖(b − c) − U y_b‖. For any q, with z = Uᵀ(q − c) and
+ * h_q = ‖(q − c) − U z‖, ‖q − b‖² ≥ ‖z − y_b‖² + (h_q − h_b)² (Pythagoras, then the triangle
+ * inequality off the frame). It implies |‖q − c‖ − ‖b − c‖| ≤ ‖q − b‖ and is far tighter: on FAUST
+ * at k = 50..100 it leaves ~5–10 exact distances per query instead of ~100. */
+#ifndef NN_FRAME
+#define NN_FRAME 3 /* FAUST: 2 → ~12 exact distances per query, 3 → ~8, 4 → ~5; 2 and 3 equally fast, 4 slower */
+#endif
+#if NN_FRAME < 1 || NN_FRAME > 4
+#error "NN_FRAME must be 1..4"
+#endif
+typedef struct nn_index {
+  int nc, d, maxcnt;
+  int *start, *orig, *slot; /* start[nc+1]; orig[s] = database index of row s; slot = its inverse */
+  double *Pc, *cen, *R;
+  double *U, *Y, *H;        /* U: nc blocks of NN_FRAME rows of d; Y: NN_FRAME arrays of ndb; H: ndb */
+} nn_index;
+
+static void index_free(nn_index *t) {
+  free(t->start); free(t->orig); free(t->slot);
+  free(t->Pc); free(t->cen); free(t->R);
+  free(t->U); free(t->Y); free(t->H);
+}
+
+static double dot(int d, const double *a, const double *b) {
+  double s = 0;
+#pragma omp simd reduction(+ : s)
+  for (int j = 0; j < d; j++) s += a[j] * b[j];
+  return s;
+}
+
+/* Centroid, radius and frame of cluster c; W: scratch of maxcnt x d. */
+static void cluster_setup(nn_index *t, int ndb, int c, double *W) {
+  const int d = t->d, s0 = t->start[c], cnt = t->start[c + 1] - s0;
+  double *cc = t->cen + (size_t)c * d, *U = t->U + (size_t)c * NN_FRAME * d, R = 0;
+  for (int j = 0; j < d; j++) cc[j] = 0;
+  for (int s = 0; s < cnt; s++)
+    for (int j = 0; j < d; j++) cc[j] += t->Pc[(size_t)(s0 + s) * d + j];
+  for (int j = 0; j < d; j++) cc[j] /= cnt > 0 ? cnt : 1;
+  for (int s = 0; s < cnt; s++) {
+    R = fmax(R, sqrt(d2row(d, cc, t->Pc + (size_t)(s0 + s) * d)));
+    for (int j = 0; j < d; j++) W[(size_t)s * d + j] = t->Pc[(size_t)(s0 + s) * d + j] - cc[j];
+  }
+  t->R[c] = R;
+  for (int a = 0; a < NN_FRAME; a++) { /* next direction: the member farthest from the span so far */
+    double *u = U + (size_t)a * d, bn = 0;
+    int bs = -1;
+    for (int s = 0; s < cnt; s++) {
+      double v = dot(d, W + (size_t)s * d, W + (size_t)s * d);
+      if (v > bn) { bn = v; bs = s; }
+    }
+    for (int j = 0; j < d; j++) u[j] = bs < 0 ? 0 : W[(size_t)bs * d + j];
+    for (int pass = 0; pass < 2; pass++) /* re-orthogonalised */
+      for (int a2 = 0; a2 < a; a2++) {
+        const double *v = U + (size_t)a2 * d;
+        double p = dot(d, u, v);
+        for (int j = 0; j < d; j++) u[j] -= p * v[j];
+      }
+    /* a residual at rounding level (the members span fewer than NN_FRAME directions) would normalise
+     * to a vector far from orthogonal to the others: such directions stay zero */
+    double nu = sqrt(dot(d, u, u));
+    int keep = sqrt(bn) > 1e-9 * R && nu > 0.5 * sqrt(bn);
+    for (int j = 0; j < d; j++) u[j] = keep ? u[j] / nu : 0;
+    for (int s = 0; s < cnt && keep; s++) {
+      double *w = W + (size_t)s * d, p = dot(d, w, u);
+      for (int j = 0; j < d; j++) w[j] -= p * u[j];
     }
   }
-  /* query-centre squared distances by one dgemm; rounding is absorbed into lower/upper bounds */
+  double dev = 0; /* the bound needs ‖Uᵀx‖ ≤ ‖x‖: check orthonormality, else no frame at all */
+  for (int a = 0; a < NN_FRAME; a++)
+    for (int a2 = 0; a2 <= a; a2++) {
+      double p = dot(d, U + (size_t)a * d, U + (size_t)a2 * d), n2 = dot(d, U + (size_t)a * d, U + (size_t)a * d);
+      dev = fmax(dev, fabs(p - (a == a2 ? n2 : 0))); /* zero rows are fine */
+      if (a == a2 && n2 != 0) dev = fmax(dev, fabs(n2 - 1));
+    }
+  if (!(dev < 1e-12))
+    for (size_t j = 0; j < (size_t)NN_FRAME * d; j++) U[j] = 0;
+  for (int s = 0; s < cnt; s++) { /* coordinates and residuals from scratch, not from the updates */
+    const double *b = t->Pc + (size_t)(s0 + s) * d;
+    double *w = W, y[NN_FRAME];
+    for (int j = 0; j < d; j++) w[j] = b[j] - cc[j];
+    for (int a = 0; a < NN_FRAME; a++) y[a] = dot(d, w, U + (size_t)a * d);
+    for (int a = 0; a < NN_FRAME; a++) {
+      for (int j = 0; j < d; j++) w[j] -= y[a] * U[(size_t)a * d + j];
+      t->Y[(size_t)a * ndb + s0 + s] = y[a];
+    }
+    t->H[s0 + s] = sqrt(dot(d, w, w));
+  }
+}
+
+static int index_build(int ndb, int d, const double *db, int lddb, int nc, const int *asg, nn_index *t) {
+  memset(t, 0, sizeof *t);
+  t->nc = nc;
+  t->d = d;
+  t->start = calloc((size_t)nc + 1, sizeof(int));
+  t->orig = malloc(sizeof(int) * ndb);
+  t->slot = malloc(sizeof(int) * ndb);
+  t->Pc = malloc(sizeof(double) * (size_t)ndb * d);
+  t->cen = malloc(sizeof(double) * (size_t)nc * d);
+  t->R = malloc(sizeof(double) * nc);
+  t->U = malloc(sizeof(double) * (size_t)nc * NN_FRAME * d);
+  t->Y = malloc(sizeof(double) * (size_t)ndb * NN_FRAME);
+  t->H = malloc(sizeof(double) * ndb);
+  int *fill = malloc(sizeof(int) * nc);
+  if (!t->start || !t->orig || !t->slot || !t->Pc || !t->cen || !t->R || !t->U || !t->Y || !t->H || !fill) {
+    free(fill);
+    index_free(t);
+    return 1;
+  }
+  for (int b = 0; b < ndb; b++) t->start[asg[b] + 1]++;
+  for (int c = 0; c < nc; c++) {
+    if (t->start[c + 1] > t->maxcnt) t->maxcnt = t->start[c + 1];
+    t->start[c + 1] += t->start[c];
+  }
+  memcpy(fill, t->start, sizeof(int) * nc);
+  for (int b = 0; b < ndb; b++) {
+    int s = fill[asg[b]]++;
+    t->orig[s] = b;
+    t->slot[b] = s;
+  }
+  free(fill);
+  for (int j = 0; j < d; j++)
+    for (int b = 0; b < ndb; b++) t->Pc[(size_t)t->slot[b] * d + j] = db[b + (size_t)lddb * j];
+  int fail = 0;
+#pragma omp parallel
+  {
+    double *W = malloc(sizeof(double) * (size_t)(t->maxcnt > 0 ? t->maxcnt : 1) * d);
+    if (!W) {
+#pragma omp atomic write
+      fail = 1;
+    }
+#pragma omp for schedule(dynamic, 4) nowait /* the region's end is the barrier */
+    for (int c = 0; c < nc; c++)
+      if (W) cluster_setup(t, ndb, c, W);
+    free(W);
+  }
+  if (fail) index_free(t);
+  return fail;
+}
+
+/* Per-thread scratch of the search. */
+typedef struct nn_scratch {
+  double *qr, *lo2, *L2;
+  int *list;
+} nn_scratch;
+
+/* Scan cluster c for query qr: the exact ‖q − c‖ and frame coordinates in one pass, then the frame
+ * bound for every member, then exact distances for the members it cannot exclude. *best, *bi: the
+ * running minimum (ties: lower index). NaN bounds never exclude. */
+static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, double *best, int *bi) {
+  const int d = t->d, s0 = t->start[c], cnt = t->start[c + 1] - s0;
+  if (cnt == 0) return;
+  const double *qr = w->qr, *cc = t->cen + (size_t)c * d, *U = t->U + (size_t)c * NN_FRAME * d;
+  double s2 = 0, z[NN_FRAME];
+  {
+    double z0 = 0, z1 = 0, z2 = 0, z3 = 0;
+    const double *U0 = U, *U1 = U + (NN_FRAME > 1) * d, *U2 = U + 2 * (NN_FRAME > 2) * d, *U3 = U + 3 * (NN_FRAME > 3) * d;
+#pragma omp simd reduction(+ : s2, z0, z1, z2, z3)
+    for (int j = 0; j < d; j++) {
+      double wj = qr[j] - cc[j];
+      s2 += wj * wj;
+      z0 += wj * U0[j];
+      z1 += wj * U1[j];
+      z2 += wj * U2[j];
+      z3 += wj * U3[j];
+    }
+    double zz[4] = {z0, z1, z2, z3};
+    for (int a = 0; a < NN_FRAME; a++) z[a] = zz[a];
+  }
+  double rb = sqrt(*best), dq = sqrt(s2), margin = 1e-9 * (dq + t->R[c] + rb);
+  if (dq - t->R[c] > rb + margin) return;
+  double h2 = s2;
+  for (int a = 0; a < NN_FRAME; a++) h2 -= z[a] * z[a];
+  /* h2 loses digits to cancellation: its error, ≤ ~7 d ε ‖q − c‖², moves h_q by up to √(7 d ε) ‖q − c‖
+   * (2.8e-7 ‖q − c‖ at d = 100); fm covers it 3x over */
+  double hq = sqrt(h2 > 0 ? h2 : 0), fm = sqrt(1e-13 * (d + 8)) * dq, lim = rb + margin + fm, lim2 = lim * lim;
+  const double *H = t->H + s0, *Y0 = t->Y + s0, *Y1 = Y0 + (NN_FRAME > 1) * ndb, *Y2 = Y0 + 2 * (NN_FRAME > 2) * ndb,
+               *Y3 = Y0 + 3 * (NN_FRAME > 3) * ndb;
+  double *L2 = w->L2, z0 = z[0], z1 = NN_FRAME > 1 ? z[1] : 0, z2 = NN_FRAME > 2 ? z[2] : 0, z3 = NN_FRAME > 3 ? z[3] : 0;
+#pragma omp simd
+  for (int s = 0; s < cnt; s++) {
+    double l = (hq - H[s]) * (hq - H[s]) + (z0 - Y0[s]) * (z0 - Y0[s]);
+    if (NN_FRAME > 1) l += (z1 - Y1[s]) * (z1 - Y1[s]);
+    if (NN_FRAME > 2) l += (z2 - Y2[s]) * (z2 - Y2[s]);
+    if (NN_FRAME > 3) l += (z3 - Y3[s]) * (z3 - Y3[s]);
+    L2[s] = l;
+  }
+  for (int s = 0; s < cnt; s++) {
+    if (L2[s] > lim2) continue; /* NaN: never excluded */
+    double e = d2row(d, qr, t->Pc + (size_t)(s0 + s) * d);
+    int o = t->orig[s0 + s];
+    if (e < *best || (e == *best && o < *bi)) {
+      *best = e;
+      *bi = o;
+      rb = sqrt(e);
+      lim = rb + 1e-9 * (dq + t->R[c] + rb) + fm;
+      lim2 = lim * lim;
+    }
+  }
+}
+
+/* The search: query-centre squared distances by one dgemm (rounding absorbed into a lower bound)
+ * decide which clusters to open; the first bound is the guess's distance (if any), then the closest
+ * centre's cluster is scanned first. Returns 1 when out of memory. */
+static int search(const nn_index *t, int ndb, int nq, const double *q, int ldq, const int *guess, int *idx,
+                  double *dist2) {
+  int nc = t->nc, d = t->d;
   double *DQ = malloc(sizeof(double) * (size_t)nq * nc), *cn = malloc(sizeof(double) * nc);
   double *qn = malloc(sizeof(double) * nq);
   int fail = !DQ || !cn || !qn;
   if (!fail) {
-    for (int c = 0; c < nc; c++) {
-      double t = 0;
-      for (int j = 0; j < d; j++) t += cen[(size_t)c * d + j] * cen[(size_t)c * d + j];
-      cn[c] = t;
-    }
+    for (int c = 0; c < nc; c++) cn[c] = dot(d, t->cen + (size_t)c * d, t->cen + (size_t)c * d);
     for (int i = 0; i < nq; i++) qn[i] = 0;
     for (int j = 0; j < d; j++)
       for (int i = 0; i < nq; i++) qn[i] += q[i + (size_t)ldq * j] * q[i + (size_t)ldq * j];
-    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, nq, nc, d, 1.0, q, ldq, cen, d, 0.0, DQ, nq);
+    /* DQ (nc x nq): one contiguous column per query */
+    cblas_dgemm(CblasColMajor, CblasTrans, CblasTrans, nc, nq, d, 1.0, t->cen, d, q, ldq, 0.0, DQ, nc);
   }
-#pragma omp parallel if (!fail)
+  const int go = !fail; /* every thread meets every worksharing loop; a thread without scratch skips */
+#pragma omp parallel if (go)
   {
-    double *qr = malloc(sizeof(double) * d), *dlo = malloc(sizeof(double) * nc), *dhi = malloc(sizeof(double) * nc);
-    if (fail || !qr || !dlo || !dhi) {
+    nn_scratch w;
+    w.qr = malloc(sizeof(double) * d);
+    w.lo2 = malloc(sizeof(double) * nc);
+    w.L2 = malloc(sizeof(double) * (t->maxcnt > 0 ? t->maxcnt : 1));
+    w.list = malloc(sizeof(int) * nc);
+    int ok = go && w.qr && w.lo2 && w.L2 && w.list;
+    if (!ok) {
 #pragma omp atomic write
       fail = 1;
-    } else {
-#pragma omp for schedule(dynamic, 32)
+    }
+    const double tq = 1e-12 * (d + 8);
+    if (go) {
+#pragma omp for schedule(dynamic, 32) nowait /* the region's end is the barrier */
       for (int i = 0; i < nq; i++) {
-        for (int j = 0; j < d; j++) qr[j] = q[i + (size_t)ldq * j];
+        if (!ok) continue;
+        const double *Di = DQ + (size_t)nc * i;
+        double qi = qn[i], *lo2 = w.lo2;
+        for (int j = 0; j < d; j++) w.qr[j] = q[i + (size_t)ldq * j];
+        for (int c = 0; c < nc; c++) lo2[c] = (qi - 2.0 * Di[c] + cn[c]) - tq * (qi + cn[c]);
         int c0 = 0;
-        double b0 = INFINITY;
-        for (int c = 0; c < nc; c++) {
-          double v = qn[i] - 2.0 * DQ[i + (size_t)nq * c] + cn[c], tol = 1e-12 * (d + 8) * (qn[i] + cn[c]);
-          dlo[c] = sqrt(fmax(0.0, v - tol));
-          dhi[c] = sqrt(fmax(0.0, v + tol));
-          if (v < b0) { b0 = v; c0 = c; }
-        }
+        for (int c = 1; c < nc; c++)
+          if (lo2[c] < lo2[c0]) c0 = c;
         double best = INFINITY;
         int bi = -1;
-        /* the closest centre's cluster first (a tight bound at once), then every cluster the bound
-         * cannot exclude; inside a cluster, |‖q − c‖ − ‖b − c‖| ≤ ‖q − b‖ skips most points */
-        for (int t = -1; t < nc; t++) {
-          int c = t < 0 ? c0 : t;
-          if (t == c0) continue;
-          double rb = sqrt(best), margin = 1e-9 * (dhi[c] + R[c] + rb);
-          if (dlo[c] - R[c] > rb + margin) continue;
-          for (int s = start[c]; s < start[c + 1]; s++) {
-            if (dlo[c] - rp[s] > rb + margin || rp[s] - dhi[c] > rb + margin) continue;
-            double e = d2row(d, qr, Pc + (size_t)s * d);
-            if (e < best || (e == best && orig[s] < bi)) {
-              best = e;
-              bi = orig[s];
-              rb = sqrt(best);
-              margin = 1e-9 * (dhi[c] + R[c] + rb);
-            }
-          }
+        if (guess) {
+          bi = guess[i];
+          best = d2row(d, w.qr, t->Pc + (size_t)t->slot[bi] * d);
+          if (!(best < INFINITY)) { best = INFINITY; bi = -1; } /* as unguided: no infinite or NaN match */
+        }
+        scan_cluster(t, ndb, c0, &w, &best, &bi);
+        /* every other cluster the bound cannot exclude: ‖q − c‖ > rb + R, tested on squares */
+        double rb = sqrt(best);
+        int n = 0;
+        for (int c = 0; c < nc; c++) {
+          double thr = (rb + t->R[c]) * (1 + 1e-9);
+          w.list[n] = c;
+          n += !(lo2[c] > thr * thr) && c != c0;
+        }
+        for (int k = 0; k < n; k++) {
+          int c = w.list[k];
+          double thr = (sqrt(best) + t->R[c]) * (1 + 1e-9);
+          if (lo2[c] > thr * thr) continue;
+          scan_cluster(t, ndb, c, &w, &best, &bi);
         }
         if (bi < 0) { /* NaN coordinates: no finite distance, fall back to the first point */
           bi = 0;
-          best = d2row(d, qr, P);
+          best = d2row(d, w.qr, t->Pc + (size_t)t->slot[0] * d);
         }
         idx[i] = bi;
         if (dist2) dist2[i] = best;
       }
     }
-    free(qr);
-    free(dlo);
-    free(dhi);
+    free(w.qr); free(w.lo2); free(w.L2); free(w.list);
   }
   free(DQ);
   free(cn);
   free(qn);
-  free(P); free(Pc); free(cen); free(R); free(rp); free(asg); free(start); free(orig);
+  return fail;
+}
+
+ss_status ss_nn_exact_guided(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq,
+                             const int *part, const int *guess, int *idx, double *dist2, ss_error *err) {
+  if (ndb < 1 || nq < 0 || d < 1 || lddb < ndb || ldq < nq)
+    return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: bad sizes (ndb %d, nq %d, d %d)", ndb, nq, d);
+  if (guess)
+    for (int i = 0; i < nq; i++)
+      if (guess[i] < 0 || guess[i] >= ndb)
+        return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: guess %d = %d out of range [0,%d)", i, guess[i], ndb);
+  int nc = default_clusters(ndb);
+  if (part) {
+    nc = 0;
+    for (int b = 0; b < ndb; b++) {
+      if (part[b] < 0 || part[b] >= ndb)
+        return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: cluster label %d = %d out of range [0,%d)", b,
+                       part[b], ndb);
+      if (part[b] >= nc) nc = part[b] + 1;
+    }
+  }
+  if (nq == 0) return SS_OK;
+  if (ndb < 256) return ss_nn_brute(ndb, nq, d, db, lddb, q, ldq, idx, dist2, err);
+  int *own = NULL;
+  if (!part) {
+    if (!(own = malloc(sizeof(int) * ndb))) return ss_fail(err, SS_ERR_NOMEM, "nearest neighbours: out of memory");
+    ss_status st = ss_nn_partition(ndb, d, db, lddb, nc, own, err);
+    if (st) {
+      free(own);
+      return st;
+    }
+  }
+  nn_index t;
+  int fail = index_build(ndb, d, db, lddb, nc, part ? part : own, &t);
+  free(own);
+  if (!fail) {
+    fail = search(&t, ndb, nq, q, ldq, guess, idx, dist2);
+    index_free(&t);
+  }
   if (fail) return ss_fail(err, SS_ERR_NOMEM, "nearest neighbours: out of memory");
   return SS_OK;
+}
+
+ss_status ss_nn_exact(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
+                      double *dist2, ss_error *err) {
+  return ss_nn_exact_guided(ndb, nq, d, db, lddb, q, ldq, NULL, NULL, idx, dist2, err);
 }

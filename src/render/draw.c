@@ -129,8 +129,9 @@ void ss_draw_colorbar(unsigned char *rgb, int w, int h, int x, int y, int bw, in
     char buf[32];
     snprintf(buf, sizeof buf, "%.3g", v[k]);
     int ty = y + (int)((double)k / 2 * (bh - 1)) - th / 2;
-    ss_image_rect(rgb, w, h, x + bw, y + (int)((double)k / 2 * (bh - 1)), 3 * text_scale, 1, text_rgb);
-    ss_draw_text(rgb, w, h, x + bw + 4 * text_scale, ty, text_scale, text_rgb, buf);
+    /* a short tick, then a clear gap: a tick touching the label reads as a minus sign ("-0.1") */
+    ss_image_rect(rgb, w, h, x + bw, y + (int)((double)k / 2 * (bh - 1)), 2 * text_scale, 1, text_rgb);
+    ss_draw_text(rgb, w, h, x + bw + 5 * text_scale, ty, text_scale, text_rgb, buf);
   }
   /* above the top tick label, which reaches th/2 above the bar */
   if (title && *title) ss_draw_text(rgb, w, h, x, y - 2 * th - 2 * text_scale, text_scale, text_rgb, title);

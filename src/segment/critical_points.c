@@ -181,8 +181,8 @@ ss_status ss_fiedler_critical_points(const ss_mesh *m, const double *phi, int cl
   }
 
   if (type) memcpy(type, ty, (size_t)nv);
-  *points = realloc(list, sizeof(int) * (size_t)(n > 0 ? n : 1));
-  if (!*points) *points = list;
+  int *shrunk = realloc(list, sizeof(int) * (size_t)(n > 0 ? n : 1)); /* NULL: keep the longer block */
+  *points = shrunk ? shrunk : list;
   list = NULL;
   *npoints = n;
 done:

@@ -1,0 +1,173 @@
+/* The probe functions of one shape for Eq. (1), in its reduced basis: WKS descriptors, wave-kernel
+ * maps of the landmarks (NO17), and extra paired functions (the segments) raw or wave-filtered.
+ *
+ * All filtered probes form one virtual column list [WKS | landmark 1 | … | landmark nl | extra 1 | …]
+ * with n_energies columns per item, of which every descr_step-th column is kept (as pyFM does). The
+ * base probes are the kept columns before the extras; the extra probes are the kept columns after
+ * them — so building them apart gives exactly the columns of building them together, and a pair's
+ * base probes can be computed once per shape and landmark set and shared by STD, ASA and DIFF. Only
+ * the kept columns are synthesised (in the spectral domain, then one dgemm). */
+#include "specseg/fmap.h"
+#include "specseg/laplacian.h"
+
+#include <cblas.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static ss_status check_shape(const ss_fmap_shape *s, int k, ss_error *err) {
+  if (!s || !s->mesh || !s->evals || !s->evecs || s->mesh->nv < 1)
+    return ss_fail(err, SS_ERR_INVALID, "probes: shape incomplete");
+  if (s->kev < k) return ss_fail(err, SS_ERR_INVALID, "probes: shape has %d eigenpairs, %d needed", s->kev, k);
+  return SS_OK;
+}
+
+static ss_status check_options(const ss_fmap_match_options *o, ss_error *err) {
+  if (o->k < 3 || o->n_energies < 1 || o->descr_step < 1 || !(o->sigma_factor > 0))
+    return ss_fail(err, SS_ERR_INVALID, "probes: invalid options (k %d, energies %d, step %d)", o->k, o->n_energies,
+                   o->descr_step);
+  return SS_OK;
+}
+
+/* Kept virtual columns c in [c_from, c_to) (c ≡ 0 mod step) as functions F (n x *nf, malloc'd).
+ * Item 0 (columns 0..ne-1) is the WKS; item i ≥ 1 is the wave filter of the function whose
+ * spectral coefficients are coef[:, i − item0] (items below item0 must not be in the range). */
+static ss_status kept_columns(int n, int k, const double *evals, const double *evecs, const ss_fmap_match_options *o,
+                              int item0, const double *coef, int c_from, int c_to, double **F, int *nf,
+                              ss_error *err) {
+  const int ne = o->n_energies, step = o->descr_step;
+  int first = (c_from + step - 1) / step * step, ncol = first < c_to ? (c_to - first + step - 1) / step : 0;
+  int nwks = 0, nflt = 0;
+  for (int c = first; c < c_to; c += step) {
+    if (c < ne) nwks++;
+    else nflt++;
+  }
+  double *G = malloc(sizeof(double) * (size_t)ne * k), *out = malloc(sizeof(double) * (size_t)n * (ncol > 0 ? ncol : 1));
+  double *Gw = malloc(sizeof(double) * (size_t)(nwks > 0 ? nwks : 1) * k);
+  double *fc = malloc(sizeof(double) * (size_t)k * (nflt > 0 ? nflt : 1)), *sq = NULL;
+  ss_status st = SS_OK;
+  if (!G || !out || !Gw || !fc) { st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory"); goto done; }
+  if ((st = ss_wks_filters(evals, k, ne, o->sigma_factor, G, err))) goto done;
+  int t = 0, f = 0;
+  for (int c = first; c < c_to; c += step) {
+    int item = c / ne, j = c % ne;
+    if (item == 0)
+      for (int i = 0; i < k; i++) Gw[t + (size_t)nwks * i] = G[j + (size_t)ne * i];
+    else
+      for (int i = 0; i < k; i++) fc[i + (size_t)k * f] = G[j + (size_t)ne * i] * coef[i + (size_t)k * (item - item0)];
+    t += item == 0, f += item != 0;
+  }
+  if (nwks > 0) { /* WKS: Σ_i G[j,i] φ_i(x)² */
+    if (!(sq = malloc(sizeof(double) * (size_t)n * k))) { st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory"); goto done; }
+    for (size_t i = 0; i < (size_t)n * k; i++) sq[i] = evecs[i] * evecs[i];
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, n, nwks, k, 1.0, sq, n, Gw, nwks, 0.0, out, n);
+  }
+  if (nflt > 0)
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, nflt, k, 1.0, evecs, n, fc, k, 0.0, out + (size_t)n * nwks, n);
+  *F = out;
+  *nf = ncol;
+  out = NULL;
+done:
+  free(G), free(out), free(Gw), free(fc), free(sq);
+  return st;
+}
+
+/* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked). */
+static ss_status finish(int n, int k, const double *evecs, const double *M, double *F, int p, int with_operators,
+                        ss_fmap_probes *out, ss_error *err) {
+  for (int c = 0; c < p; c++) {
+    double *f = F + (size_t)n * c, s = 0;
+    for (int x = 0; x < n; x++) s += M[x] * f[x] * f[x];
+    if (s > 0) cblas_dscal(n, 1.0 / sqrt(s), f, 1);
+  }
+  memset(out, 0, sizeof *out);
+  out->k = k, out->p = p, out->nd = with_operators ? p : 0;
+  out->A = malloc(sizeof(double) * (size_t)k * (p > 0 ? p : 1));
+  if (with_operators) out->P = malloc(sizeof(double) * (size_t)k * (k + 1) / 2 * (p > 0 ? p : 1));
+  ss_status st = SS_OK;
+  if (!out->A || (with_operators && !out->P)) st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
+  if (!st) st = ss_fmap_project(n, k, evecs, M, p, F, out->A, err);
+  if (!st && with_operators) st = ss_fmap_mult_operators_packed(n, k, evecs, M, p, F, out->P, err);
+  if (st) ss_fmap_probes_free(out);
+  return st;
+}
+
+/* the shape's lumped masses: its own, or barycentric ones in *own */
+static ss_status masses(const ss_fmap_shape *s, double **own, const double **M, ss_error *err) {
+  *own = NULL;
+  *M = s->M;
+  if (s->M) return SS_OK;
+  if (!(*own = malloc(sizeof(double) * (size_t)s->mesh->nv))) return ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
+  ss_status st = ss_mass_lumped(s->mesh, SS_MASS_BARYCENTRIC, *own, err);
+  *M = *own;
+  return st;
+}
+
+ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
+                              int with_operators, ss_fmap_probes *out, ss_error *err) {
+  ss_fmap_match_options o;
+  if (opts) o = *opts;
+  else ss_fmap_match_default_options(&o);
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_status st = check_options(&o, err);
+  if (!st) st = check_shape(s, o.k, err);
+  if (st) return st;
+  const int n = s->mesh->nv, k = o.k;
+  if (nl < 0 || (nl > 0 && !lm)) return ss_fail(err, SS_ERR_INVALID, "probes: missing landmarks");
+  for (int l = 0; l < nl; l++)
+    if (lm[l] < 0 || lm[l] >= n) return ss_fail(err, SS_ERR_INVALID, "landmark %d: vertex %d out of range [0,%d)", l, lm[l], n);
+  double *own = NULL, *coef = malloc(sizeof(double) * (size_t)k * (nl > 0 ? nl : 1)), *F = NULL;
+  const double *M = NULL;
+  int p = 0;
+  if (!coef) { st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory"); goto done; }
+  if ((st = masses(s, &own, &M, err))) goto done;
+  /* landmark deltas in the spectral domain: φ_i(l) (the L²-delta δ_l / M_l projects to these) */
+  for (int l = 0; l < nl; l++)
+    for (int i = 0; i < k; i++) coef[i + (size_t)k * l] = s->evecs[lm[l] + (size_t)n * i];
+  if ((st = kept_columns(n, k, s->evals, s->evecs, &o, 1, coef, 0, o.n_energies * (1 + nl), &F, &p, err))) goto done;
+  st = finish(n, k, s->evecs, M, F, p, with_operators, out, err);
+done:
+  free(own), free(coef), free(F);
+  return st;
+}
+
+ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const double *extra, ss_probe_filter filter,
+                               const ss_fmap_match_options *opts, int with_operators, ss_fmap_probes *out,
+                               ss_error *err) {
+  ss_fmap_match_options o;
+  if (opts) o = *opts;
+  else ss_fmap_match_default_options(&o);
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_status st = check_options(&o, err);
+  if (!st) st = check_shape(s, o.k, err);
+  if (st) return st;
+  if (nl < 0 || nextra < 0 || (nextra > 0 && !extra)) return ss_fail(err, SS_ERR_INVALID, "probes: missing extra probes");
+  if (filter != SS_PROBE_RAW && filter != SS_PROBE_WAVE) return ss_fail(err, SS_ERR_INVALID, "probes: unknown filter %d", (int)filter);
+  const int n = s->mesh->nv, k = o.k, ne = o.n_energies;
+  double *own = NULL, *coef = NULL, *F = NULL;
+  const double *M = NULL;
+  int p = 0;
+  if ((st = masses(s, &own, &M, err))) goto done;
+  if (filter == SS_PROBE_WAVE) {
+    if (!(coef = malloc(sizeof(double) * (size_t)k * (nextra > 0 ? nextra : 1)))) {
+      st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
+      goto done;
+    }
+    if ((st = ss_fmap_project(n, k, s->evecs, M, nextra, extra, coef, err))) goto done;
+    if ((st = kept_columns(n, k, s->evals, s->evecs, &o, 1 + nl, coef, ne * (1 + nl), ne * (1 + nl + nextra), &F, &p, err)))
+      goto done;
+  } else {
+    if (!(F = malloc(sizeof(double) * (size_t)n * (nextra > 0 ? nextra : 1)))) {
+      st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
+      goto done;
+    }
+    memcpy(F, extra, sizeof(double) * (size_t)n * nextra);
+    p = nextra;
+  }
+  st = finish(n, k, s->evecs, M, F, p, with_operators, out, err);
+done:
+  free(own), free(coef), free(F);
+  return st;
+}

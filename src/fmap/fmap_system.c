@@ -1,0 +1,222 @@
+/* The normal equations of Eq. (1) (Nogneng & Ovsjanikov 2017), assembled once for a pair's base
+ * probes and solved for several extra-probe blocks (STD / ASA / DIFF share everything but the
+ * segments).
+ *
+ * With x = vec(C) (column-major, index r + k_T·c), E(C) = xᵀ N x − 2 bᵀ x + const where
+ *   N = w_d (A Aᵀ ⊗ I) + w_l diag((λ_T,r − λ_S,c)²)
+ *     + w_c Σ_i [ (D_i^S)² ⊗ I + I ⊗ (D_i^T)² − 2 D_i^S ⊗ D_i^T ],   b = w_d vec(B Aᵀ)
+ * (the D's are symmetric). The only expensive block, Σ_i D_i^S ⊗ D_i^T, is one dgemm of the packed
+ * upper triangles of the D's. At k = 50 with ~120 probes, N is 2500 x 2500 with a condition number of
+ * ~3e3 on FAUST (LAPACK dpocon): CG to a 1e-8 relative residual needs a few hundred iterations of
+ * either a pass over the 50 MB N or 4·k³·p flops, both slower than one compute-bound Cholesky. The
+ * Cholesky runs in single precision with iterative refinement in double (LAPACK dsposv: ~25% faster
+ * than dposv here; it falls back to a double factorisation by itself when refinement stalls), so the
+ * solution has double accuracy. */
+#include "specseg/fmap.h"
+
+#include <cblas.h>
+#include <lapacke.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct ss_fmap_system {
+  int k_S, k_T;
+  size_t m;
+  ss_fmap_weights w;
+  double *N;   /* m x m, base probes, before the constant column is fixed */
+  double *rhs; /* m */
+};
+
+static inline size_t pk(int a, int b) { /* packed upper-triangle index, a <= b */
+  return (size_t)b * (b + 1) / 2 + a;
+}
+
+void ss_fmap_probes_free(ss_fmap_probes *p) {
+  if (!p) return;
+  free(p->A);
+  free(p->P);
+  memset(p, 0, sizeof *p);
+}
+
+/* Σ_i D_i² (k x k) from packed operators (nd columns of P) */
+static ss_status sum_squares_packed(int k, int nd, const double *P, double *S, ss_error *err) {
+  memset(S, 0, sizeof(double) * (size_t)k * k);
+  if (nd <= 0) return SS_OK;
+  double *D = malloc(sizeof(double) * (size_t)k * k);
+  if (!D) return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
+  const size_t kk = (size_t)k * (k + 1) / 2;
+  for (int i = 0; i < nd; i++) {
+    const double *p = P + kk * i;
+    for (int b = 0; b < k; b++)
+      for (int a = 0; a <= b; a++) D[a + (size_t)k * b] = D[b + (size_t)k * a] = p[pk(a, b)];
+    cblas_dsyrk(CblasColMajor, CblasUpper, CblasNoTrans, k, k, 1.0, D, k, 1.0, S, k);
+  }
+  for (int b = 0; b < k; b++)
+    for (int a = 0; a < b; a++) S[b + (size_t)k * a] = S[a + (size_t)k * b];
+  free(D);
+  return SS_OK;
+}
+
+/* N += S-side block (same for every row r: N[(r,c1),(r,c2)] += SS[c1,c2]) and T-side block (same for
+ * every column c: N[(r1,c),(r2,c)] += ST[r1,r2]); either may be NULL. */
+static void add_side_blocks(int k_S, int k_T, size_t m, const double *SS, const double *ST, double *N) {
+  if (SS)
+    for (int c2 = 0; c2 < k_S; c2++)
+      for (int c1 = 0; c1 < k_S; c1++) {
+        double v = SS[c1 + (size_t)k_S * c2];
+        if (v == 0) continue;
+        for (int r = 0; r < k_T; r++) N[(r + (size_t)k_T * c1) + m * (r + (size_t)k_T * c2)] += v;
+      }
+  if (ST)
+    for (int c = 0; c < k_S; c++)
+      for (int r2 = 0; r2 < k_T; r2++)
+        for (int r1 = 0; r1 < k_T; r1++) N[(r1 + (size_t)k_T * c) + m * (r2 + (size_t)k_T * c)] += ST[r1 + (size_t)k_T * r2];
+}
+
+/* N += −2 w_c Σ_i D_i^S ⊗ D_i^T over the nd packed operator pairs: H = P_S P_Tᵀ, then
+ * N[(r,c1),(r2,c2)] += H[(c1,c2),(r,r2)]. */
+static ss_status add_cross_term(int k_S, int k_T, size_t m, int nd, const double *PS, const double *PT, double w_c,
+                                double *N, ss_error *err) {
+  const size_t kkS = (size_t)k_S * (k_S + 1) / 2, kkT = (size_t)k_T * (k_T + 1) / 2;
+  double *H = malloc(sizeof(double) * kkS * kkT);
+  if (!H) return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, (int)kkS, (int)kkT, nd, -2.0 * w_c, PS, (int)kkS, PT, (int)kkT,
+              0.0, H, (int)kkS);
+#pragma omp parallel for schedule(static)
+  for (int c2 = 0; c2 < k_S; c2++)
+    for (int r2 = 0; r2 < k_T; r2++) {
+      double *col = N + m * (r2 + (size_t)k_T * c2);
+      for (int c1 = 0; c1 < k_S; c1++) {
+        size_t hs = c1 <= c2 ? pk(c1, c2) : pk(c2, c1);
+        for (int r = 0; r < k_T; r++) {
+          size_t ht = r <= r2 ? pk(r, r2) : pk(r2, r);
+          col[r + (size_t)k_T * c1] += H[hs + kkS * ht];
+        }
+      }
+    }
+  free(H);
+  return SS_OK;
+}
+
+/* All terms of one probe block pair: data weight wd, commutativity weight wc over the first nd
+ * columns. */
+static ss_status add_block(int k_S, int k_T, size_t m, const ss_fmap_probes *S, const ss_fmap_probes *T, double wd,
+                           double wc, int use_ops, double *N, double *rhs, ss_error *err) {
+  ss_status st = SS_OK;
+  double *SS = calloc((size_t)k_S * k_S, sizeof(double)), *ST = calloc((size_t)k_T * k_T, sizeof(double));
+  if (!SS || !ST) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory"); goto done; }
+  const int p = S->p, nd = use_ops && wc > 0 ? S->nd : 0;
+  if (p > 0 && wd > 0) {
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_S, k_S, p, wd, S->A, k_S, S->A, k_S, 0.0, SS, k_S);
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_T, k_S, p, wd, T->A, k_T, S->A, k_S, 1.0, rhs, k_T);
+  }
+  if (nd > 0) {
+    double *tmp = malloc(sizeof(double) * (size_t)(k_S > k_T ? k_S : k_T) * (k_S > k_T ? k_S : k_T));
+    if (!tmp) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory"); goto done; }
+    if (!(st = sum_squares_packed(k_S, nd, S->P, tmp, err))) cblas_daxpy(k_S * k_S, wc, tmp, 1, SS, 1);
+    if (!st && !(st = sum_squares_packed(k_T, nd, T->P, tmp, err))) cblas_daxpy(k_T * k_T, wc, tmp, 1, ST, 1);
+    free(tmp);
+    if (st) goto done;
+  }
+  add_side_blocks(k_S, k_T, m, SS, nd > 0 ? ST : NULL, N);
+  if (nd > 0) st = add_cross_term(k_S, k_T, m, nd, S->P, T->P, wc, N, err);
+done:
+  free(SS);
+  free(ST);
+  return st;
+}
+
+static ss_status check_probes(const ss_fmap_probes *S, const ss_fmap_probes *T, int k_S, int k_T, const char *what,
+                              ss_error *err) {
+  if (!S || !T || S->k != k_S || T->k != k_T || S->p != T->p || S->p < 0 || (S->p > 0 && (!S->A || !T->A)))
+    return ss_fail(err, SS_ERR_INVALID, "fmap: %s probes: sizes do not match (k %d/%d, p %d/%d)", what, S ? S->k : -1,
+                   T ? T->k : -1, S ? S->p : -1, T ? T->p : -1);
+  if (S->nd != T->nd || S->nd < 0 || (S->nd > 0 && (!S->P || !T->P)))
+    return ss_fail(err, SS_ERR_INVALID, "fmap: %s probes: operator counts do not match", what);
+  return SS_OK;
+}
+
+ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const double *evals_T, const ss_fmap_probes *S,
+                             const ss_fmap_probes *T, const ss_fmap_weights *w, ss_fmap_system **out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "fmap: NULL output");
+  *out = NULL;
+  if (k_S < 1 || k_T < 1 || !w || !evals_S || !evals_T) return ss_fail(err, SS_ERR_INVALID, "fmap: bad sizes");
+  if (!(w->w_descr >= 0 && w->w_lap >= 0 && w->w_dcomm >= 0))
+    return ss_fail(err, SS_ERR_INVALID, "fmap: weights must be non-negative");
+  ss_status st = check_probes(S, T, k_S, k_T, "base", err);
+  if (st) return st;
+  const size_t m = (size_t)k_S * k_T;
+  if (m > 40000) return ss_fail(err, SS_ERR_INVALID, "fmap: %d x %d basis too large for the dense solver", k_T, k_S);
+  ss_fmap_system *s = calloc(1, sizeof *s);
+  if (!s) return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
+  s->k_S = k_S, s->k_T = k_T, s->m = m, s->w = *w;
+  s->N = calloc(m * m, sizeof(double));
+  s->rhs = calloc(m, sizeof(double));
+  if (!s->N || !s->rhs) {
+    ss_fmap_system_free(s);
+    return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m);
+  }
+  if (w->w_lap > 0)
+    for (int c = 0; c < k_S; c++)
+      for (int r = 0; r < k_T; r++) {
+        double d = evals_T[r] - evals_S[c];
+        size_t i = r + (size_t)k_T * c;
+        s->N[i + m * i] += w->w_lap * d * d;
+      }
+  if ((st = add_block(k_S, k_T, m, S, T, w->w_descr, w->w_dcomm, 1, s->N, s->rhs, err))) {
+    ss_fmap_system_free(s);
+    return st;
+  }
+  *out = s;
+  return SS_OK;
+}
+
+void ss_fmap_system_free(ss_fmap_system *s) {
+  if (!s) return;
+  free(s->N);
+  free(s->rhs);
+  free(s);
+}
+
+ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
+                               double w_extra, int extra_dcomm, double *C, ss_error *err) {
+  if (!s || !C) return ss_fail(err, SS_ERR_INVALID, "fmap: NULL system or output");
+  const int k_S = s->k_S, k_T = s->k_T;
+  const size_t m = s->m;
+  const int have_extra = S_extra || T_extra;
+  ss_status st = SS_OK;
+  if (have_extra && (st = check_probes(S_extra, T_extra, k_S, k_T, "extra", err))) return st;
+  if (have_extra && !(w_extra >= 0)) return ss_fail(err, SS_ERR_INVALID, "fmap: negative extra-probe weight %g", w_extra);
+  double *N = malloc(sizeof(double) * m * m), *rhs = malloc(sizeof(double) * m), *x = malloc(sizeof(double) * m);
+  if (!N || !rhs || !x) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
+  memcpy(N, s->N, sizeof(double) * m * m);
+  memcpy(rhs, s->rhs, sizeof(double) * m);
+  if (have_extra && S_extra->p > 0 &&
+      (st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, N, rhs, err)))
+    goto done;
+  /* fixed first column: move it to the right-hand side, keep the system SPD */
+  if (s->w.fix_constant) {
+    const double v = s->w.const_value;
+    if (v != 0)
+      for (size_t i = 0; i < m; i++) rhs[i] -= N[i] * v; /* column j = 0 */
+    for (int r = 0; r < k_T; r++) {
+      size_t j = r;
+      for (size_t i = 0; i < m; i++) N[i + m * j] = N[j + m * i] = 0.0;
+      N[j + m * j] = 1.0;
+      rhs[j] = r == 0 ? v : 0.0;
+    }
+  }
+  lapack_int iter = 0;
+  lapack_int info = LAPACKE_dsposv(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)m, rhs, (lapack_int)m, x,
+                                   (lapack_int)m, &iter);
+  if (info != 0) {
+    st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dsposv info %d)", (int)info);
+    goto done;
+  }
+  memcpy(C, x, sizeof(double) * m);
+done:
+  free(N);
+  free(rhs);
+  free(x);
+  return st;
+}

@@ -1,0 +1,152 @@
+/* The split functional-map pipeline: base / extra probes built apart equal the virtual column list
+ * built from the public WKS functions; a system assembled once and solved with extra blocks equals
+ * ss_fmap_solve on the concatenated probes; ss_fmap_match equals the pieces called by hand. */
+#include "specseg/fmap.h"
+#include "specseg/laplacian.h"
+#include "specseg/mesh.h"
+#include "specseg/spectrum.h"
+#include "testlib.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static unsigned rng_state = 77u;
+static double urand(void) {
+  rng_state = rng_state * 1664525u + 1013904223u;
+  return (rng_state >> 8) / 16777216.0;
+}
+
+static void sym_blocks(int k, int nd, double *D) {
+  for (int d = 0; d < nd; d++)
+    for (int a = 0; a < k; a++)
+      for (int b = 0; b <= a; b++) D[(size_t)k * k * d + a + k * b] = D[(size_t)k * k * d + b + k * a] = urand() - 0.5;
+}
+
+static void pack(int k, int nd, const double *D, double *P) {
+  size_t kk = (size_t)k * (k + 1) / 2;
+  for (int d = 0; d < nd; d++)
+    for (int b = 0; b < k; b++)
+      for (int a = 0; a <= b; a++) P[kk * d + (size_t)b * (b + 1) / 2 + a] = D[(size_t)k * k * d + a + k * b];
+}
+
+/* system + extras == ss_fmap_solve on [base | √w · extras], with and without the extras' operators */
+static void test_system_vs_solve(void) {
+  const int kS = 7, kT = 6, p = 5, q = 3, m = kS * kT;
+  double A[7 * 8], B[6 * 8], lS[7], lT[6], DS[8 * 49], DT[8 * 36];
+  for (int i = 0; i < kS * (p + q); i++) A[i] = urand() - 0.5;
+  for (int i = 0; i < kT * (p + q); i++) B[i] = urand() - 0.5;
+  for (int i = 0; i < kS; i++) lS[i] = i * 1.3 + urand();
+  for (int i = 0; i < kT; i++) lT[i] = i * 1.1 + urand();
+  sym_blocks(kS, p + q, DS);
+  sym_blocks(kT, p + q, DT);
+  double PS[8 * 28], PT[8 * 21];
+  pack(kS, p + q, DS, PS);
+  pack(kT, p + q, DT, PT);
+  const double wx = 0.37;
+  for (int fix = 0; fix <= 1; fix++)
+    for (int dcomm = 0; dcomm <= 1; dcomm++) {
+      ss_fmap_weights w = {0.9, 0.05, 1.3, fix, 0.8};
+      ss_fmap_probes bS = {kS, p, p, A, PS}, bT = {kT, p, p, B, PT};
+      ss_fmap_probes xS = {kS, q, dcomm ? q : 0, A + kS * p, PS + 28 * p}, xT = {kT, q, dcomm ? q : 0, B + kT * p, PT + 21 * p};
+      ss_fmap_system *sys = NULL;
+      double C1[42], C2[42], A2[7 * 8], B2[6 * 8], D2S[8 * 49], D2T[8 * 36];
+      CHECK(ss_fmap_system_new(kS, kT, lS, lT, &bS, &bT, &w, &sys, NULL) == SS_OK);
+      CHECK(ss_fmap_system_solve(sys, &xS, &xT, wx, dcomm, C1, NULL) == SS_OK);
+      /* reference: extras' data columns scaled by √wx; their operators only with dcomm */
+      memcpy(A2, A, sizeof A2);
+      memcpy(B2, B, sizeof B2);
+      for (int i = kS * p; i < kS * (p + q); i++) A2[i] *= sqrt(wx);
+      for (int i = kT * p; i < kT * (p + q); i++) B2[i] *= sqrt(wx);
+      memcpy(D2S, DS, sizeof D2S);
+      memcpy(D2T, DT, sizeof D2T);
+      CHECK(ss_fmap_solve(kS, kT, p + q, A2, B2, lS, lT, dcomm ? p + q : p, D2S, D2T, &w, C2, NULL) == SS_OK);
+      double d = 0, s = 0;
+      for (int i = 0; i < m; i++) d = fmax(d, fabs(C1[i] - C2[i])), s = fmax(s, fabs(C2[i]));
+      CHECK_MSG(d <= 1e-10 * s, "fix %d dcomm %d: max |C_sys - C_solve| = %g (scale %g)", fix, dcomm, d, s);
+      /* the base alone: no extras */
+      CHECK(ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, C1, NULL) == SS_OK);
+      CHECK(ss_fmap_solve(kS, kT, p, A, B, lS, lT, p, DS, DT, &w, C2, NULL) == SS_OK);
+      d = 0;
+      for (int i = 0; i < m; i++) d = fmax(d, fabs(C1[i] - C2[i]));
+      CHECK_MSG(d <= 1e-10 * s, "fix %d: base alone differs by %g", fix, d);
+      /* mismatched blocks are refused */
+      ss_fmap_probes bad = xT;
+      bad.p = q - 1;
+      ss_error e;
+      CHECK(ss_fmap_system_solve(sys, &xS, &bad, wx, dcomm, C1, &e) == SS_ERR_INVALID);
+      CHECK(ss_fmap_system_solve(sys, &xS, &xT, -1.0, dcomm, C1, &e) == SS_ERR_INVALID);
+      ss_fmap_system_free(sys);
+    }
+}
+
+/* base + extra probes == the virtual column list from ss_wks / ss_wks_landmarks / ss_wks_filter,
+ * every step-th column kept, normalised, projected */
+static void test_probes_split(void) {
+  ss_mesh mesh;
+  CHECK(ss_synth_icosphere(3, &mesh, NULL) == SS_OK);
+  for (int i = 0; i < mesh.nv; i++) { /* break the symmetry: distinct eigenvalues */
+    double *v = mesh.V + 3 * i;
+    v[0] *= 1.4 + 0.2 * v[1], v[2] *= 0.8;
+  }
+  const int n = mesh.nv, k = 20, ne = 30, step = 4, nl = 3, nx = 2;
+  double *ev = malloc(sizeof(double) * k), *phi = malloc(sizeof(double) * n * k), *M = malloc(sizeof(double) * n);
+  CHECK(ss_mesh_eigs(&mesh, k, ev, phi, NULL) == SS_OK);
+  CHECK(ss_mass_lumped(&mesh, SS_MASS_BARYCENTRIC, M, NULL) == SS_OK);
+  int lm[3] = {5, 100, 400};
+  double *X = malloc(sizeof(double) * n * nx);
+  for (int i = 0; i < n; i++) X[i] = mesh.V[3 * i] > 0, X[i + n] = mesh.V[3 * i + 2] > 0.3;
+  ss_fmap_match_options o;
+  ss_fmap_match_default_options(&o);
+  o.k = k, o.n_energies = ne, o.descr_step = step;
+  ss_fmap_shape s = {&mesh, M, ev, phi, k};
+  ss_fmap_probes base, wave, raw;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &base, NULL) == SS_OK);
+  CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &wave, NULL) == SS_OK);
+  CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_RAW, &o, 0, &raw, NULL) == SS_OK);
+  /* the virtual list, column by column */
+  int nall = ne * (1 + nl + nx);
+  double *L = malloc(sizeof(double) * (size_t)n * nall);
+  CHECK(ss_wks(n, k, ev, phi, M, ne, 7.0, L, NULL) == SS_OK);
+  CHECK(ss_wks_landmarks(n, k, ev, phi, M, ne, 7.0, nl, lm, L + (size_t)n * ne, NULL) == SS_OK);
+  CHECK(ss_wks_filter(n, k, ev, phi, M, ne, 7.0, nx, X, L + (size_t)n * ne * (1 + nl), NULL) == SS_OK);
+  int nb = (ne * (1 + nl) + step - 1) / step, nw = 0;
+  for (int c = nb * step; c < nall; c += step) nw++;
+  CHECK(base.p == nb && wave.p == nw && raw.p == nx && base.nd == nb && wave.nd == nw && raw.nd == 0);
+  double *a = malloc(sizeof(double) * k), dmax = 0, pmax = 0;
+  double *P = malloc(sizeof(double) * (size_t)k * (k + 1) / 2);
+  for (int c = 0, col = 0; c < nall && base.p == nb && wave.p == nw; c += step, col++) {
+    const ss_fmap_probes *pr = col < nb ? &base : &wave;
+    int j = col < nb ? col : col - nb;
+    CHECK(ss_fmap_project(n, k, phi, M, 1, L + (size_t)n * c, a, NULL) == SS_OK);
+    CHECK(ss_fmap_mult_operators_packed(n, k, phi, M, 1, L + (size_t)n * c, P, NULL) == SS_OK);
+    for (int i = 0; i < k; i++) dmax = fmax(dmax, fabs(a[i] - pr->A[i + (size_t)k * j]));
+    for (int i = 0; i < k * (k + 1) / 2; i++) pmax = fmax(pmax, fabs(P[i] - pr->P[i + (size_t)k * (k + 1) / 2 * j]));
+  }
+  CHECK_MSG(dmax < 1e-10 && pmax < 1e-10, "split probes differ from the virtual list: %g, %g", dmax, pmax);
+  /* raw extras: normalised indicator coefficients */
+  for (int j = 0; j < nx; j++) {
+    double nrm = 0;
+    for (int i = 0; i < n; i++) nrm += M[i] * X[i + (size_t)n * j] * X[i + (size_t)n * j];
+    CHECK(ss_fmap_project(n, k, phi, M, 1, X + (size_t)n * j, a, NULL) == SS_OK);
+    double d = 0;
+    for (int i = 0; i < k; i++) d = fmax(d, fabs(a[i] / sqrt(nrm) - raw.A[i + (size_t)k * j]));
+    CHECK_NEAR(d, 0, 1e-12);
+  }
+  /* bad input */
+  ss_error e;
+  int badlm[3] = {5, n, 2};
+  ss_fmap_probes t;
+  CHECK(ss_fmap_base_probes(&s, nl, badlm, &o, 1, &t, &e) == SS_ERR_INVALID);
+  o.k = k + 1;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &t, &e) == SS_ERR_INVALID);
+  ss_fmap_probes_free(&base), ss_fmap_probes_free(&wave), ss_fmap_probes_free(&raw);
+  free(ev), free(phi), free(M), free(X), free(L), free(a), free(P);
+  ss_mesh_free(&mesh);
+}
+
+int main(void) {
+  test_system_vs_solve();
+  test_probes_split();
+  TEST_MAIN_END();
+}
