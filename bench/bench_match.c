@@ -4,6 +4,8 @@
  *   bench_match [--data DIR] [--pairs N] [--seed S] [--k K] [--zoomout KMAX] [--energies E]
  *               [--step S] [--wdescr W] [--wlap W] [--wdcomm W] [--no-timing] [--verbose]
  *               [--zo-pairs N] [--timed-pairs N]   (ZoomOut / whole-match timing on the first N pairs only)
+ *               [--profile P] [--wextra W]          (ss_match_options.segment_profile, fmap.w_extra)
+ *               [--try SPEC]... [--diag]            (segment-probe experiments, see run_variants below)
  * Errors: mean over x of d_Y(Π(x), x) / √area(Y), exact geodesics (ss_map_geodesic_error).
  * Accuracy runs reuse one ss_shape_prep per shape (segmentation + 100 eigenpairs); the timed run
  * is a separate, complete ss_match per pair (DIFF, no ZoomOut). */
@@ -36,9 +38,10 @@ typedef struct slot {
   ss_shape_prep prep;
   int loaded;
   /* for --try (lazy): exact geodesic fields from every segment centre, on the input (cdist) and on
-   * the segmentation's work mesh pulled back through psi (wdist), n x m, divided by sqrt(area); exact
-   * distance to the nearest segment boundary (bdist, n) */
-  double *cdist, *wdist, *bdist, *gdist;
+   * the segmentation's work mesh pulled back through psi (wdist; gdist: its NPP22 graph), n x m,
+   * divided by sqrt(area); exact distance to the nearest segment boundary (bdist, n); landmark fields
+   * on the input (ldist, n x nl, --diag only) */
+  double *cdist, *wdist, *bdist, *gdist, *ldist;
 } slot;
 
 static int load(const char *dir, int id, const ss_match_options *o, int kev, slot *s) {
@@ -55,14 +58,15 @@ static int load(const char *dir, int id, const ss_match_options *o, int kev, slo
 }
 
 /* ---- --try SPEC: segment-probe variants against one STD system per pair ----------------------------
- * SPEC is comma-separated key=value: prof=ind|tent|soft|softw|window|erode|gtent|centre, par=P (tent,
- * gtent: radius factor; soft, softw: temperature / sqrt(area); window, erode: distance from the
- * segment boundary / sqrt(area)), filt=raw|wave, e=E0:E1:ES (WKS energies of the wave filter, default
+ * SPEC is comma-separated key=value: prof=ind|tent|soft|softw|softg|window|erode|gtent|centre|lib,
+ * par=P (tent, gtent: radius factor; soft, softw, softg: temperature / sqrt(area), softmin of the
+ * distances to all centres on the input / work mesh / work NPP22 graph; window, erode: distance from
+ * the segment boundary / sqrt(area); lib: ss_segment_probes with profile P), filt=raw|wave, e=E0:E1:ES (WKS energies of the wave filter, default
  * 0:100:5 = what DIFF uses), norm=col|fn (col: every column normalised, as the library does; fn: a
  * segment's bands keep their energies relative to its strongest band), we=W (data weight relative to
  * w_descr), wc=W (commutativity weight relative to w_dcomm; 0 = data term only), oracle=1 (Y's
  * functions are X's carried by the ground truth: what perfectly consistent segments would give). */
-enum { P_IND, P_TENT, P_SOFT, P_SOFTW, P_WINDOW, P_ERODE, P_GTENT, P_CENTRE, P_SOFTG };
+enum { P_IND, P_TENT, P_SOFT, P_SOFTW, P_WINDOW, P_ERODE, P_GTENT, P_CENTRE, P_SOFTG, P_LIB };
 typedef struct variant {
   char spec[200];
   int prof, filt, e0, e1, es, fnorm, oracle;
@@ -82,9 +86,9 @@ static int parse_variant(const char *spec, variant *v) {
     *eq = 0;
     const char *k = t, *val = eq + 1;
     if (!strcmp(k, "prof")) {
-      const char *names[] = {"ind", "tent", "soft", "softw", "window", "erode", "gtent", "centre", "softg"};
+      const char *names[] = {"ind", "tent", "soft", "softw", "window", "erode", "gtent", "centre", "softg", "lib"};
       v->prof = -1;
-      for (int i = 0; i < 9; i++)
+      for (int i = 0; i < 10; i++)
         if (!strcmp(val, names[i])) v->prof = i;
       if (v->prof < 0) return 1;
     } else if (!strcmp(k, "par")) v->par = atof(val);
@@ -203,7 +207,13 @@ static int variant_probes(const slot *s, const slot *fs, int np, const int *segs
     if (v->prof == P_CENTRE) {
       int cv = fs->prep.seg.centers[segs[q]];
       for (int i = 0; i < k; i++) a[i + (size_t)k * q] = ev[cv + (size_t)n * i];
-    } else profile(fs, segs[q], v, f + (size_t)n * q);
+    } else if (v->prof != P_LIB) profile(fs, segs[q], v, f + (size_t)n * q);
+  }
+  if (v->prof == P_LIB) { /* the library's ss_segment_probes, profile par */
+    double *E = NULL;
+    if (ss_segment_probes(&fs->prep.seg, np, segs, (int)v->par, &E, &e)) return 1;
+    memcpy(f, E, sizeof(double) * (size_t)n * np);
+    free(E);
   }
   if (v->prof != P_CENTRE && ss_fmap_project(n, k, ev, M, np, f, a, &e)) return 1;
   if (v->filt && ss_wks_filters(s->prep.evals, k, 100, 7.0, G, &e)) return 1;
@@ -267,6 +277,18 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
       b = (r >> 8) % 100;
     } while (a == b);
     if (load(dir, a, o, k, &S[a]) || load(dir, b, o, k, &S[b]) || shape_fields(&S[a]) || shape_fields(&S[b])) return 1;
+    const int trilat = diag;
+    for (int t = 0; trilat && t < 2; t++) { /* landmark fields on the input, for the diagnostic */
+      slot *sl = &S[t ? b : a];
+      if (sl->ldist) continue;
+      ss_geodesic_mesh *gm = NULL;
+      ss_error e2;
+      sl->ldist = malloc(sizeof(double) * (size_t)sl->m.nv * nl);
+      if (!sl->ldist || ss_geodesic_mesh_build(&sl->m, &gm, &e2) || ss_geodesic_fields(gm, lm, nl, 0, sl->ldist, &e2))
+        return 1;
+      ss_geodesic_mesh_free(gm);
+      for (size_t i = 0; i < (size_t)sl->m.nv * nl; i++) sl->ldist[i] /= sqrt(sl->prep.area);
+    }
     const slot *X = &S[a], *Y = &S[b];
     ss_error e;
     ss_segment_pairs pr;
@@ -301,7 +323,26 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
           if (X->cdist[lm[l] + (size_t)X->m.nv * pr.sx[q]] < 0.25 &&
               (near < 0 || X->cdist[lm[l] + (size_t)X->m.nv * pr.sx[q]] < X->cdist[lm[near] + (size_t)X->m.nv * pr.sx[q]]))
             near = l;
-        printf(" [L%d %d-%d %.2f %.3f %.3f]", near, pr.sx[q], pr.sy[q], un > 0 ? in / un : 0, Y->cdist[cx + (size_t)Y->m.nv * pr.sy[q]], pr.energy[q]);
+        /* trilateration diagnostic: the vertex of Y whose landmark distances best match c_X's */
+        double tri = NAN;
+        if (trilat) {
+          double best = INFINITY;
+          int yb = -1;
+          for (int y = 0; y < Y->m.nv; y++) {
+            double e2 = 0;
+            for (int l = 0; l < nl; l++) {
+              double dd = Y->ldist[y + (size_t)Y->m.nv * l] - X->ldist[cx + (size_t)X->m.nv * l];
+              e2 += dd * dd;
+            }
+            if (e2 < best) best = e2, yb = y;
+          }
+          ss_geodesic_mesh *gmy = NULL;
+          ss_error e3;
+          if (!ss_geodesic_mesh_build(&Y->m, &gmy, &e3)) ss_geodesic_pairs(gmy, &yb, &cx, 1, &tri, &e3);
+          ss_geodesic_mesh_free(gmy);
+          tri /= sqrt(Y->prep.area);
+        }
+        printf(" [L%d %d-%d %.2f %.3f %.3f t%.3f]", near, pr.sx[q], pr.sy[q], un > 0 ? in / un : 0, Y->cdist[cx + (size_t)Y->m.nv * pr.sy[q]], pr.energy[q], tri);
       }
       printf("\n");
     }
@@ -336,7 +377,7 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
   for (int i = 0; i < 100; i++)
     if (S[i].loaded) {
       ss_shape_prep_free(&S[i].prep), ss_mesh_free(&S[i].m);
-      free(S[i].cdist), free(S[i].wdist), free(S[i].bdist), free(S[i].gdist);
+      free(S[i].cdist), free(S[i].wdist), free(S[i].bdist), free(S[i].gdist), free(S[i].ldist);
     }
   free(S);
   return 0;
@@ -363,6 +404,8 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--wdescr")) o.fmap.w_descr = atof(v), i++;
     else if (!strcmp(a, "--wlap")) o.fmap.w_lap = atof(v), i++;
     else if (!strcmp(a, "--wdcomm")) o.fmap.w_dcomm = atof(v), i++;
+    else if (!strcmp(a, "--profile")) o.segment_profile = atoi(v), i++;
+    else if (!strcmp(a, "--wextra")) o.fmap.w_extra = atof(v), i++;
     else if (!strcmp(a, "--no-timing")) timing = 0;
     else if (!strcmp(a, "--zo-pairs")) zo_pairs = atoi(v), i++;
     else if (!strcmp(a, "--timed-pairs")) timed_pairs = atoi(v), i++;
@@ -401,9 +444,10 @@ int main(int argc, char **argv) {
   int better = 0, npaired = 0, nzo = 0, ntimed = 0;
   double sum_diff_zo = 0;
   const char *names[4] = {"STD", "ASA", "DIFF", "DIFF+ZO"};
-  printf("FAUST, %d pairs (seed %u), %d BEST landmarks, k %d, ZoomOut %d, energies %d step %d, weights %g %g %g\n",
+  printf("FAUST, %d pairs (seed %u), %d BEST landmarks, k %d, ZoomOut %d, energies %d step %d, weights %g %g %g, "
+         "segment profile %d, w_extra %g\n",
          npairs, seed, nl, o.fmap.k, o.fmap.zoomout_kmax, o.fmap.n_energies, o.fmap.descr_step, o.fmap.w_descr,
-         o.fmap.w_lap, o.fmap.w_dcomm);
+         o.fmap.w_lap, o.fmap.w_dcomm, o.segment_profile, o.fmap.w_extra);
   unsigned r = seed;
   for (int p = 0; p < npairs; p++) {
     int a, b;

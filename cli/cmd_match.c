@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *USAGE = "specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] "
-                           "-o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings]";
+static const char *USAGE = "specseg match X Y --landmarks LM.txt [--probes std|asa|diff] "
+                           "[--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings]";
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
@@ -26,6 +26,8 @@ int cmd_match(int argc, char **argv) {
              "paired coherent segments as extra probe functions. LM.txt: one landmark a line, 'i' (same\n"
              "vertex index on both shapes) or 'i j' (i on X, j on Y). --probes: std (WKS + landmarks,\n"
              "NO17), asa (+ segment indicators), diff (+ wave-filtered segment indicators; default).\n"
+             "--segment-profile: the segments' probe functions, indicator, tent (1 - d/R from the centre;\n"
+             "default) or soft (soft Voronoi membership; better than tent from k = 60 on).\n"
              "--k: basis size (default 50). --zoomout KMAX: ZoomOut refinement up to KMAX eigenfunctions.\n"
              "MAP.txt: line i = vertex of Y that is the image of vertex i of X. --fmap: the functional map\n"
              "(functions on Y -> functions on X, k x k) as .npy. --pairs: the paired segment centres, 'x y'\n"
@@ -47,6 +49,12 @@ int cmd_match(int argc, char **argv) {
       else if (!strcmp(v, "asa")) o.probes = SS_PROBES_ASA;
       else if (!strcmp(v, "diff")) o.probes = SS_PROBES_DIFF;
       else return cli_usage("%s: --probes takes std, asa or diff", USAGE);
+    } else if (!strcmp(a, "--segment-profile")) {
+      const char *v = has_next ? argv[++i] : "";
+      if (!strcmp(v, "indicator")) o.segment_profile = 0;
+      else if (!strcmp(v, "tent")) o.segment_profile = 1;
+      else if (!strcmp(v, "soft")) o.segment_profile = 2;
+      else return cli_usage("%s: --segment-profile takes indicator, tent or soft", USAGE);
     } else if (!strcmp(a, "--k")) {
       if (!has_next || cli_parse_int(argv[++i], 3, 10000, &o.fmap.k))
         return cli_usage("%s: --k needs an integer between 3 and 10000", USAGE);

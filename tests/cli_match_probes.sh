@@ -32,6 +32,15 @@ awk -v n="$nv" '!(NF == 2 && $1 ~ /^[0-9]+$/ && $2 ~ /^[0-9]+$/ && $1 < n && $2 
 cmp -s "$TMP/pairs_std.txt" "$TMP/pairs_diff.txt" && ok || bad "pairs differ between probe sets"
 for p in std diff; do eval "e_$p=\$(sed -n 's/^mean_error: //p' \"\$TMP/e_$p\")"; done
 awk -v s="${e_std:-1}" -v d="${e_diff:-1}" 'BEGIN { exit !(d < 0.1 && s < 0.1) }' && ok || bad "errors std ${e_std:-?} diff ${e_diff:-?}"
+# segment profiles: each runs and gives a valid map; the soft one differs from the default tent
+for sp in indicator soft; do
+  "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --k 30 --segment-profile $sp -o "$TMP/map_sp_$sp.txt" > /dev/null \
+    2> "$TMP/err" && ok || bad "--segment-profile $sp: $(cat "$TMP/err")"
+  [ "$(grep -c . "$TMP/map_sp_$sp.txt")" -eq "$nv" ] && ok || bad "--segment-profile $sp: map line count"
+done
+cmp -s "$TMP/map_sp_soft.txt" "$TMP/map_diff.txt" && bad "soft profile gave the tent's map" || ok
+"$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --segment-profile round -o "$TMP/m.txt" > /dev/null 2>&1
+[ $? -eq 2 ] && ok || bad "--segment-profile round: want exit 2"
 # errors: bad landmark index -> 1, bad option values -> 2
 printf '0\n%d 3\n' "$nv" > "$TMP/badlm.txt"
 "$BIN" match "$X" "$Y" --landmarks "$TMP/badlm.txt" -o "$TMP/m.txt" > /dev/null 2> "$TMP/err"

@@ -90,6 +90,42 @@ int main(void) {
   int badlm[5] = {lm[0], lm[1], X.nv, lm[3], lm[4]};
   CHECK(ss_pair_segments(&pX.seg, &pY.seg, 5, badlm, lm, &sp, &e) == SS_ERR_INVALID);
 
+  /* segment probe profiles over all segments of X: indicators (0) and the soft iVd (2) are partitions
+   * of unity; the soft iVd's largest member is the vertex's own segment; the tent (1) lies in [0,1] */
+  {
+    const int m = pX.seg.m, n = X.nv;
+    int *all = malloc(sizeof(int) * m);
+    for (int s = 0; s < m; s++) all[s] = s;
+    for (int prof = 0; prof <= 2; prof++) {
+      double *E = NULL;
+      CHECK(ss_segment_probes(&pX.seg, m, all, prof, &E, &e) == SS_OK);
+      if (!E) continue;
+      int range_ok = 1, unity_ok = 1, own = 0;
+      for (int x = 0; x < n; x++) {
+        double sum = 0, best = -1;
+        int arg = -1;
+        for (int s = 0; s < m; s++) {
+          double v = E[x + (size_t)n * s];
+          range_ok &= v >= 0 && v <= 1 + 1e-12;
+          sum += v;
+          if (v > best) best = v, arg = s;
+        }
+        if (prof != 1) unity_ok &= fabs(sum - 1) < 1e-9;
+        own += arg == pX.seg.labels[x];
+      }
+      CHECK(range_ok);
+      CHECK(unity_ok);
+      if (prof == 2) {
+        printf("soft iVd profile: own segment largest on %.4f of the vertices\n", (double)own / n);
+        CHECK(own >= 0.98 * n);
+      }
+      free(E);
+    }
+    double *E = NULL;
+    CHECK(ss_segment_probes(&pX.seg, m, all, 3, &E, &e) == SS_ERR_INVALID && E == NULL);
+    free(all);
+  }
+
   /* the pairing across poses: most vertices lie in corresponding segments */
   ss_match_result r[3];
   const ss_probe_set sets[3] = {SS_PROBES_STD, SS_PROBES_ASA, SS_PROBES_DIFF};

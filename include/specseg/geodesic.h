@@ -105,6 +105,11 @@ ss_status ss_geodesic_nearest_of(const ss_geodesic_mesh *gm, const int *src, con
  * mesh in the same order (as a deterministic program does). */
 ss_status ss_geodesic_mesh_prepare_queries(ss_geodesic_mesh *gm, int nlandmarks, ss_error *err);
 
+/* A lower bound on the exact geodesic distance d(a, b): the straight distance, and with prepared
+ * landmark fields also max over landmarks L of |d_L(a) − d_L(b)| (exact fields, so the bound may
+ * exceed d(a, b) by round-off only: compare with a relative margin). 0 for invalid input. */
+double ss_geodesic_lower_bound(const ss_geodesic_mesh *gm, int a, int b);
+
 /* Method switch used by the CLI: exact (VTP), NPP22 graph or edge graph, multi-source, max_dist as
  * above. */
 typedef enum ss_geodesic_method { SS_GEODESIC_EXACT = 0, SS_GEODESIC_GRAPH = 1, SS_GEODESIC_EDGE = 2 } ss_geodesic_method;

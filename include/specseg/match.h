@@ -33,8 +33,11 @@ ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, i
 /* The same from precomputed landmark fields at the critical points: dX (mx x nl, column-major,
  * dX[s + mx·i] = scaled distance from landmark i to critical point s of X), likewise dY (my x nl). */
 /* The probe functions of paired segments on one shape: E (malloc'd, sg->nv x npairs, column-major),
- * column p is segment seg[p] of sg as an indicator (profile 0) or as a tent 1 − d/R over the
- * segment (profile 1; d = the segmentation's distance to the segment's centre, R its maximum). */
+ * column p is segment seg[p] of sg as an indicator (profile 0), as a tent 1 − d/R over the
+ * segment (profile 1; d = the segmentation's distance to the segment's centre, R its maximum), or as
+ * its soft iVd membership (profile 2): exp(−d_s/τ) / Σ_j exp(−d_j/τ) over all m segments, d_j the
+ * NPP22-graph distance on the work mesh from centre j (pulled back through Ψ), τ = 0.2·√area(work);
+ * a partition of unity whose arg-max is the segment itself. */
 ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, int profile, double **E,
                             ss_error *err);
 
@@ -77,9 +80,19 @@ typedef struct ss_match_options {
   ss_segment_options seg;     /* segmentation of both shapes */
   /* profile of a paired segment's probe function (ASA and DIFF): 0 = its indicator; 1 = a tent,
    * 1 − d/R on the segment (d: the segmentation's distance to the segment's centre, R: its largest
-   * value on the segment), 0 elsewhere (default). The tent weights the centre, which corresponds
-   * well across shapes, over the boundary, which does not. FAUST, 10 pairs, segments in the data
-   * term only: DIFF 0.0457 (indicator) vs 0.0382 (tent), STD 0.0402; see ss_fmap_match_options. */
+   * value on the segment), 0 elsewhere (default); 2 = soft iVd membership (ss_segment_probes). The
+   * tent weights the centre, which corresponds well across shapes, over the boundary, which does
+   * not. FAUST, 10 pairs, segments in the data term only: DIFF 0.0457 (indicator) vs 0.0382 (tent),
+   * STD 0.0402; see ss_fmap_match_options. Tent vs soft iVd, FAUST BEST, DIFF / STD on 20 tuning
+   * pairs (bench_match --seed 7) | 30 held-out pairs (--seed 11), w_extra 0.5:
+   *   k 50: STD 0.0358 | 0.0347, tent 0.970 | 0.966, soft 0.983 | 0.982 (soft beats tent 13/20 | 15/30);
+   *   k 60: STD — | 0.0325, tent — | 1.007, soft — | 0.955 (soft beats tent 21/30);
+   *   k 70: STD 0.0336 | 0.0320, tent 1.030 | 1.051, soft 0.945 | 0.943 (soft beats tent 13/20 | 23/30).
+   * The tent keeps a step where a segment meets a nearer neighbour; a larger basis represents that
+   * step, and the boundaries disagree between shapes, so the tent turns harmful above k 50 while the
+   * soft membership (no step) keeps helping. Default stays the tent at the default k 50 (no gain
+   * there); with k >= 60 use 2. Neither reaches DIFF <= 0.8 x STD: segments carried to Y by the
+   * ground truth (perfectly consistent) give 0.80-0.82 (k 50) and 0.75 (k 70, soft). */
   int segment_profile;
 } ss_match_options;
 

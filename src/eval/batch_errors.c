@@ -15,7 +15,7 @@ static int int_cmp(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-ss_status ev_batch_errors(const ss_geodesic_mesh *gm, const double *V, int nv, const int *sym, int nmaps, const int *const *maps,
+ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, int nmaps, const int *const *maps,
                           double *sum, double *sum_sym, ss_error *err) {
   if (nmaps <= 0) return SS_OK;
   ss_status st = SS_OK;
@@ -44,15 +44,13 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, const double *V, int nv, c
   for (int x = 0; x < nv; x++)
     for (int q = off[x]; q < off[x + 1]; q++) src[q] = img[q], dst[q] = x;
   if ((st = ss_geodesic_pairs(gm, src, dst, (int)nq, d, err))) goto done;
-  /* symmetric error min(d(image, x), d(image, sym x)): when the straight distance from the image to
-   * sym x already exceeds d(x, image), the geodesic one does too and the minimum is d(x, image) (a
-   * good map's every vertex); otherwise one query from the image stopping at the nearer of the two */
+  /* symmetric error min(d(image, x), d(image, sym x)): when a lower bound on d(image, sym x) (straight
+   * distance, landmark fields) already exceeds d(image, x), the minimum is d(image, x) (a good map's
+   * every vertex, a bad map's many); otherwise one query from the image stopping at the nearer */
   size_t nn = 0;
   for (int x = 0; x < nv; x++)
     for (int q = off[x]; q < off[x + 1]; q++) {
-      const double *a = V + 3 * (size_t)img[q], *b = V + 3 * (size_t)sym[x];
-      double e = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-      if (e > d[q] * (1 + 1e-9)) {
+      if (ss_geodesic_lower_bound(gm, img[q], sym[x]) > d[q] * (1 + 1e-9)) {
         ds[q] = d[q];
         continue;
       }

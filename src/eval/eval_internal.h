@@ -58,8 +58,8 @@ ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_sh
 
 /* Exact error sums of nmaps maps onto one target (ground truth identity): sum[r] = Σ_x d(maps[r][x], x),
  * sum_sym[r] = Σ_x min(d(maps[r][x], x), d(maps[r][x], sym[x])), every distinct (image, vertex) pair
- * queried once (batch_errors.c). V: the target's vertex positions (3 x nv). */
-ss_status ev_batch_errors(const ss_geodesic_mesh *gm, const double *V, int nv, const int *sym, int nmaps, const int *const *maps,
+ * queried once (batch_errors.c). */
+ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, int nmaps, const int *const *maps,
                           double *sum, double *sum_sym, ss_error *err);
 
 /* Builds s->base[set] for the landmark sets in lm_mask (once per shape, not cached on disk). */

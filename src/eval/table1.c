@@ -328,7 +328,7 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
             rows[i].samples = ns;
           }
         } else {
-          s2 = ev_batch_errors(gm, Y->mesh.V, nv, sym, nr, rmap, sum, sum_sym, &e);
+          s2 = ev_batch_errors(gm, nv, sym, nr, rmap, sum, sum_sym, &e);
           for (int i = 0; i < nr; i++) rows[i].samples = nv;
         }
       }

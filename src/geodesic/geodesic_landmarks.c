@@ -55,3 +55,19 @@ done:
   free(dg); free(mind); free(F); free(lm);
   return st;
 }
+
+double ss_geodesic_lower_bound(const ss_geodesic_mesh *gm, int a, int b) {
+  if (!gm || a < 0 || b < 0 || a >= gm->nv || b >= gm->nv) return 0.0;
+  const double *pa = gm->V + 3 * (size_t)a, *pb = gm->V + 3 * (size_t)b;
+  double dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2], lb = sqrt(dx * dx + dy * dy + dz * dz);
+  const double *lm = __atomic_load_n(&gm->lm, __ATOMIC_ACQUIRE);
+  if (lm) {
+    const int K = gm->nlm;
+    const double *la = lm + (size_t)a * K, *lb2 = lm + (size_t)b * K;
+    for (int k = 0; k < K; k++) {
+      double t = fabs(la[k] - lb2[k]);
+      if (t > lb) lb = t;
+    }
+  }
+  return lb;
+}
