@@ -92,6 +92,18 @@ static ss_status finish(int n, int k, const double *evecs, const double *M, doub
   return st;
 }
 
+/* Common start of the builders: options (defaults for NULL) checked into *o, the shape checked
+ * against them, *out zeroed. */
+static ss_status start(const ss_fmap_shape *s, const ss_fmap_match_options *opts, ss_fmap_probes *out,
+                       ss_fmap_match_options *o, ss_error *err) {
+  if (opts) *o = *opts;
+  else ss_fmap_match_default_options(o);
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_status st = check_options(o, err);
+  return st ? st : check_shape(s, o->k, err);
+}
+
 /* the shape's lumped masses: its own, or barycentric ones in *own */
 static ss_status masses(const ss_fmap_shape *s, double **own, const double **M, ss_error *err) {
   *own = NULL;
@@ -106,12 +118,7 @@ static ss_status masses(const ss_fmap_shape *s, double **own, const double **M, 
 ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
                               int with_operators, ss_fmap_probes *out, ss_error *err) {
   ss_fmap_match_options o;
-  if (opts) o = *opts;
-  else ss_fmap_match_default_options(&o);
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
-  memset(out, 0, sizeof *out);
-  ss_status st = check_options(&o, err);
-  if (!st) st = check_shape(s, o.k, err);
+  ss_status st = start(s, opts, out, &o, err);
   if (st) return st;
   const int n = s->mesh->nv, k = o.k;
   if (nl < 0 || (nl > 0 && !lm)) return ss_fail(err, SS_ERR_INVALID, "probes: missing landmarks");
@@ -136,12 +143,7 @@ ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const
                                const ss_fmap_match_options *opts, int with_operators, ss_fmap_probes *out,
                                ss_error *err) {
   ss_fmap_match_options o;
-  if (opts) o = *opts;
-  else ss_fmap_match_default_options(&o);
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
-  memset(out, 0, sizeof *out);
-  ss_status st = check_options(&o, err);
-  if (!st) st = check_shape(s, o.k, err);
+  ss_status st = start(s, opts, out, &o, err);
   if (st) return st;
   if (nl < 0 || nextra < 0 || (nextra > 0 && !extra)) return ss_fail(err, SS_ERR_INVALID, "probes: missing extra probes");
   if (filter != SS_PROBE_RAW && filter != SS_PROBE_WAVE) return ss_fail(err, SS_ERR_INVALID, "probes: unknown filter %d", (int)filter);
