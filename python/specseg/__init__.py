@@ -189,14 +189,19 @@ Match.__doc__ = """ss_match's result: map (nX,) vertex of Y for each vertex of X
 _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
-def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zoomout=None):
+def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zoomout=None, segment_profile=None):
     """Map X -> Y by the paper's pipeline (§6: segmentation of both shapes, segment pairing through
     the landmarks, functional map with STD / ASA / DIFF probes, optional ZoomOut). landmarks: vertex
-    indices on X (and on Y unless landmarks_y is given). Returns a Match."""
+    indices on X (and on Y unless landmarks_y is given). segment_profile: "indicator", "tent"
+    (default) or "soft", the segments' probe functions (as `specseg match --segment-profile`).
+    Returns a Match."""
     if not _clib.has("ss_match"):
         raise NotImplementedError("this libspecseg has no ss_match")
     if probes not in _PROBES:
         raise ValueError("probes must be std, asa or diff")
+    profiles = {"indicator": 0, "tent": 1, "soft": 2}
+    if segment_profile is not None and segment_profile not in profiles:
+        raise ValueError("segment_profile must be indicator, tent or soft")
     mx, VX, FX = _clib.as_mesh(VX, FX)
     my, VY, FY = _clib.as_mesh(VY, FY)
     lx = np.ascontiguousarray(np.atleast_1d(landmarks), dtype=np.int32)
@@ -210,6 +215,8 @@ def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zo
         o.fmap.k = int(k)
     if zoomout is not None:
         o.fmap.zoomout_kmax = int(zoomout)
+    if segment_profile is not None:
+        o.segment_profile = profiles[segment_profile]
     r, e = _clib.ss_match_result(), _err()
     st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
                       C.byref(o), C.byref(r), C.byref(e))

@@ -110,6 +110,15 @@ else:
     r = specseg.match(V, F, V, F, lm, k=20)
     check(np.array_equal(r.map, mc), "match: map")
     check(r.C.shape == (20, 20), "match: C shape")
+    cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "--segment-profile", "soft", "-o", path("ms.txt"))
+    ms = np.loadtxt(path("ms.txt"), dtype=np.int64)
+    rs = specseg.match(V, F, V, F, lm, k=20, segment_profile="soft")
+    check(np.array_equal(rs.map, ms), "match: map with the soft segment profile")
+    try:
+        specseg.match(V, F, V, F, lm, k=20, segment_profile="round")
+        check(False, "match: unknown segment profile accepted")
+    except ValueError:
+        check(True, "match: unknown segment profile refused")
 
 # --- render: background, shape, the labels' colours appear ---
 img = specseg.render(V, F, labels=seg.labels, size=(120, 160))
