@@ -2,6 +2,7 @@
  * built from the public WKS functions; a system assembled once and solved with extra blocks equals
  * ss_fmap_solve on the concatenated probes; ss_fmap_match equals the pieces called by hand. */
 #include "specseg/fmap.h"
+#include "specseg/geodesic.h"
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
 #include "specseg/spectrum.h"
@@ -145,7 +146,28 @@ static void test_probes_split(void) {
   ss_mesh_free(&mesh);
 }
 
+/* NULLs and bad sizes are reported, never dereferenced */
+static void test_bad_input(void) {
+  ss_error e;
+  double C[4];
+  int map[4];
+  ss_fmap_system *sys = (ss_fmap_system *)1;
+  CHECK(ss_fmap_system_solve(NULL, NULL, NULL, 0, 0, C, &e) == SS_ERR_INVALID);
+  CHECK(ss_fmap_system_new(2, 2, C, C, NULL, NULL, NULL, &sys, &e) == SS_ERR_INVALID && sys == NULL);
+  ss_fmap_probes a = {2, 1, 0, C, NULL}, b = {3, 1, 0, C, NULL};
+  ss_fmap_weights w = {1, 0, 0, 0, 0};
+  CHECK(ss_fmap_system_new(2, 2, C, C, &a, &b, &w, &sys, &e) == SS_ERR_INVALID && sys == NULL);
+  CHECK(ss_fmap_system_new(100000, 100000, C, C, &a, &a, &w, &sys, &e) == SS_ERR_INVALID);
+  CHECK(ss_fmap_match_finish(NULL, NULL, NULL, C, map, NULL, &e) == SS_ERR_INVALID);
+  CHECK(ss_fmap_pair_weights(NULL, NULL, NULL, &w, &e) == SS_ERR_INVALID);
+  ss_fmap_probes out;
+  CHECK(ss_fmap_base_probes(NULL, 0, NULL, NULL, 0, &out, &e) == SS_ERR_INVALID);
+  CHECK(ss_fmap_extra_probes(NULL, 0, 0, NULL, SS_PROBE_RAW, NULL, 0, &out, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_lower_bound(NULL, 0, 1) == 0.0);
+}
+
 int main(void) {
+  test_bad_input();
   test_system_vs_solve();
   test_probes_split();
   TEST_MAIN_END();

@@ -73,7 +73,11 @@ ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
   ss_fmap_match_options o;
   if (opts) o = *opts;
   else ss_fmap_match_default_options(&o);
-  const int k = o.k;
+  const int k = o.k, need = o.zoomout_kmax > k ? o.zoomout_kmax : k;
+  if (!Ck || !map) return ss_fail(err, SS_ERR_INVALID, "match: NULL functional map or output");
+  ss_status st0 = check_shape(X, "X", need, err);
+  if (!st0) st0 = check_shape(Y, "Y", need, err);
+  if (st0) return st0;
   if (o.zoomout_kmax > k) return ss_zoomout(Y->mesh->nv, X->mesh->nv, Y->evecs, X->evecs, X->M, k, Ck, o.zoomout_kmax,
                                              o.zoomout_step, map, C, err);
   ss_status st = ss_fmap_p2p(Y->mesh->nv, X->mesh->nv, k, k, Y->evecs, X->evecs, Ck, map, err);
