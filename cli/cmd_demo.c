@@ -260,8 +260,8 @@ static int stage_match(demo_ctx *c) {
     if (v == 0) printf("%d of %d/%d segments paired\n", r[v].pairs.n, r[v].pairs.nx, r[v].pairs.ny);
     printf("%-4s mean geodesic error %.4f (/sqrt(area), exact geodesics; %.2f s)\n", names[v], e[v], ss_time() - t);
     if (v == 2) {
-      char file[160], path[4096];
-      snprintf(file, sizeof file, "map_%s_to_%s.txt", c->shapes[ia].name, c->shapes[ib].name);
+      char file[96], path[4096];
+      snprintf(file, sizeof file, "map_%.40s_to_%.40s.txt", c->shapes[ia].name, c->shapes[ib].name);
       if (demo_path(c, file, path, sizeof path) || ss_write_ints(path, r[v].map, r[v].nX, &err)) {
         rc = cli_error("demo: match: cannot write %s", file);
         goto out;
