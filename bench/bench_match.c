@@ -28,6 +28,17 @@ static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
 }
+/* The next random pair of distinct FAUST shapes (a, b) from the LCG state *r (the same sequence in
+ * every mode of this bench, so its runs compare pair by pair). */
+static void next_pair(unsigned *r, int *a, int *b) {
+  do {
+    *r = *r * 1664525u + 1013904223u;
+    *a = (*r >> 8) % 100;
+    *r = *r * 1664525u + 1013904223u;
+    *b = (*r >> 8) % 100;
+  } while (*a == *b);
+}
+
 static double median(double *v, int n) {
   qsort(v, (size_t)n, sizeof(double), cmp_double);
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
@@ -270,12 +281,7 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
   for (int i = 0; i < nv; i++) printf("  v%d: %s\n", i, V[i].spec);
   for (int p = 0; p < npairs; p++) {
     int a, b;
-    do {
-      r = r * 1664525u + 1013904223u;
-      a = (r >> 8) % 100;
-      r = r * 1664525u + 1013904223u;
-      b = (r >> 8) % 100;
-    } while (a == b);
+    next_pair(&r, &a, &b);
     if (load(dir, a, o, k, &S[a]) || load(dir, b, o, k, &S[b]) || shape_fields(&S[a]) || shape_fields(&S[b])) return 1;
     const int trilat = diag;
     for (int t = 0; trilat && t < 2; t++) { /* landmark fields on the input, for the diagnostic */
@@ -451,12 +457,7 @@ int main(int argc, char **argv) {
   unsigned r = seed;
   for (int p = 0; p < npairs; p++) {
     int a, b;
-    do {
-      r = r * 1664525u + 1013904223u;
-      a = (r >> 8) % 100;
-      r = r * 1664525u + 1013904223u;
-      b = (r >> 8) % 100;
-    } while (a == b);
+    next_pair(&r, &a, &b);
     if (load(dir, a, &o, kev, &S[a]) || load(dir, b, &o, kev, &S[b])) return 1;
     double err4[4];
     ss_error e;
