@@ -315,6 +315,12 @@ static void test_nn_guided(void) {
   guess[5] = 0;
   part[7] = -1;
   CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, q, nq, part, guess, idx, NULL, &e) == SS_ERR_INVALID);
+  /* NULL arrays are reported, not dereferenced */
+  CHECK(ss_nn_exact_guided(ndb, nq, d, NULL, ndb, q, nq, NULL, NULL, idx, NULL, &e) == SS_ERR_INVALID);
+  CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, NULL, nq, NULL, NULL, idx, NULL, &e) == SS_ERR_INVALID);
+  CHECK(ss_nn_exact_guided(ndb, nq, d, db, ndb, q, nq, NULL, NULL, NULL, NULL, &e) == SS_ERR_INVALID);
+  CHECK(ss_nn_partition(ndb, d, NULL, ndb, 0, part, &e) == SS_ERR_INVALID);
+  CHECK(ss_nn_partition(ndb, d, db, ndb, 0, NULL, &e) == SS_ERR_INVALID);
   /* NaN in a database point and a query: guided = unguided */
   db[99 + (size_t)ndb * 4] = NAN;
   q[7 + (size_t)nq * 2] = NAN;

@@ -6,6 +6,7 @@
 #include "eval_internal.h"
 #include "specseg/geodesic.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,8 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, in
   ss_status st = SS_OK;
   /* per vertex x: the sorted distinct images, at off[x] .. off[x+1) of img */
   size_t cap = (size_t)nv * nmaps;
+  if (cap > INT_MAX) /* off[] and the geodesic queries count pairs in int */
+    return ss_fail(err, SS_ERR_INVALID, "eval: %d maps of %d vertices: too many (image, vertex) pairs", nmaps, nv);
   int *off = malloc(sizeof(int) * ((size_t)nv + 1)), *img = malloc(sizeof(int) * cap), *tmp = malloc(sizeof(int) * nmaps);
   int *src = NULL, *dst = NULL, *dst2 = NULL;
   double *d = NULL, *ds = NULL;

@@ -83,6 +83,7 @@ static int fps_partition(int n, int d, int nc, const double *P, const double *X,
 
 ss_status ss_nn_partition(int n, int d, const double *X, int ldx, int nc, int *part, ss_error *err) {
   if (n < 1 || d < 1 || ldx < n) return ss_fail(err, SS_ERR_INVALID, "nn partition: bad sizes (n %d, d %d)", n, d);
+  if (!X || !part) return ss_fail(err, SS_ERR_INVALID, "nn partition: NULL points or output");
   if (nc <= 0) nc = default_clusters(n);
   if (nc < 1) nc = 1;
   if (nc > n) nc = n;
@@ -173,7 +174,7 @@ static void cluster_setup(nn_index *t, int ndb, int c, double *W) {
       dev = fmax(dev, fabs(p - (a == a2 ? n2 : 0))); /* zero rows are fine */
       if (a == a2 && n2 != 0) dev = fmax(dev, fabs(n2 - 1));
     }
-  if (!(dev < 1e-12))
+  if (!(dev < 2e-14)) /* a frame error δ moves h_q by ~√(3δ)‖q − c‖; fm below covers δ = 2e-14 ~4x */
     for (size_t j = 0; j < (size_t)NN_FRAME * d; j++) U[j] = 0;
   for (int s = 0; s < cnt; s++) { /* coordinates and residuals from scratch, not from the updates */
     const double *b = t->Pc + (size_t)(s0 + s) * d;
@@ -272,7 +273,7 @@ static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, doubl
   double h2 = s2;
   for (int a = 0; a < NN_FRAME; a++) h2 -= z[a] * z[a];
   /* h2 loses digits to cancellation: its error, ≤ ~7 d ε ‖q − c‖², moves h_q by up to √(7 d ε) ‖q − c‖
-   * (2.8e-7 ‖q − c‖ at d = 100); fm covers it 3x over */
+   * (2.8e-7 ‖q − c‖ at d = 100); fm is ~8x that */
   double hq = sqrt(h2 > 0 ? h2 : 0), fm = sqrt(1e-13 * (d + 8)) * dq, lim = rb + margin + fm, lim2 = lim * lim;
   const double *H = t->H + s0, *Y0 = t->Y + s0, *Y1 = Y0 + (NN_FRAME > 1) * ndb, *Y2 = Y0 + 2 * (NN_FRAME > 2) * ndb,
                *Y3 = Y0 + 3 * (NN_FRAME > 3) * ndb;
@@ -383,6 +384,7 @@ ss_status ss_nn_exact_guided(int ndb, int nq, int d, const double *db, int lddb,
                              const int *part, const int *guess, int *idx, double *dist2, ss_error *err) {
   if (ndb < 1 || nq < 0 || d < 1 || lddb < ndb || ldq < nq)
     return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: bad sizes (ndb %d, nq %d, d %d)", ndb, nq, d);
+  if (nq > 0 && (!db || !q || !idx)) return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: NULL points or output");
   if (guess)
     for (int i = 0; i < nq; i++)
       if (guess[i] < 0 || guess[i] >= ndb)

@@ -36,6 +36,7 @@ ss_status ss_nn_brute(int ndb, int nq, int d, const double *db, int lddb, const 
   if (ndb < 1 || nq < 0 || d < 1 || lddb < ndb || ldq < nq)
     return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: bad sizes (ndb %d, nq %d, d %d)", ndb, nq, d);
   if (nq == 0) return SS_OK;
+  if (!db || !q || !idx) return ss_fail(err, SS_ERR_INVALID, "nearest neighbours: NULL array");
   double *bn = malloc(sizeof(double) * (size_t)ndb), *qn = malloc(sizeof(double) * (size_t)nq);
   double *S = malloc(sizeof(double) * (size_t)NN_QB * NN_BB);
   nn_state *stt = malloc(sizeof(nn_state) * (size_t)NN_QB);

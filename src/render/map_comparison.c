@@ -22,6 +22,7 @@ void ss_map_comparison_init(ss_map_comparison *c, const ss_mesh *x, const ss_mes
 
 static int dcmp(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
+  if (isnan(x) || isnan(y)) return isnan(x) - isnan(y); /* NaN last: a consistent order for qsort */
   return x < y ? -1 : x > y;
 }
 
@@ -74,6 +75,7 @@ static ss_status pair_face_colors(const ss_mesh *m, int nseg, const int *labels,
 
 ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_options *o, unsigned char **rgb,
                                    int *width, int *height, double *error_max, ss_error *err) {
+  if (!rgb || !width || !height) return ss_fail(err, SS_ERR_INVALID, "map comparison: NULL output");
   *rgb = NULL;
   *width = *height = 0;
   if (error_max) *error_max = 0;

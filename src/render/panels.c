@@ -24,6 +24,7 @@ static int text_scale(int height) { return height >= 600 ? 2 + (height - 600) / 
 
 ss_status ss_render_panels(const ss_panel *panels, int n, const ss_render_options *o, const ss_panel_layout *l,
                            unsigned char **rgb, int *width, int *height, ss_error *err) {
+  if (!rgb || !width || !height) return ss_fail(err, SS_ERR_INVALID, "panels: NULL output");
   *rgb = NULL;
   *width = *height = 0;
   if (n < 1 || !panels || !o || !l) return ss_fail(err, SS_ERR_INVALID, "panels: nothing to draw");

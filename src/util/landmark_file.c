@@ -12,6 +12,7 @@ ss_status ss_read_landmarks(const char *path, int **lx, int **ly, int *n, int *c
 
 ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
                                   ss_error *err) {
+  if (!lx || !ly || !n) return ss_fail(err, SS_ERR_INVALID, "landmarks: NULL output");
   *lx = *ly = NULL;
   if (lines) *lines = NULL;
   *n = 0;
