@@ -5,6 +5,8 @@
 #include "specseg/render.h"
 #include "testlib.h"
 
+#include <math.h>
+
 static const unsigned char *px(const unsigned char *img, int w, int x, int y) { return img + 3 * ((size_t)y * w + x); }
 static int is_bg(const unsigned char *p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
@@ -88,6 +90,14 @@ int main(void) {
   CHECK(ss_render_map_comparison(&c, &o, &img, &w, &h, NULL, &e) == SS_ERR_INVALID);
   c.nmaps = 2;
   CHECK(ss_render_map_comparison(&c, &o, &img, &w, &h, NULL, &e) == SS_OK);
+  free(img);
+  CHECK(ss_render_map_comparison(&c, &o, NULL, &w, &h, NULL, &e) == SS_ERR_INVALID);
+  /* NaN errors (e.g. unreachable vertices) do not disturb the automatic scale */
+  c.error_max = 0;
+  for (int i = 0; i < n; i += 3) e1[i] = NAN;
+  ss_status stn = ss_render_map_comparison(&c, &o, &img, &w, &h, &hi, &e);
+  CHECK_MSG(stn == SS_OK, "NaN errors: %s", e.msg);
+  CHECK_MSG(isfinite(hi) && hi > 0, "scale with NaN errors: %g", hi);
   free(img);
 
   free(ident), free(shift), free(labels), free(e0), free(e1);

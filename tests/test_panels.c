@@ -118,6 +118,7 @@ int main(void) {
     CHECK(ss_render_panels(P, 3, &o, &L, &img, &w, &h, &e) == SS_ERR_INVALID && img == NULL);
     CHECK(strstr(e.msg, "pixels") != NULL);
     CHECK(ss_render_panels(P, 0, &o, &L, &img, &w, &h, &e) == SS_ERR_INVALID);
+    CHECK(ss_render_panels(P, 3, &o, &L, NULL, &w, &h, &e) == SS_ERR_INVALID);
   }
 
   /* ---- landmark files: one or two columns, comments, errors with line numbers ---- */
@@ -136,6 +137,7 @@ int main(void) {
     write_text(path, "1 2\n1 2 3\n");
     CHECK(ss_read_landmarks(path, &a, &b, &n, NULL, &e) == SS_ERR_PARSE && a == NULL);
     CHECK_MSG(strstr(e.msg, ":2:") != NULL, "%s", e.msg);
+    CHECK(ss_read_landmarks(path, NULL, &b, &n, NULL, &e) == SS_ERR_INVALID);
     write_text(path, "1 -2\n");
     CHECK(ss_read_landmarks(path, &a, &b, &n, NULL, &e) == SS_ERR_PARSE);
     write_text(path, "1 x\n");

@@ -113,9 +113,11 @@ ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_o
    * vertices (a swapped hand) would otherwise wash every other error out to white */
   double hi = c->error_max;
   if (!(hi > 0) || !isfinite(hi)) {
-    size_t ne = (size_t)nm * nx;
-    if (!(sorted = malloc(sizeof(double) * ne + 1))) { st = ss_fail(err, SS_ERR_NOMEM, "map figure: out of memory"); goto done; }
-    for (int m = 0; m < nm; m++) memcpy(sorted + (size_t)m * nx, c->error[m], sizeof(double) * (size_t)nx);
+    size_t ne = 0; /* the finite errors only (NaN / inf: unreachable vertices) */
+    if (!(sorted = malloc(sizeof(double) * (size_t)nm * nx + 1))) { st = ss_fail(err, SS_ERR_NOMEM, "map figure: out of memory"); goto done; }
+    for (int m = 0; m < nm; m++)
+      for (int i = 0; i < nx; i++)
+        if (isfinite(c->error[m][i])) sorted[ne++] = c->error[m][i];
     qsort(sorted, ne, sizeof(double), dcmp);
     hi = ne ? nice_ceil(sorted[(size_t)(0.95 * (ne - 1))]) : 1;
   }
