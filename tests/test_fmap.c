@@ -308,6 +308,25 @@ static void test_nn_guided(void) {
   int lo = ndb, hi = -1;
   for (int b = 0; b < ndb; b++) { lo = part[b] < lo ? part[b] : lo; hi = part[b] > hi ? part[b] : hi; }
   CHECK(lo == 0 && hi == 36);
+  /* many clusters: the seed and query-centre tables are built in blocks of rows (3000 seeds ->
+   * blocks of ~2800 points; 3000 singleton clusters -> query blocks of ~2800): same answers */
+  CHECK(ss_nn_partition(ndb, d, db, ndb, ndb, part, NULL) == SS_OK);
+  lo = ndb, hi = -1;
+  for (int b = 0; b < ndb; b++) { lo = part[b] < lo ? part[b] : lo; hi = part[b] > hi ? part[b] : hi; }
+  CHECK(lo == 0 && hi < ndb);
+  {
+    const int nq2 = 6000;
+    double *q2 = malloc(sizeof(double) * nq2 * d), *e2 = malloc(sizeof(double) * nq2), *r2 = malloc(sizeof(double) * nq2);
+    int *i2 = malloc(sizeof(int) * nq2), *g2 = malloc(sizeof(int) * nq2), *own = malloc(sizeof(int) * ndb);
+    torus_points(nq2, d, 0.07, q2);
+    for (int b = 0; b < ndb; b++) own[b] = b; /* singleton clusters: nc = ndb */
+    CHECK(ss_nn_exact_guided(ndb, nq2, d, db, ndb, q2, nq2, own, NULL, i2, e2, NULL) == SS_OK);
+    CHECK(ss_nn_brute(ndb, nq2, d, db, ndb, q2, nq2, g2, r2, NULL) == SS_OK);
+    int badb = 0;
+    for (int i = 0; i < nq2; i++) badb += i2[i] != g2[i] || e2[i] != r2[i];
+    CHECK_MSG(badb == 0, "blocked search: %d of %d queries differ from the brute force", badb, nq2);
+    free(q2), free(e2), free(r2), free(i2), free(g2), free(own);
+  }
   /* bad guesses and labels are reported, not followed */
   ss_error e;
   guess[5] = ndb;

@@ -16,6 +16,7 @@
 #include "specseg/fmap.h"
 
 #include <cblas.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,11 +37,22 @@ static double d2row(int d, const double *a, const double *b) {
 
 static int default_clusters(int n) { return (int)(NN_CLUSTER_FACTOR * sqrt((double)n)); }
 
+/* Doubles of query-centre (and point-seed) distance table per block: the tables are n x nc with
+ * nc ~ 1.5 √n, ~12 GB each at 10^6 points in one piece; in blocks of ~64 MB a FAUST-sized search is
+ * still one block. */
+#define NN_TABLE_DOUBLES (8u << 20)
+
+static int block_rows(int nc) {
+  size_t r = NN_TABLE_DOUBLES / (size_t)(nc > 0 ? nc : 1);
+  return r < 1024 ? 1024 : r > (size_t)INT_MAX ? INT_MAX : (int)r;
+}
+
 /* Farthest-point seeds (better spread than random seeds or Lloyd-refined ones: measured faster
  * searches on FAUST at k = 50..100); every point then joins its nearest seed (one dgemm). Any
  * partition keeps the search exact; compact clusters only make it faster. P: row-major copy of X. */
 static int fps_partition(int n, int d, int nc, const double *P, const double *X, int ldx, int *asg) {
-  double *Sd = malloc(sizeof(double) * (size_t)nc * d), *DS = malloc(sizeof(double) * (size_t)n * nc);
+  const int rb = block_rows(nc) < n ? block_rows(nc) : n; /* point rows per block of the seed table */
+  double *Sd = malloc(sizeof(double) * (size_t)nc * d), *DS = malloc(sizeof(double) * (size_t)rb * nc);
   double *sn = malloc(sizeof(double) * nc), *mind = malloc(sizeof(double) * n);
   if (!Sd || !DS || !sn || !mind) {
     free(Sd); free(DS); free(sn); free(mind);
@@ -66,16 +78,19 @@ static int fps_partition(int n, int d, int nc, const double *P, const double *X,
     }
     cur = far; /* duplicates (fd = 0) only leave some clusters empty */
   }
-  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, n, nc, d, 1.0, X, ldx, Sd, nc, 0.0, DS, n);
+  for (int b0 = 0; b0 < n; b0 += rb) {
+    const int m = n - b0 < rb ? n - b0 : rb;
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, m, nc, d, 1.0, X + b0, ldx, Sd, nc, 0.0, DS, m);
 #pragma omp parallel for schedule(static)
-  for (int b = 0; b < n; b++) {
-    int bc = 0;
-    double bv = INFINITY;
-    for (int c = 0; c < nc; c++) {
-      double v = sn[c] - 2.0 * DS[b + (size_t)n * c];
-      if (v < bv) { bv = v; bc = c; }
+    for (int b = 0; b < m; b++) {
+      int bc = 0;
+      double bv = INFINITY;
+      for (int c = 0; c < nc; c++) {
+        double v = sn[c] - 2.0 * DS[b + (size_t)m * c];
+        if (v < bv) { bv = v; bc = c; }
+      }
+      asg[b0 + b] = bc;
     }
-    asg[b] = bc;
   }
   free(Sd); free(DS); free(sn); free(mind);
   return 0;
@@ -303,8 +318,8 @@ static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, doubl
 /* The search: query-centre squared distances by one dgemm (rounding absorbed into a lower bound)
  * decide which clusters to open; the first bound is the guess's distance (if any), then the closest
  * centre's cluster is scanned first. Returns 1 when out of memory. */
-static int search(const nn_index *t, int ndb, int nq, const double *q, int ldq, const int *guess, int *idx,
-                  double *dist2) {
+static int search_block(const nn_index *t, int ndb, int nq, const double *q, int ldq, const int *guess, int *idx,
+                        double *dist2) {
   int nc = t->nc, d = t->d;
   double *DQ = malloc(sizeof(double) * (size_t)nq * nc), *cn = malloc(sizeof(double) * nc);
   double *qn = malloc(sizeof(double) * nq);
@@ -378,6 +393,18 @@ static int search(const nn_index *t, int ndb, int nq, const double *q, int ldq, 
   free(cn);
   free(qn);
   return fail;
+}
+
+/* The search in blocks of queries (q is column-major with leading dimension ldq, so a block of rows
+ * is q + i0); results do not depend on the blocking. */
+static int search(const nn_index *t, int ndb, int nq, const double *q, int ldq, const int *guess, int *idx,
+                  double *dist2) {
+  const int qb = block_rows(t->nc);
+  for (int i0 = 0; i0 < nq; i0 += qb) {
+    int m = nq - i0 < qb ? nq - i0 : qb;
+    if (search_block(t, ndb, m, q + i0, ldq, guess ? guess + i0 : NULL, idx + i0, dist2 ? dist2 + i0 : NULL)) return 1;
+  }
+  return 0;
 }
 
 ss_status ss_nn_exact_guided(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq,
