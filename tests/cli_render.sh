@@ -6,11 +6,7 @@
 # Usage: cli_render.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
-HERE=$(cd "$(dirname "$0")" && pwd)
 . "$(dirname "$0")/lib_cli.sh"
-PY=""
-for p in /usr/bin/python3 python3; do command -v "$p" > /dev/null 2>&1 && { PY=$p; break; }; done
-png() { PYTHONDONTWRITEBYTECODE=1 "$PY" "$HERE/python/png_check.py" "$@"; }
 
 "$BIN" demo -o "$TMP/demo" > "$TMP/demo.out" 2>&1 || bad "demo failed: $(tail -3 "$TMP/demo.out")"
 M="$TMP/demo/humanoid_pose0.off"

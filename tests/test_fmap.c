@@ -185,6 +185,22 @@ static void test_solver(int fix) {
   CHECK(ss_fmap_solve(kS, kT, p, A, B, lS, lT, nd, DS, DT, &z, C, &e) == SS_ERR_NUMERIC);
 }
 
+/* the reference: every database point, in index order (ties to the lower index) */
+static int naive_nn(int ndb, int d, const double *db, const double *q, int nq, int i, double *d2) {
+  int bi = -1;
+  double bd = INFINITY;
+  for (int b = 0; b < ndb; b++) {
+    double s = 0;
+    for (int j = 0; j < d; j++) {
+      double t = q[i + (size_t)nq * j] - db[b + (size_t)ndb * j];
+      s += t * t;
+    }
+    if (s < bd) { bd = s; bi = b; }
+  }
+  *d2 = bd;
+  return bi;
+}
+
 static void test_nn(void) {
   const int ndb = 3000, nq = 700, d = 13;
   double *db = malloc(sizeof(double) * ndb * d), *q = malloc(sizeof(double) * nq * d), *d2 = malloc(sizeof(double) * nq);
@@ -202,16 +218,8 @@ static void test_nn(void) {
   CHECK(ss_nn_brute(ndb, nq, d, db, ndb, q, nq, idx2, d22, NULL) == SS_OK);
   int bad = 0, bad2 = 0;
   for (int i = 0; i < nq; i++) {
-    int bi = -1;
-    double bd = INFINITY;
-    for (int b = 0; b < ndb; b++) {
-      double s = 0;
-      for (int j = 0; j < d; j++) {
-        double t = q[i + (size_t)nq * j] - db[b + (size_t)ndb * j];
-        s += t * t;
-      }
-      if (s < bd) { bd = s; bi = b; }
-    }
+    double bd;
+    int bi = naive_nn(ndb, d, db, q, nq, i, &bd);
     if (bi != idx[i] || bd != d2[i]) bad++;
     if (bi != idx2[i] || bd != d22[i]) bad2++;
   }
@@ -236,20 +244,6 @@ static void torus_points(int n, int d, double noise, double *X) {
   }
 }
 
-static int naive_nn(int ndb, int d, const double *db, const double *q, int nq, int i, double *d2) {
-  int bi = -1;
-  double bd = INFINITY;
-  for (int b = 0; b < ndb; b++) {
-    double s = 0;
-    for (int j = 0; j < d; j++) {
-      double t = q[i + (size_t)nq * j] - db[b + (size_t)ndb * j];
-      s += t * t;
-    }
-    if (s < bd) { bd = s; bi = b; }
-  }
-  *d2 = bd;
-  return bi;
-}
 
 /* ss_nn_exact_guided: any guess, any partition, the same answer as the naive search (ties to the
  * lower index), also with the guess array reused as the output; and the same as ss_nn_exact on
