@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "specseg/specseg.h"
+#include "specseg/synth.h"
 
 #ifndef SS_DATA_DIR_DEFAULT
 #define SS_DATA_DIR_DEFAULT "../shared/data"

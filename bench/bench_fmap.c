@@ -27,6 +27,7 @@ typedef struct shape {
   double *M, *ev, *phi;
   int kev;
   ss_geodesic_mesh *gm;
+  ss_geodesic_landmarks *lm; /* built by the first error batch with enough far pairs */
 } shape;
 
 static int load_shape(const char *dir, int id, int kev, shape *s) {
@@ -76,7 +77,7 @@ static double geo_error(shape *Y, const int *map, int nX) {
   double *d = malloc(sizeof(double) * nX);
   for (int i = 0; i < nX; i++) gt[i] = i;
   double s = NAN;
-  if (!ss_geodesic_pairs(Y->gm, map, gt, nX, d, &e)) {
+  if (!ss_geodesic_pairs(Y->gm, &Y->lm, map, gt, nX, d, &e)) {
     s = 0;
     for (int i = 0; i < nX; i++) s += d[i];
     s /= nX * sqrt(ss_mesh_area(&Y->m));
@@ -109,7 +110,6 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--zoomout")) o.zoomout_kmax = atoi(v), i++;
     else if (!strcmp(a, "--nofix")) o.fix_constant = 0;
     else if (!strcmp(a, "--euclid")) euclid = 1;
-    else if (!strcmp(a, "--verbose")) o.verbose = 1;
     else if (!strcmp(a, "--nnbench")) nnbench = 1;
     else if (!strcmp(a, "--sym-out")) symout = v, i++;
     else { fprintf(stderr, "unknown option %s\n", a); return 2; }
@@ -228,6 +228,7 @@ int main(int argc, char **argv) {
       ss_mesh_free(&S[i].m);
       free(S[i].M); free(S[i].ev); free(S[i].phi);
       if (S[i].gm) ss_geodesic_mesh_free(S[i].gm);
+      ss_geodesic_landmarks_free(S[i].lm);
     }
   free(S);
   free(loaded);

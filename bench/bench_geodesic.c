@@ -52,17 +52,17 @@ static void run(const char *name, const ss_mesh *m, int nsrc) {
   double tbuild = ss_time() - t0;
   ss_graph g;
   if (ss_graph_npp22(m, &g, &e)) { printf("%s: %s\n", name, e.msg); ss_geodesic_mesh_free(gm); return; }
-  ss_vtp_ws *ws = ss_vtp_ws_new(m->nv, m->nf);
+  ssi_vtp_ws *ws = ssi_vtp_ws_new(m->nv, m->nf);
   double *d = malloc(sizeof(double) * m->nv), *tv = malloc(sizeof(double) * nsrc), *tg = malloc(sizeof(double) * nsrc);
   double wins = 0;
   size_t peakw = 0, peakh = 0;
   for (int k = 0; k < nsrc; k++) {
     int s = (int)(((long long)k * 2654435761LL + 12345) % m->nv);
     double a = thread_cpu();
-    ss_vtp_run(gm, ws, &s, 1, 0, NULL, 0, d, NULL, NULL);
+    ssi_vtp_run(gm, ws, &s, 1, 0, NULL, 0, d, NULL, NULL);
     tv[k] = thread_cpu() - a;
-    ss_vtp_stats st;
-    ss_vtp_ws_stats(ws, &st);
+    ssi_vtp_stats st;
+    ssi_vtp_ws_stats(ws, &st);
     wins += (double)st.windows_propagated / nsrc;
     if (st.peak_windows > peakw) peakw = st.peak_windows;
     if (st.peak_heap > peakh) peakh = st.peak_heap;
@@ -77,7 +77,7 @@ static void run(const char *name, const ss_mesh *m, int nsrc) {
          (peakw * 48.0 + peakh * 16.0 + m->nv * 13.0 + m->nf * 3 * 20.0) / 1048576.0, peak_mb());
   fflush(stdout);
   free(d); free(tv); free(tg);
-  ss_vtp_ws_free(ws);
+  ssi_vtp_ws_free(ws);
   ss_graph_free(&g);
   ss_geodesic_mesh_free(gm);
 }
@@ -155,7 +155,8 @@ static void map_eval(const ss_mesh *m) {
   printf("map error on %d vertices (sqrt(area) %.3f): ss_geodesic_pairs(map, identity), all vertices, per map; "
          "'plain' = Dijkstra-ordered front from Pi(x) stopped at x, no A* (sampled, scaled to all vertices)\n", n, sa);
   double c0 = cpu_time(), a0 = ss_time();
-  if (ss_geodesic_mesh_prepare_queries(gm, 8, &e)) { printf("landmarks: %s\n", e.msg); return; }
+  ss_geodesic_landmarks *lm = NULL;
+  if (ss_geodesic_landmarks_new(gm, 8, &lm, &e)) { printf("landmarks: %s\n", e.msg); return; }
   printf("  landmark fields (8, once per mesh): wall %.3f s, cpu %.3f s\n", ss_time() - a0, cpu_time() - c0);
   for (int t = 0; t < 4; t++) {
     int nm = t == 3 ? 3 : 1;
@@ -165,23 +166,23 @@ static void map_eval(const ss_mesh *m) {
     }
     /* plain: a Dijkstra-ordered front from Pi(x) stopped at x (the former ss_geodesic_pairs
      * strategy, without its O(nv) set-up per query), on a sample of vertices */
-    ss_vtp_ws *ws = ss_vtp_ws_new(n, m->nf);
+    ssi_vtp_ws *ws = ssi_vtp_ws_new(n, m->nf);
     int ns = t == 0 ? 2000 : 300;
     double a0 = ss_time(), c0 = cpu_time();
     for (int k = 0; k < ns; k++) {
       int x = (int)(urand() * n), s = maps[x];
-      ss_vtp_run(gm, ws, &s, 1, 0, &x, 1, fd, NULL, NULL);
+      ssi_vtp_run(gm, ws, &s, 1, 0, &x, 1, fd, NULL, NULL);
     }
     double before = (ss_time() - a0) / ns * n * nm, beforec = (cpu_time() - c0) / ns * n * nm;
-    ss_vtp_ws_free(ws);
+    ssi_vtp_ws_free(ws);
     double t1, t2, c1, c2;
     omp_set_num_threads(1);
     a0 = ss_time(); c0 = cpu_time();
-    ss_geodesic_pairs(gm, maps, ident, nm * n, d, NULL);
+    ss_geodesic_pairs(gm, &lm, maps, ident, nm * n, d, NULL);
     t1 = ss_time() - a0; c1 = cpu_time() - c0;
     omp_set_num_threads(2);
     a0 = ss_time(); c0 = cpu_time();
-    ss_geodesic_pairs(gm, maps, ident, nm * n, d, NULL);
+    ss_geodesic_pairs(gm, &lm, maps, ident, nm * n, d, NULL);
     t2 = ss_time() - a0; c2 = cpu_time() - c0;
     double mean = 0;
     for (int k = 0; k < nm * n; k++) mean += d[k] / (nm * n * sa);
@@ -212,7 +213,7 @@ static void map_eval(const ss_mesh *m) {
     map_realistic(m, &gn, 0.03 * sa, 0.05, maps);
     for (int x = 0; x < n; x++) { two[2 * x] = x; two[2 * x + 1] = mir[x]; }
     double a0 = ss_time(), c0 = cpu_time();
-    ss_geodesic_nearest_of(gm, maps, two, 2, n, d, NULL);
+    ss_geodesic_nearest_of(gm, &lm, maps, two, 2, n, d, NULL);
     double tn = ss_time() - a0, cn = cpu_time() - c0, mean = 0;
     for (int x = 0; x < n; x++) mean += d[x] / (n * sa);
     /* the same through ss_geodesic_pairs on both pairs (the mirrored one is far), sampled */
@@ -222,7 +223,7 @@ static void map_eval(const ss_mesh *m) {
       ps[2 * k] = ps[2 * k + 1] = maps[x]; pt[2 * k] = x; pt[2 * k + 1] = mir[x];
     }
     c0 = cpu_time();
-    ss_geodesic_pairs(gm, ps, pt, 2 * ns, fd, NULL);
+    ss_geodesic_pairs(gm, &lm, ps, pt, 2 * ns, fd, NULL);
     double cp = (cpu_time() - c0) / ns * n;
     printf("  %-31s err %.4f | ss_geodesic_nearest_of (2 threads): wall %6.3f s, cpu %6.3f s | via pairs on both "
            "(sampled): cpu %6.2f s | ratio %.0fx\n", "(d) sym error of (b)", mean, tn, cn, cp, cp / cn);
@@ -230,6 +231,7 @@ static void map_eval(const ss_mesh *m) {
   }
   free(ident); free(maps); free(d); free(fd);
   ss_graph_free(&gn); ss_graph_free(&ge);
+  ss_geodesic_landmarks_free(lm);
   ss_geodesic_mesh_free(gm);
 }
 

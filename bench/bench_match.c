@@ -344,7 +344,7 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
           }
           ss_geodesic_mesh *gmy = NULL;
           ss_error e3;
-          if (!ss_geodesic_mesh_build(&Y->m, &gmy, &e3)) ss_geodesic_pairs(gmy, &yb, &cx, 1, &tri, &e3);
+          if (!ss_geodesic_mesh_build(&Y->m, &gmy, &e3)) ss_geodesic_pairs(gmy, NULL, &yb, &cx, 1, &tri, &e3);
           ss_geodesic_mesh_free(gmy);
           tri /= sqrt(Y->prep.area);
         }
@@ -410,7 +410,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--wdescr")) o.fmap.w_descr = atof(v), i++;
     else if (!strcmp(a, "--wlap")) o.fmap.w_lap = atof(v), i++;
     else if (!strcmp(a, "--wdcomm")) o.fmap.w_dcomm = atof(v), i++;
-    else if (!strcmp(a, "--profile")) o.segment_profile = atoi(v), i++;
+    else if (!strcmp(a, "--profile")) o.segment_profile = (ss_segment_profile)atoi(v), i++;
     else if (!strcmp(a, "--wextra")) o.fmap.w_extra = atof(v), i++;
     else if (!strcmp(a, "--no-timing")) timing = 0;
     else if (!strcmp(a, "--zo-pairs")) zo_pairs = atoi(v), i++;

@@ -9,7 +9,6 @@
  * Times are per shape, shapes one after the other. Run with
  * OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 for single-thread figures; cpu_total is the process CPU time
  * per shape (meaningful with one thread). */
-#include "specseg/eval.h"
 #include "specseg/io.h"
 #include "specseg/segment.h"
 

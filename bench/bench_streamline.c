@@ -16,6 +16,7 @@
 #include <time.h>
 
 #include "specseg/specseg.h"
+#include "specseg/synth.h"
 
 #ifndef SS_DATA_DIR_DEFAULT
 #define SS_DATA_DIR_DEFAULT "../shared/data"

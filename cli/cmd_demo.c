@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "specseg/render.h"
 #include "specseg/match.h"
+#include "specseg/synth.h"
 
 static const char *usage = "specseg demo [-o DIR]   (default DIR: specseg-demo)";
 

@@ -1,6 +1,6 @@
 /* specseg eval: reproduce the paper's evaluation (Table 1, §5 coherency, §5 timings, Figures 3, 9–11). */
 #include "cli.h"
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 #include "specseg/io.h"
 #include "specseg/match.h"
 #include "specseg/render.h"
@@ -330,6 +330,39 @@ static int run_figures(const char *data, const char *outdir, const char *cache, 
   return SS_EXIT_OK;
 }
 
+/* The progress bar on a terminal and the stage messages of a Table 1 run (the library prints nothing). */
+typedef struct eval_output {
+  int bar;     /* draw the bar (stderr is a terminal) */
+  int on_line; /* the cursor is on a bar line */
+} eval_output;
+
+static void eval_progress(void *user, const ss_table1_progress *p) {
+  eval_output *out = user;
+  if (!out->bar) return;
+  double el = p->seconds;
+  if (p->shapes_done < p->shapes_total) {
+    fprintf(stderr, "\r  preparing shapes %d/%d  %.0fs      ", p->shapes_done, p->shapes_total, el);
+  } else {
+    char eta[32] = "--", bar[64];
+    if (p->rows_done > 0) {
+      double r = el / p->rows_done * (p->rows_total - p->rows_done);
+      snprintf(eta, sizeof eta, "%dm%02ds", (int)(r / 60), (int)fmod(r, 60));
+    }
+    int w = 30, fill = p->rows_total ? (int)(w * p->rows_done / p->rows_total) : w;
+    for (int i = 0; i < w; i++) bar[i] = i < fill ? '#' : '.';
+    bar[w] = 0;
+    fprintf(stderr, "\r  [%s] %ld/%ld rows  %.0fs elapsed  ETA %s   ", bar, p->rows_done, p->rows_total, el, eta);
+  }
+  out->on_line = 1;
+  fflush(stderr);
+}
+
+static void eval_log(void *user, const char *line) {
+  eval_output *out = user;
+  fprintf(stderr, "%s%s\n", out->on_line ? "\n" : "", line);
+  out->on_line = 0;
+}
+
 int cmd_eval(int argc, char **argv) {
   if (argc >= 2 && !strcmp(argv[1], "merge")) return cmd_merge(argc - 1, argv + 1);
   ss_table1_options o;
@@ -406,12 +439,18 @@ int cmd_eval(int argc, char **argv) {
   mallopt(M_MMAP_THRESHOLD, 512 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
 #endif
-  o.progress = !quiet && isatty(2);
-  o.verbose = !quiet;
+  eval_output eo = {!quiet && isatty(2), 0};
+  if (!quiet) {
+    o.progress = eval_progress;
+    o.log = eval_log;
+    o.user = &eo;
+  }
   ss_error e;
   int nnew = 0;
   double t0 = ss_time();
-  if (ss_table1_run(&o, &nnew, &e)) return cli_error("%s", e.msg);
+  ss_status st = ss_table1_run(&o, &nnew, &e);
+  if (eo.on_line) fputc('\n', stderr);
+  if (st) return cli_error("%s", e.msg);
   if (!quiet) fprintf(stderr, "eval: %d new rows in %.1f s -> %s\n", nnew, ss_time() - t0, o.out_csv);
   return print_csv_table(o.out_csv);
 }

@@ -51,9 +51,9 @@ int cmd_match(int argc, char **argv) {
       else return cli_usage("%s: --probes takes std, asa or diff", USAGE);
     } else if (!strcmp(a, "--segment-profile")) {
       const char *v = has_next ? argv[++i] : "";
-      if (!strcmp(v, "indicator")) o.segment_profile = 0;
-      else if (!strcmp(v, "tent")) o.segment_profile = 1;
-      else if (!strcmp(v, "soft")) o.segment_profile = 2;
+      if (!strcmp(v, "indicator")) o.segment_profile = SS_PROFILE_INDICATOR;
+      else if (!strcmp(v, "tent")) o.segment_profile = SS_PROFILE_TENT;
+      else if (!strcmp(v, "soft")) o.segment_profile = SS_PROFILE_SOFT;
       else return cli_usage("%s: --segment-profile takes indicator, tent or soft", USAGE);
     } else if (!strcmp(a, "--k")) {
       if (!has_next || cli_parse_int(argv[++i], 3, 10000, &o.fmap.k))

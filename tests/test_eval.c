@@ -3,10 +3,11 @@
 #include "testlib.h"
 
 #include "eval/eval_internal.h"
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 #include "specseg/io.h"
 #include "specseg/match.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 
 #include <stdint.h>
 #include <unistd.h>

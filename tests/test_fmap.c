@@ -4,6 +4,7 @@
 #include "specseg/io.h"
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "specseg/spectrum.h"
 #include "testlib.h"
 

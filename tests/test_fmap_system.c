@@ -5,6 +5,7 @@
 #include "specseg/geodesic.h"
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "specseg/spectrum.h"
 #include "testlib.h"
 
@@ -163,7 +164,7 @@ static void test_bad_input(void) {
   ss_fmap_probes out;
   CHECK(ss_fmap_base_probes(NULL, 0, NULL, NULL, 0, &out, &e) == SS_ERR_INVALID);
   CHECK(ss_fmap_extra_probes(NULL, 0, 0, NULL, SS_PROBE_RAW, NULL, 0, &out, &e) == SS_ERR_INVALID);
-  CHECK(ss_geodesic_lower_bound(NULL, 0, 1) == 0.0);
+  CHECK(ss_geodesic_lower_bound(NULL, NULL, 0, 1) == 0.0);
 }
 
 int main(void) {

@@ -4,6 +4,7 @@
 #include "specseg/geodesic.h"
 #include "specseg/io.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "geodesic_meshes.h"
 #include "geodesic/geodesic_mesh.h"
 #include "testlib.h"
@@ -75,7 +76,7 @@ static void test_faust(void) {
     int tg[5] = {1, 100, 2000, 5000, 6889}, ps[5];
     double po[5];
     for (int q = 0; q < 5; q++) ps[q] = srcs[k];
-    CHECK(ss_geodesic_pairs(gm, ps, tg, 5, po, NULL) == SS_OK);
+    CHECK(ss_geodesic_pairs(gm, NULL, ps, tg, 5, po, NULL) == SS_OK);
     int pok = 1;
     for (int q = 0; q < 5; q++) if (fabs(po[q] - d[tg[q]]) > 1e-12 * d[tg[q]]) pok = 0;
     CHECK(pok);
@@ -86,8 +87,8 @@ static void test_faust(void) {
   double dab[40], dba[40];
   gm_rng_state = 777;
   for (int i = 0; i < np; i++) { a[i] = (int)(gm_rand() * m.nv); b[i] = (int)(gm_rand() * m.nv); }
-  CHECK(ss_geodesic_pairs(gm, a, b, np, dab, NULL) == SS_OK);
-  CHECK(ss_geodesic_pairs(gm, b, a, np, dba, NULL) == SS_OK);
+  CHECK(ss_geodesic_pairs(gm, NULL, a, b, np, dab, NULL) == SS_OK);
+  CHECK(ss_geodesic_pairs(gm, NULL, b, a, np, dba, NULL) == SS_OK);
   double worst = 0;
   for (int i = 0; i < np; i++) worst = fmax(worst, fabs(dab[i] - dba[i]) / fmax(dab[i], 1e-300));
   CHECK_MSG(worst <= 1e-12, "symmetry %g", worst);
@@ -320,13 +321,13 @@ static void test_invariants(void) {
   CHECK(rel_err(bf, da, n) == 0 && rel_err(bf + n, db, n) == 0 && rel_err(bf + 2 * n, dc, n) == 0);
   int ps[6] = {sa, sb, sa, sc, sa, sb}, pt[6] = {sb, 3, 700, 0, sa, 779};
   double po[6];
-  CHECK(ss_geodesic_pairs(gm, ps, pt, 6, po, NULL) == SS_OK);
+  CHECK(ss_geodesic_pairs(gm, NULL, ps, pt, 6, po, NULL) == SS_OK);
   CHECK(po[0] == da[sb] && po[1] == db[3] && po[2] == da[700] && po[3] == dc[0] && po[4] == 0 && po[5] == db[779]);
   /* errors */
   ss_error e;
   int bad = n;
   CHECK(ss_vtp_distances(gm, &bad, 1, 0, dt, &e) == SS_ERR_INVALID);
-  CHECK(ss_geodesic_pairs(gm, &sa, &bad, 1, po, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_pairs(gm, NULL, &sa, &bad, 1, po, &e) == SS_ERR_INVALID);
   CHECK(ss_vtp_distances(gm, &sa, 0, 0, dt, &e) == SS_ERR_INVALID);
   /* method switch */
   CHECK(ss_geodesic_distances(&m, SS_GEODESIC_GRAPH, &sa, 1, 0, dt, NULL) == SS_OK && dt[sb] == dn[sb]);
@@ -368,13 +369,15 @@ static void check_queries(const ss_mesh *m, const char *name, int nsrc, int land
   ss_geodesic_mesh *gm = build(m);
   CHECK(gm != NULL);
   if (!gm) return;
-  if (landmarks >= 0) CHECK(ss_geodesic_mesh_prepare_queries(gm, landmarks, NULL) == SS_OK);
+  /* landmarks > 0: an accelerator of that many; 0: none; < 0: built by the first large batch */
+  ss_geodesic_landmarks *acc = NULL, **slot = landmarks == 0 ? NULL : &acc;
+  if (landmarks > 0) CHECK(ss_geodesic_landmarks_new(gm, landmarks, &acc, NULL) == SS_OK);
   int n = m->nv;
   double scale = ss_mesh_bbox_diagonal(m);
   int *src = malloc(sizeof(int) * nsrc);
   double **fld = malloc(sizeof(double *) * nsrc);
   ss_geodesic_query *q = NULL;
-  CHECK(ss_geodesic_query_new(gm, &q, NULL) == SS_OK);
+  CHECK(ss_geodesic_query_new(gm, acc, &q, NULL) == SS_OK);
   int np = 0, cap = 48 * nsrc;
   int *pa = malloc(sizeof(int) * 2 * cap), *pb = malloc(sizeof(int) * 2 * cap);
   int bad_one = 0, bad_query = 0, nnear = 0;
@@ -396,7 +399,7 @@ static void check_queries(const ss_mesh *m, const char *name, int nsrc, int land
       int t[12];
       double out[12];
       for (int j = 0; j < cnt[c]; j++) t[j] = tg[order[c][j]];
-      CHECK(ss_geodesic_one_to_many(gm, src[k], t, cnt[c], out, NULL) == SS_OK);
+      CHECK(ss_geodesic_one_to_many(gm, acc, src[k], t, cnt[c], out, NULL) == SS_OK);
       for (int j = 0; j < cnt[c]; j++) if (!close_rel(out[j], fld[k][t[j]], scale)) bad_one++;
     }
     for (int j = 0; j < 12; j++) { /* the reused object, one target at a time, near and far mixed */
@@ -416,7 +419,7 @@ static void check_queries(const ss_mesh *m, const char *name, int nsrc, int land
       int k = ks[c], *t = malloc(sizeof(int) * nsrc * k);
       double *o = malloc(sizeof(double) * nsrc);
       for (int i = 0; i < nsrc * k; i++) t[i] = (int)(gm_rand() * n);
-      CHECK(ss_geodesic_nearest_of(gm, src, t, k, nsrc, o, NULL) == SS_OK);
+      CHECK(ss_geodesic_nearest_of(gm, slot, src, t, k, nsrc, o, NULL) == SS_OK);
       for (int i = 0; i < nsrc; i++) {
         double ref = INFINITY;
         for (int j = 0; j < k; j++) ref = fmin(ref, fld[i][t[i * k + j]]);
@@ -434,9 +437,9 @@ static void check_queries(const ss_mesh *m, const char *name, int nsrc, int land
   while (np < 2 * cap && np < 520) { pa[np] = src[np % nsrc]; pb[np] = src[(np / nsrc) % nsrc]; np++; }
   double *o1 = malloc(sizeof(double) * np), *o2 = malloc(sizeof(double) * np);
   omp_set_num_threads(1);
-  CHECK(ss_geodesic_pairs(gm, pa, pb, np, o1, NULL) == SS_OK);
+  CHECK(ss_geodesic_pairs(gm, slot, pa, pb, np, o1, NULL) == SS_OK);
   omp_set_num_threads(2);
-  CHECK(ss_geodesic_pairs(gm, pa, pb, np, o2, NULL) == SS_OK);
+  CHECK(ss_geodesic_pairs(gm, slot, pa, pb, np, o2, NULL) == SS_OK);
   int bad = 0, same = 1;
   for (int i = 0; i < np; i++) {
     int k = 0;
@@ -448,12 +451,13 @@ static void check_queries(const ss_mesh *m, const char *name, int nsrc, int land
   }
   CHECK_MSG(bad == 0, "%s: %d of %d pairs differ from the fields", name, bad, np);
   CHECK_MSG(same, "%s: pairs differ between 1 and 2 threads", name);
-  if (landmarks < 0) CHECK_MSG(gm->lm != NULL && gm->nlm == 8, "%s: far pairs did not attach landmarks", name);
-  if (landmarks == 0) CHECK_MSG(gm->lm == NULL, "%s: landmarks attached although turned off", name);
+  if (landmarks < 0) CHECK_MSG(acc != NULL && acc->nlm == 8, "%s: far pairs did not build landmarks", name);
+  if (landmarks == 0) CHECK_MSG(acc == NULL, "%s: landmarks built although none were asked for", name);
   free(o1); free(o2); free(pa); free(pb);
   for (int k = 0; k < nsrc; k++) free(fld[k]);
   free(fld); free(src);
   ss_geodesic_query_free(q);
+  ss_geodesic_landmarks_free(acc);
   ss_geodesic_mesh_free(gm);
 }
 
@@ -490,27 +494,31 @@ static void test_queries(void) {
   int F[] = {0, 1, 2, 1, 3, 2, 1, 4, 3, 5, 6, 7, 0, 1, 4};
   ss_mesh d = {8, 5, V, F};
   ss_geodesic_mesh *gm = build(&d);
-  CHECK(ss_geodesic_mesh_prepare_queries(gm, 4, NULL) == SS_OK);
+  ss_geodesic_landmarks *acc = NULL;
+  CHECK(ss_geodesic_landmarks_new(gm, 4, &acc, NULL) == SS_OK);
   int tg[4] = {3, 5, 0, 3};
   double out[4];
-  CHECK(ss_geodesic_one_to_many(gm, 0, tg, 4, out, NULL) == SS_OK);
+  CHECK(ss_geodesic_one_to_many(gm, acc, 0, tg, 4, out, NULL) == SS_OK);
   CHECK_NEAR(out[0], sqrt(2.0), 1e-15);
   CHECK(isinf(out[1]) && out[2] == 0 && out[3] == out[0]);
   int pa[3] = {0, 6, 2}, pb[3] = {6, 7, 2};
-  CHECK(ss_geodesic_pairs(gm, pa, pb, 3, out, NULL) == SS_OK);
+  CHECK(ss_geodesic_pairs(gm, &acc, pa, pb, 3, out, NULL) == SS_OK);
   CHECK(isinf(out[0]) && fabs(out[1] - sqrt(2.0)) < 1e-15 && out[2] == 0);
   int ns[2] = {0, 5}, nt[4] = {6, 4, 7, 5};
-  CHECK(ss_geodesic_nearest_of(gm, ns, nt, 2, 2, out, NULL) == SS_OK);
+  CHECK(ss_geodesic_nearest_of(gm, &acc, ns, nt, 2, 2, out, NULL) == SS_OK);
   CHECK(fabs(out[0] - 2.0) < 1e-15 && out[1] == 0);
   nt[1] = 7;
-  CHECK(ss_geodesic_nearest_of(gm, ns, nt, 2, 1, out, NULL) == SS_OK && isinf(out[0]));
-  CHECK(ss_geodesic_nearest_of(gm, ns, nt, 0, 1, out, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_nearest_of(gm, &acc, ns, nt, 2, 1, out, NULL) == SS_OK && isinf(out[0]));
+  CHECK(ss_geodesic_nearest_of(gm, &acc, ns, nt, 0, 1, out, &e) == SS_ERR_INVALID);
   /* errors */
   int bad = 8;
-  CHECK(ss_geodesic_one_to_many(gm, 0, &bad, 1, out, &e) == SS_ERR_INVALID);
-  CHECK(ss_geodesic_one_to_many(gm, -1, tg, 1, out, &e) == SS_ERR_INVALID);
-  CHECK(ss_geodesic_mesh_prepare_queries(gm, 17, &e) == SS_ERR_INVALID);
-  CHECK(ss_geodesic_one_to_many(gm, 0, tg, 0, out, &e) == SS_OK);
+  CHECK(ss_geodesic_one_to_many(gm, acc, 0, &bad, 1, out, &e) == SS_ERR_INVALID);
+  CHECK(ss_geodesic_one_to_many(gm, acc, -1, tg, 1, out, &e) == SS_ERR_INVALID);
+  ss_geodesic_landmarks *big = NULL;
+  CHECK(ss_geodesic_landmarks_new(gm, 17, &big, &e) == SS_ERR_INVALID && big == NULL);
+  CHECK(ss_geodesic_landmarks_new(gm, 0, &big, &e) == SS_ERR_INVALID && big == NULL);
+  CHECK(ss_geodesic_one_to_many(gm, acc, 0, tg, 0, out, &e) == SS_OK);
+  ss_geodesic_landmarks_free(acc);
   ss_geodesic_mesh_free(gm);
 }
 

@@ -9,6 +9,7 @@
 
 #include "specseg/io.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 static char tmpdir[512];

@@ -7,6 +7,7 @@
 
 #include "specseg/io.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;

@@ -1,6 +1,7 @@
 /* Cotangent stiffness and lumped mass: exact properties on flat grids and spheres. */
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 /* Irregular flat grid n x n on [0,1]^2 with jittered interior vertices. */

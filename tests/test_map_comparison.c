@@ -2,6 +2,7 @@
  * equals the target's colours, the heat rows and shared scale, the optional ground-truth and segment
  * panels, and refusal of out-of-range input. */
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "specseg/render.h"
 #include "testlib.h"
 

@@ -3,6 +3,7 @@
 #include "specseg/fmap.h"
 #include "specseg/match.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 #include <math.h>

@@ -3,6 +3,7 @@
  * edges, duplicate / degenerate faces, unreferenced and non-finite vertices. */
 #include "specseg/io.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 static void make(ss_mesh *m, int nv, const double *V, int nf, const int *F) {

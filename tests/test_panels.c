@@ -1,6 +1,7 @@
 /* Panel grids (ss_render_panels), map colour transfer, coordinate colours and landmark files. */
 #include "specseg/io.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "specseg/render.h"
 #include "testlib.h"
 

@@ -1,5 +1,6 @@
 /* Software rasteriser: background, colours where they must be, the z-buffer hides the back. */
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "specseg/render.h"
 #include "testlib.h"
 

@@ -6,9 +6,9 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-#include "specseg/eval.h"
 #include "specseg/geodesic.h"
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "specseg/segment.h"
 
 /* ---- tiny meshes --------------------------------------------------------------------------------- */

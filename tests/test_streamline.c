@@ -1,5 +1,6 @@
 /* Streamlining: CMCF smoothing, isotropic remeshing quality, closest-vertex map Ψ. */
 #include "specseg/specseg.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 static void centroid_area(const ss_mesh *m, double c[3], double *area) {

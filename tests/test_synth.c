@@ -1,6 +1,7 @@
 /* Synthetic shapes: the posable humanoid (topology, shared connectivity, near-isometry between poses,
  * determinism, extremities, triangle quality) and the torus (topology, area, volume). */
 #include "specseg/mesh.h"
+#include "specseg/synth.h"
 #include "testlib.h"
 
 #include <stdint.h>

@@ -6,12 +6,15 @@
 
 #include <stddef.h>
 
+#include "specseg/core.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* sizeof the public struct named e.g. "ss_mesh", "ss_segmentation"; 0 for an unknown name. */
-size_t ss_struct_size(const char *name);
+/* sizeof the core library's public struct named e.g. "ss_mesh", "ss_segmentation"; 0 for an unknown
+ * name. The render library's structs: ss_render_struct_size (render.h). */
+SS_API size_t ss_struct_size(const char *name);
 
 #ifdef __cplusplus
 }

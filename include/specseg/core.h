@@ -7,11 +7,31 @@
  *    one-line message into it (files: "PATH:LINE: what"); the library never exits or aborts on input;
  *  - 0-based indices everywhere; vertex arrays are xyz-interleaved (V[3*i+0..2]);
  *  - dense matrices are column-major (Fortran / BLAS order) unless a function says otherwise;
- *  - no global mutable state; OpenMP is used inside calls only. */
+ *  - no hidden state: every function's result depends only on its arguments and the objects passed
+ *    in; the library keeps no global mutable data of its own, reads no environment variables and
+ *    never prints. Process-wide settings of the libraries it calls are left to the caller (OpenMP's
+ *    thread count; OpenBLAS's own threading, which a program that runs specseg calls on several of
+ *    its threads should set to 1). One exception is internal and invisible in results: ARPACK
+ *    (Fortran, with SAVE variables) is not reentrant, so ss_eigs serialises its ARPACK iterations
+ *    across threads with one process-wide lock; concurrent ss_eigs calls are safe, and run their
+ *    factorisations and solves in parallel;
+ *  - OpenMP is used inside calls only;
+ *  - public symbols carry the ss_ prefix (macros SS_ / SPECSEG_); everything else is hidden. */
 #ifndef SPECSEG_CORE_H
 #define SPECSEG_CORE_H
 
 #include <stddef.h>
+
+#include "specseg/version.h"
+
+/* Marks the functions the shared libraries export (they are built with -fvisibility=hidden). */
+#ifndef SS_API
+#if defined(__GNUC__) || defined(__clang__)
+#define SS_API __attribute__((visibility("default")))
+#else
+#define SS_API
+#endif
+#endif
 
 #ifdef __cplusplus
 extern "C" {
@@ -32,12 +52,12 @@ typedef struct ss_error {
 } ss_error;
 
 /* printf-style; does nothing when e is NULL. Returns `code` so callers can `return ss_fail(...)`. */
-ss_status ss_fail(ss_error *e, ss_status code, const char *fmt, ...)
+SS_API ss_status ss_fail(ss_error *e, ss_status code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
-const char *ss_status_name(ss_status s);
+SS_API const char *ss_status_name(ss_status s);
 
 /* Triangle mesh: nv vertices (V, 3*nv doubles), nf triangles (F, 3*nf ints, 0-based). */
 typedef struct ss_mesh {
@@ -46,11 +66,11 @@ typedef struct ss_mesh {
   int *F;
 } ss_mesh;
 
-ss_status ss_mesh_alloc(ss_mesh *m, int nv, int nf, ss_error *err); /* V, F uninitialised */
-ss_status ss_mesh_copy(const ss_mesh *src, ss_mesh *dst, ss_error *err);
-void ss_mesh_free(ss_mesh *m); /* frees arrays, zeroes the struct; safe on a zeroed struct */
-double ss_mesh_area(const ss_mesh *m);
-double ss_mesh_bbox_diagonal(const ss_mesh *m);
+SS_API ss_status ss_mesh_alloc(ss_mesh *m, int nv, int nf, ss_error *err); /* V, F uninitialised */
+SS_API ss_status ss_mesh_copy(const ss_mesh *src, ss_mesh *dst, ss_error *err);
+SS_API void ss_mesh_free(ss_mesh *m); /* frees arrays, zeroes the struct; safe on a zeroed struct */
+SS_API double ss_mesh_area(const ss_mesh *m);
+SS_API double ss_mesh_bbox_diagonal(const ss_mesh *m);
 
 /* Sparse matrix in compressed sparse column form, row indices sorted within each column.
  * Symmetric matrices store both triangles. */
@@ -62,14 +82,14 @@ typedef struct ss_sparse {
 } ss_sparse;
 
 /* Build from (I[k], J[k], X[k]) triplets, summing duplicates. */
-ss_status ss_sparse_from_triplets(int nrows, int ncols, size_t nnz, const int *I, const int *J,
-                                  const double *X, ss_sparse *out, ss_error *err);
-void ss_sparse_free(ss_sparse *A);
+SS_API ss_status ss_sparse_from_triplets(int nrows, int ncols, size_t nnz, const int *I, const int *J,
+                                         const double *X, ss_sparse *out, ss_error *err);
+SS_API void ss_sparse_free(ss_sparse *A);
 /* y = A x */
-void ss_sparse_matvec(const ss_sparse *A, const double *x, double *y);
+SS_API void ss_sparse_matvec(const ss_sparse *A, const double *x, double *y);
 
 /* Wall-clock seconds (monotonic). */
-double ss_time(void);
+SS_API double ss_time(void);
 
 #ifdef __cplusplus
 }

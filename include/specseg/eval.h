@@ -1,22 +1,195 @@
-/* specseg — evaluation measures. */
-#ifndef SPECSEG_EVAL_H
-#define SPECSEG_EVAL_H
+/* specseg — reproducing the paper's evaluation (library specseg_eval, above the core and
+ * specseg_render): a deterministic PRNG, the pairing policies, FAUST's left–right symmetry map, the
+ * results CSV (read / merge / aggregate), the Table 1 runner (prepared shapes cached, OpenMP over
+ * work units, resumable, shardable), §5 coherency runs and the paper's figures. This is the library
+ * that knows the data sets' layout (FAUST as DATA/faust/tr_reg_NNN.off). */
+#ifndef SPECSEG_EVALUATION_H
+#define SPECSEG_EVALUATION_H
+
+#include <stdint.h>
+#include <stdio.h>
 
 #include "specseg/core.h"
+#include "specseg/render.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Coherency of a segmentation of Y with the segmentation of a reference shape X0 (paper §5): for
- * every vertex y of Y, with u the centre of y's segment, the check passes when GT(y) and GT(u) lie in
- * the same segment of X0. Returns the fraction of vertices that pass in *coherency.
- *   labels0: nv0 labels of X0 (any integers; only equality matters).
- *   labels:  nv labels of Y, each in [0, m); centers: m vertices of Y (the centre of each segment).
- *   gt:      nv vertices of X0 (GT(y)); NULL = identity (then nv must equal nv0).
- * Fails with SS_ERR_INVALID on out-of-range labels, centres or map entries. */
-ss_status ss_coherency(const int *labels0, int nv0, const int *labels, const int *centers, int m, int nv,
-                       const int *gt, double *coherency, ss_error *err);
+/* ---- Deterministic PRNG: splitmix64 (same stream on every machine and compiler) -------------- */
+
+typedef struct ss_rng {
+  uint64_t state;
+} ss_rng;
+
+SS_API void ss_rng_seed(ss_rng *r, uint64_t seed);
+SS_API uint64_t ss_rng_next(ss_rng *r);
+/* Uniform integer in [0, n) for n ≥ 1, without modulo bias (rejection sampling); 0 when n ≤ 1. */
+SS_API int ss_rng_below(ss_rng *r, int n);
+
+/* ---- Pairing policies (paper §6.1) ------------------------------------------------------------ */
+
+typedef enum ss_pair_policy {
+  SS_POLICY_RANDOM = 0, /* any two different shapes */
+  SS_POLICY_SUBJ = 1,   /* same subject, different pose */
+  SS_POLICY_POSE = 2    /* same pose, different subjects */
+} ss_pair_policy;
+
+SS_API const char *ss_pair_policy_name(ss_pair_policy p); /* "random" | "subj" | "pose" */
+SS_API int ss_pair_policy_parse(const char *s);            /* -1 when unknown */
+
+/* npairs distinct ordered pairs (x, y), x ≠ y, drawn without replacement from all pairs the policy
+ * allows, deterministically from `seed`. Shape s is subject s / nposes, pose s % nposes (FAUST:
+ * tr_reg_NNN, 10 × 10). Fails with SS_ERR_INVALID when fewer than npairs pairs exist. */
+SS_API ss_status ss_eval_pairs(ss_pair_policy policy, int nsubjects, int nposes, int npairs, uint64_t seed, int *x,
+                               int *y, ss_error *err);
+
+/* ---- Left–right symmetry map ------------------------------------------------------------------ */
+
+typedef struct ss_symmetry_stats {
+  double normal[3], point[3]; /* the fitted mirror plane */
+  double involution;          /* fraction of x with sym[sym[x]] == x */
+  double mean_residual;       /* mean |reflect(x) − sym(x)| / bbox diagonal */
+  int refined;                /* vertices whose nearest-reflection candidate the intrinsic check changed */
+} ss_symmetry_stats;
+
+/* Left–right symmetry map of an (approximately) mirror-symmetric shape: sym[x] = mirror vertex of x.
+ * lm / lm_mirror: nl landmark pairs (lm_mirror[i] is the mirror of lm[i]; equal for landmarks on the
+ * symmetry plane, e.g. the head); at least one pair must differ. Steps: (1) a plane with normal
+ * Σ (p(lm) − p(lm_mirror)) through the centroid; (2) ICP refinement of the plane (reflect, nearest
+ * vertices, refit normal = principal direction of x − sym(x), point = mean midpoint), 10 rounds;
+ * (3) intrinsic check: among the 8 vertices nearest to the reflected point, keep the one whose exact
+ * geodesic distances to the landmarks best match x's distances to the mirrored landmarks (all
+ * scaled by 1/√area), with the Euclidean offset as a tie-breaker. stats may be NULL. */
+SS_API ss_status ss_symmetry_map(const ss_mesh *m, int nl, const int *lm, const int *lm_mirror, int *sym,
+                                 ss_symmetry_stats *stats, ss_error *err);
+
+/* ---- Results: one row per (scenario, method, pair) -------------------------------------------- */
+
+typedef enum ss_lm_set { SS_LM_BEST = 0, SS_LM_GT = 1, SS_LM_FPS = 2 } ss_lm_set;
+typedef enum ss_eval_method { SS_METHOD_STD = 0, SS_METHOD_ASA = 1, SS_METHOD_DIFF = 2 } ss_eval_method;
+SS_API const char *ss_lm_set_name(ss_lm_set s);           /* "best" | "gt" | "fps" */
+SS_API const char *ss_eval_method_name(ss_eval_method m); /* "std" | "asa" | "diff" */
+SS_API int ss_lm_set_parse(const char *s);
+SS_API int ss_eval_method_parse(const char *s);
+
+typedef struct ss_eval_row {
+  ss_pair_policy policy;
+  ss_lm_set landmarks;
+  ss_eval_method method;
+  int x, y;                      /* shape indices */
+  double error, error_sym;       /* mean geodesic error / √area(Y), plain and symmetric */
+  int segments_x, segments_y, paired;
+  double seconds;                /* matching time of this row (wall) */
+  int samples;                   /* vertices the error averages over */
+  double cpu_seconds;            /* CPU time of the matching (its thread; BLAS runs single-threaded) */
+} ss_eval_row;
+
+/* CSV header line (no newline) and one row (%.17g for reals, so CSV → read → CSV is exact). */
+SS_API const char *ss_eval_csv_header(void);
+SS_API void ss_eval_csv_format_row(const ss_eval_row *r, char *buf, size_t size);
+/* Reads a results CSV (header required; unknown extra columns ignored, columns found by name).
+ * *rows is malloc'd. A missing file is SS_ERR_IO. A truncated last line (interrupted run) is
+ * dropped silently; any other malformed line is SS_ERR_PARSE "PATH:LINE: what". */
+SS_API ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_error *err);
+/* Canonical order (policy, landmarks, method, x, y) and duplicate removal: rows with the same key
+ * must agree (else SS_ERR_INVALID naming the key). n is updated. */
+SS_API ss_status ss_eval_rows_canonical(ss_eval_row *rows, int *n, ss_error *err);
+
+/* Table 1 layout: 12 rows (FAUST {best,gt,fps}, subj ×3, pose ×3, sym ×3) × 3 methods. The sym
+ * rows average error_sym of the random-policy rows. Means are summed in canonical row order, so
+ * any split of the rows into shards gives bit-identical means. */
+typedef struct ss_table1 {
+  double mean[12][3];
+  int count[12][3];
+} ss_table1;
+/* rows need not be canonical (a sorted copy is made). */
+SS_API ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_error *err);
+/* The paper's Table 1 values, same layout. */
+SS_API extern const double ss_table1_paper[12][3];
+SS_API extern const char *const ss_table1_row_names[12];
+
+/* ---- The Table 1 runner ----------------------------------------------------------------------- */
+
+typedef struct ss_table1_progress {
+  int shapes_done, shapes_total; /* shape preparation (first phase) */
+  long rows_done, rows_total;    /* rows computed (second phase) */
+  double seconds;                /* since the phase began (wall) */
+} ss_table1_progress;
+typedef void (*ss_table1_progress_fn)(void *user, const ss_table1_progress *p);
+typedef void (*ss_table1_log_fn)(void *user, const char *line);
+
+typedef struct ss_table1_options {
+  const char *data_dir;   /* folder with faust/tr_reg_NNN.off and faust/landmarks_best.txt */
+  const char *out_csv;    /* results file: rows already there are skipped (resume); new rows appended */
+  const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there */
+  int npairs;             /* per policy (default 100) */
+  uint64_t seed;          /* default 1 */
+  int jobs;               /* parallel work units (OpenMP threads); 0 = omp default */
+  int shard_i, shard_n;   /* run the shard_i-th (0-based) of shard_n slices; default 0 / 1 */
+  int error_samples;      /* 0 (default): exact mean over all vertices (~0.1 s per good map, ~1.5 s for
+                             the FPS rows' bad maps); else a faster estimate from this many random
+                             vertices plus their mirrors — a different seeded sample for each target
+                             shape, whose exact fields are computed once per target (64 gave -29%..+12%
+                             per row against the exact mean) */
+  int k;                  /* eigenpairs of the functional map basis (default 50) */
+  int policies_mask, lm_mask, methods_mask; /* bit sets of what to run (default all 7) */
+  /* Progress and messages go to the caller (the library prints nothing). Both may be NULL (the
+   * default); they are called one at a time (from whichever worker thread), with `user`. */
+  ss_table1_progress_fn progress; /* after each prepared shape and each finished row */
+  ss_table1_log_fn log;           /* one line per stage (no newline) */
+  void *user;
+} ss_table1_options;
+
+SS_API void ss_table1_default_options(ss_table1_options *o);
+
+/* Runs (the shard of) Table 1 and appends its rows to o->out_csv. *new_rows receives the number of
+ * rows computed now (rows already in the file are skipped). */
+SS_API ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err);
+
+/* ---- §5 coherency and timings ----------------------------------------------------------------- */
+
+typedef struct ss_coherency_result {
+  char name[64];       /* "faust" or a TOSCA class */
+  int nshapes;
+  double coherency[2]; /* mean over Y ≠ X0: [0] with streamlining, [1] without */
+  double min_coherency[2];
+  int hist[2][32];     /* segment counts (31 = 31 or more) over all shapes of the set */
+} ss_coherency_result;
+
+/* Coherency of every shape of a set with the set's first shape (ground truth = identity: all shapes
+ * share connectivity). paths: n mesh files. jobs as above. */
+SS_API ss_status ss_eval_coherency_set(const char *name, int n, const char *const *paths, int jobs,
+                                       ss_coherency_result *res, ss_error *err);
+
+/* ---- Pictures: the paper's Figures 3 and 9–11 ------------------------------------------------- */
+
+/* Figure 3: segmentations of FAUST tr_reg_000 .. tr_reg_<count-1> (ss_segment, default options),
+ * segment ids aligned to tr_reg_000's (ss_labels_align; FAUST shares vertex order, ground truth =
+ * identity), boundary triangles neutral, centres as black spheres, 5 panels a row at one common scale,
+ * written to `png`. o: one panel (size, view). segments (may be NULL): count segment counts. */
+SS_API ss_status ss_eval_faust_gallery(const char *data_dir, int count, const ss_render_options *o, const char *png,
+                                       int *segments, ss_error *err);
+
+typedef struct ss_map_figure {
+  int x, y;                /* the pair tr_reg_x -> tr_reg_y */
+  ss_lm_set lmset;         /* and its landmark set */
+  double mean_error[3];    /* STD, ASA, DIFF: mean exact geodesic error / sqrt(area(Y)) over all vertices */
+  double error_scale;      /* top of the shared heat scale (errors above it are saturated) */
+  int paired, segments_x, segments_y;
+  int paired_right;        /* pairs the ground truth confirms (most of X's segment maps into Y's) */
+  int width, height;       /* of the PNG */
+} ss_map_figure;
+
+/* Figures 9–11: the pair x -> y matched with STD, ASA and DIFF exactly as the Table 1 rows are
+ * (per-shape preparation through cache_dir when not NULL, landmark set lmset — GT from `seed` as the
+ * runner draws it —, basis size k), drawn in 5 x 2 panels: top, the target Y coloured by its
+ * coordinates (ss_coordinate_colors), X pulled back through each map, and X's segments; bottom, X
+ * pulled back through the ground truth, each map's per-vertex error heat map (one shared scale, drawn
+ * beside), and Y's segments (paired segments share a colour, unpaired ones grey); landmarks white,
+ * segment centres black. info may be NULL. */
+SS_API ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64_t seed, int k, ss_lm_set lmset, int x,
+                                    int y, const ss_render_options *o, const char *png, ss_map_figure *info, ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -27,39 +27,39 @@ extern "C" {
  * ne x k filter matrix G (column-major), G[j,i] = exp(−(e_j − log λ_i)² / 2σ²), 0 for the
  * (numerically) zero eigenvalues (|λ| ≤ 1e-8·λ_max), so constants are filtered out.
  * Needs k ≥ 3 and at least two distinct non-zero eigenvalues. */
-ss_status ss_wks_filters(const double *evals, int k, int ne, double sigma_factor, double *G, ss_error *err);
+SS_API ss_status ss_wks_filters(const double *evals, int k, int ne, double sigma_factor, double *G, ss_error *err);
 
 /* WKS descriptors: out (n x ne, column-major), out[x,j] = Σ_i G[j,i] φ_i(x)², each column then
  * normalised to unit L²(M) norm (M: n lumped masses). */
-ss_status ss_wks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
-                 double sigma_factor, double *out, ss_error *err);
+SS_API ss_status ss_wks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
+                        double sigma_factor, double *out, ss_error *err);
 
 /* Wave-kernel filtering of nf functions F (n x nf, column-major): for each function f and energy j,
  * the function Σ_i G[j,i] <f, φ_i>_M φ_i, normalised in L²(M). Output n x (nf·ne), column
  * f·ne + j. A column whose filtered version is numerically zero is left zero. */
-ss_status ss_wks_filter(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
-                        double sigma_factor, int nf, const double *F, double *out, ss_error *err);
+SS_API ss_status ss_wks_filter(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
+                               double sigma_factor, int nf, const double *F, double *out, ss_error *err);
 
 /* Wave-kernel maps of landmarks (NO17): the filtered delta at each landmark, i.e.
  * out[x, l·ne + j] = Σ_i G[j,i] φ_i(lm[l]) φ_i(x), normalised in L²(M). Output n x (nl·ne). */
-ss_status ss_wks_landmarks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
-                           double sigma_factor, int nl, const int *lm, double *out, ss_error *err);
+SS_API ss_status ss_wks_landmarks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
+                                  double sigma_factor, int nl, const int *lm, double *out, ss_error *err);
 
 /* ------------------------------------------------------- functional map (fmap_solve.c) */
 
 /* Spectral coefficients A = Φᵀ M F (k x p) of p functions F (n x p), Φ the first k columns of evecs. */
-ss_status ss_fmap_project(int n, int k, const double *evecs, const double *M, int p, const double *F,
-                          double *A, ss_error *err);
+SS_API ss_status ss_fmap_project(int n, int k, const double *evecs, const double *M, int p, const double *F,
+                                 double *A, ss_error *err);
 
 /* Multiplication operators in the reduced basis: D_i = Φᵀ M diag(f_i) Φ (k x k, symmetric) for the p
  * functions F (n x p). D: p consecutive k x k column-major blocks (p·k·k doubles). */
-ss_status ss_fmap_mult_operators(int n, int k, const double *evecs, const double *M, int p,
-                                 const double *F, double *D, ss_error *err);
+SS_API ss_status ss_fmap_mult_operators(int n, int k, const double *evecs, const double *M, int p,
+                                        const double *F, double *D, ss_error *err);
 
 /* The same, packed: column i of P (k(k+1)/2 x p) holds the upper triangle of D_i, entry (a, b) with
  * a <= b at index b(b+1)/2 + a. This is what the solver consumes. */
-ss_status ss_fmap_mult_operators_packed(int n, int k, const double *evecs, const double *M, int p, const double *F,
-                                        double *P, ss_error *err);
+SS_API ss_status ss_fmap_mult_operators_packed(int n, int k, const double *evecs, const double *M, int p, const double *F,
+                                               double *P, ss_error *err);
 
 /* Weights of Eq. (1):
  *   E(C) = w_descr ‖C A − B‖² + w_lap ‖Λ_T C − C Λ_S‖² + w_dcomm Σ_i ‖C D_i^S − D_i^T C‖².
@@ -76,9 +76,9 @@ typedef struct ss_fmap_weights {
  * densely through their Kronecker structure, by Cholesky (ss_fmap_system below). A: k_S x p, B: k_T x p
  * (p may be 0), evals_S/T: the eigenvalues, D_S: nd blocks k_S x k_S, D_T: nd blocks k_T x k_T (nd
  * may be 0). Fails with SS_ERR_NUMERIC when the system is singular (e.g. all weights zero). */
-ss_status ss_fmap_solve(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
-                        const double *evals_T, int nd, const double *D_S, const double *D_T,
-                        const ss_fmap_weights *w, double *C, ss_error *err);
+SS_API ss_status ss_fmap_solve(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
+                               const double *evals_T, int nd, const double *D_S, const double *D_T,
+                               const ss_fmap_weights *w, double *C, ss_error *err);
 
 /* Probe functions of one shape in its reduced basis — all Eq. (1) needs from that side: the spectral
  * coefficients A (k x p) and the packed multiplication operators (ss_fmap_mult_operators_packed) of
@@ -90,7 +90,7 @@ typedef struct ss_fmap_probes {
   double *P;
 } ss_fmap_probes;
 
-void ss_fmap_probes_free(ss_fmap_probes *pr); /* frees A and P, zeroes the struct */
+SS_API void ss_fmap_probes_free(ss_fmap_probes *pr); /* frees A and P, zeroes the struct */
 
 /* The normal equations of Eq. (1) for a pair's base probes (source S, target T), assembled once so
  * that several extra-probe blocks can be solved against them (STD / ASA / DIFF differ only in the
@@ -98,22 +98,22 @@ void ss_fmap_probes_free(ss_fmap_probes *pr); /* frees A and P, zeroes the struc
  * 8·(k_S·k_T)² bytes (50 MB at k = 50); k_S·k_T is limited to 40,000 unknowns. */
 typedef struct ss_fmap_system ss_fmap_system;
 
-ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const double *evals_T, const ss_fmap_probes *S,
-                             const ss_fmap_probes *T, const ss_fmap_weights *w, ss_fmap_system **out, ss_error *err);
+SS_API ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const double *evals_T, const ss_fmap_probes *S,
+                                    const ss_fmap_probes *T, const ss_fmap_weights *w, ss_fmap_system **out, ss_error *err);
 
 /* Global minimiser C (k_T x k_S) of E(C) plus the extra block's terms: data term weighted by
  * w_extra·w_descr and, when extra_dcomm, its operators in the commutativity term. S_extra and
  * T_extra may both be NULL (the base problem alone). Cholesky in single precision with iterative
  * refinement in double (LAPACK dsposv): double-accurate. */
-ss_status ss_fmap_system_solve(const ss_fmap_system *sys, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
-                               double w_extra, int extra_dcomm, double *C, ss_error *err);
+SS_API ss_status ss_fmap_system_solve(const ss_fmap_system *sys, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
+                                      double w_extra, int extra_dcomm, double *C, ss_error *err);
 
-void ss_fmap_system_free(ss_fmap_system *sys);
+SS_API void ss_fmap_system_free(ss_fmap_system *sys);
 
 /* E(C) and its gradient dE/dC (k_T x k_S; may be NULL), e.g. to check optimality. */
-ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
-                         const double *evals_T, int nd, const double *D_S, const double *D_T,
-                         const ss_fmap_weights *w, const double *C, double *E, double *grad, ss_error *err);
+SS_API ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const double *B, const double *evals_S,
+                                const double *evals_T, int nd, const double *D_S, const double *D_T,
+                                const ss_fmap_weights *w, const double *C, double *E, double *grad, ss_error *err);
 
 /* --------------------------------------------------------------- point maps (p2p.c) */
 
@@ -125,10 +125,10 @@ ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const double 
  * embeddings of surfaces are intrinsically 2-D, so few survive; ss_nn_brute is the blocked-BLAS
  * brute force (‖q‖² − 2 q·b + ‖b‖² with an exact recheck of near-ties). Both return identical
  * results; OpenMP over queries. */
-ss_status ss_nn_exact(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
-                      double *dist2, ss_error *err);
-ss_status ss_nn_brute(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
-                      double *dist2, ss_error *err);
+SS_API ss_status ss_nn_exact(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
+                             double *dist2, ss_error *err);
+SS_API ss_status ss_nn_brute(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq, int *idx,
+                             double *dist2, ss_error *err);
 
 /* ss_nn_exact for repeated searches (ZoomOut), same results. part (ndb entries, may be NULL: then
  * computed as ss_nn_exact does) is a partition of the database into clusters, labels in [0, ndb):
@@ -136,22 +136,22 @@ ss_status ss_nn_brute(int ndb, int nq, int d, const double *db, int lddb, const 
  * may be the same array as idx) is a database index per query, e.g. the previous match: its
  * distance bounds the search from the start. Small databases (< 256 points) are searched by brute
  * force. */
-ss_status ss_nn_exact_guided(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq,
-                             const int *part, const int *guess, int *idx, double *dist2, ss_error *err);
+SS_API ss_status ss_nn_exact_guided(int ndb, int nq, int d, const double *db, int lddb, const double *q, int ldq,
+                                    const int *part, const int *guess, int *idx, double *dist2, ss_error *err);
 
 /* The partition ss_nn_exact uses: nc clusters (nc <= 0: ~1.5 √n) of the n points X (n x d, leading
  * dimension ldx) around farthest-point seeds, each point labelled with its nearest seed (part[n]). */
-ss_status ss_nn_partition(int n, int d, const double *X, int ldx, int nc, int *part, ss_error *err);
+SS_API ss_status ss_nn_partition(int n, int d, const double *X, int ldx, int nc, int *part, ss_error *err);
 
 /* Point map of a functional map C (k_T x k_S, functions S -> T): for each target vertex y, the
  * source vertex x minimising ‖Φ_S(x) Cᵀ − Φ_T(y)‖ (rows of the first k_S / k_T eigenvectors).
  * evecs_S: n_S x (≥ k_S) with leading dimension n_S, likewise evecs_T. map: n_T entries (T -> S). */
-ss_status ss_fmap_p2p(int n_S, int n_T, int k_S, int k_T, const double *evecs_S, const double *evecs_T,
-                      const double *C, int *map, ss_error *err);
+SS_API ss_status ss_fmap_p2p(int n_S, int n_T, int k_S, int k_T, const double *evecs_S, const double *evecs_T,
+                             const double *C, int *map, ss_error *err);
 
 /* Functional map of a point map π : T -> S (map[n_T]): C = Φ_Tᵀ M_T Π Φ_S (k_T x k_S). */
-ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const double *evecs_S, const double *evecs_T,
-                           const double *M_T, const int *map, double *C, ss_error *err);
+SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const double *evecs_S, const double *evecs_T,
+                                  const double *M_T, const int *map, double *C, ss_error *err);
 
 /* ------------------------------------------------------------------ ZoomOut (zoomout.c) */
 
@@ -159,8 +159,8 @@ ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const double *eve
  * spectral up-sampling C ← Φ_Tᵀ M_T Π Φ_S at sizes k0+step, k0+2·step, …, kmax, then a last point
  * map. evecs_S / evecs_T need ≥ kmax columns. map: n_T entries (T -> S). C_out (kmax x kmax) may be
  * NULL. */
-ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
-                     const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
+SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
+                            const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
 /* ---------------------------------------------------------------- pipeline (match.c) */
 
@@ -184,35 +184,21 @@ typedef struct ss_fmap_match_options {
   int n_energies;      /* WKS energies (default 100) */
   double sigma_factor; /* WKS σ in energy spacings (default 7) */
   int descr_step;      /* keep every descr_step-th descriptor column (default 5, as pyFM) */
-  double w_descr;      /* weights of Eq. (1) (defaults 30, 1e-3, 1: w_descr tuned on FAUST, pyFM uses
-                        * 0.1); w_lap is relative: the Laplacian term is divided by */
-  double w_lap;        /*   Σ (λ_T,i − λ_S,j)² so that it is scale free (as pyFM) */
-  double w_dcomm;
+  double w_descr;      /* weights of Eq. (1): data term (default 30; pyFM uses 0.1), */
+  double w_lap;        /*   Laplacian commutativity (default 1e-3, divided by Σ (λ_T,i − λ_S,j)² so that it */
+  double w_dcomm;      /*   is scale free, as pyFM), descriptor commutativity (default 1) */
   int fix_constant;    /* default 1 */
-  int zoomout_kmax;    /* 0 = no ZoomOut (default); else refine up to this size */
+  int zoomout_kmax;    /* 0 = no ZoomOut (default); else refine up to this size (>= k) */
   int zoomout_step;    /* default 1 */
-  int verbose;         /* timings on stderr */
-  /* The extra (segment) probe block. Measured on FAUST (BEST landmarks, k 50, seed 7, first 10
-   * pairs of bench_match, STD 0.0402): hard indicators wave-filtered, in data + commutativity
-   * terms at full weight: DIFF 0.0492 (1.22 x STD); data term only 0.0457; block normalised to the
-   * landmark block's weight 0.0463; weight 0.1 0.0404 / data only 0.0400; low-energy half of the
-   * filters 0.0430 / data only 0.0402. With the tent profile of ss_match_options.segment_profile:
-   * data + commutativity 0.0400, data only 0.0382 (0.95 x STD, better on 7/10 pairs); data only
-   * with w_extra 0.5: 0.0380, 2: 0.0400. On the next 10 pairs (held out, STD 0.0313): w_extra 1
-   * 0.0330, 0.5 0.0315 -> default 0.5. Gains are small and not significant: on 30 pairs with
-   * w_extra 1, STD 0.0382, ASA 0.0383, DIFF 0.0384; with the defaults (tent, data only, 0.5)
-   * STD 0.0382, ASA 0.0382, DIFF 0.0373 (0.975 x STD, better on 19/30; was DIFF 0.0452). The
-   * segments are coarse and their boundaries differ between shapes (IoU 0.6-0.98 under the ground
-   * truth), so their products (the commutativity operators D_i) constrain C with the wrong
-   * supports: hence data term only by default. Later sweep (20 pairs, bench_match --seed 7, tent,
-   * k 50): w_extra 0.25 / 0.5 / 1: 0.966 / 0.970 / 0.994 x STD; commutativity at 0.1 / 0.3 of
-   * w_dcomm: 0.974 / 0.981; every 10th energy 0.962, high half 0.972, low half 0.999 — all within
-   * noise of the default. For k > 50 and the soft iVd profile see ss_match_options.segment_profile. */
-  double w_extra;      /* data-term weight of the extra probes relative to w_descr (default 0.5) */
-  int extra_dcomm;     /* 1: their multiplication operators also enter the commutativity term (default 0) */
+  /* The extra (segment) probe block: its data-term weight relative to w_descr (default 0.5), and
+   * whether its multiplication operators also enter the commutativity term (default 0: the segments'
+   * boundaries differ between shapes, so their products constrain C with the wrong supports). How
+   * the defaults were chosen: docs/tuning.md. */
+  double w_extra;
+  int extra_dcomm;
 } ss_fmap_match_options;
 
-void ss_fmap_match_default_options(ss_fmap_match_options *o);
+SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);
 
 /* Base probes of one shape (WKS descriptors and the wave-kernel maps of its nl landmarks lm), as
  * ss_fmap_match builds them: the virtual column list [WKS | landmark 1 | … | landmark nl]
@@ -220,27 +206,27 @@ void ss_fmap_match_default_options(ss_fmap_match_options *o);
  * coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
  * multiplication operators. They depend on the shape and its landmarks only, so an evaluation can
  * build them once per shape and landmark set. opts NULL: defaults. */
-ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
-                              int with_operators, ss_fmap_probes *out, ss_error *err);
+SS_API ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
+                                     int with_operators, ss_fmap_probes *out, ss_error *err);
 
 /* Extra probes (nextra functions, extra n x nextra), as they follow the base probes of nl
  * landmarks: SS_PROBE_WAVE continues the virtual column list (every function filtered by the WKS
  * energies, the same sub-sampling), SS_PROBE_RAW keeps them as they are; normalised in L²(M). */
-ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const double *extra, ss_probe_filter filter,
-                               const ss_fmap_match_options *opts, int with_operators, ss_fmap_probes *out,
-                               ss_error *err);
+SS_API ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const double *extra, ss_probe_filter filter,
+                                      const ss_fmap_match_options *opts, int with_operators, ss_fmap_probes *out,
+                                      ss_error *err);
 
 /* The weights of Eq. (1) for the pair (source Y, target X) as ss_fmap_match uses them: opts' weights,
  * the Laplacian term made scale free (divided by Σ (λ_X,r − λ_Y,c)²), the constant column fixed to
  * ±sqrt(area_X / area_Y) with the sign that makes the first eigenvectors agree. */
-ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
-                               ss_fmap_weights *w, ss_error *err);
+SS_API ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
+                                      ss_fmap_weights *w, ss_error *err);
 
 /* Point map (and functional map) from a solved C at size opts->k: the nearest-neighbour map, or
  * ZoomOut up to opts->zoomout_kmax. X is the target of C's functions (the source of the point
  * map), as in ss_fmap_match. C_out as there. */
-ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
-                               const double *Ck, int *map, double *C_out, ss_error *err);
+SS_API ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
+                                      const double *Ck, int *map, double *C_out, ss_error *err);
 
 /* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape, the wave-kernel maps
  * of the landmarks (lmX[i] on X ↔ lmY[i] on Y), plus nextra paired functions (extraX nX x nextra,
@@ -250,9 +236,9 @@ ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
  * opts->extra_dcomm; the extras' data term is weighted by opts->w_extra. Output: map[nX], map[i] = vertex of Y that is the image of vertex i
  * of X. C (may be NULL; k x k, or zoomout_kmax² with ZoomOut) receives the functional map from
  * functions on Y to functions on X (the pull-back of map). */
-ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
-                        int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
-                        const ss_fmap_match_options *opts, int *map, double *C, ss_error *err);
+SS_API ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
+                               int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
+                               const ss_fmap_match_options *opts, int *map, double *C, ss_error *err);
 
 /* ------------------------------------------------------------- evaluation (map_error.c) */
 
@@ -262,8 +248,8 @@ ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, 
  * NULL): a left–right symmetry map of X (nX entries); then e_x = min(d_Y(Π(x), Π_GT(x)),
  * d_Y(Π(x), Π_GT(sym[x]))), the paper's "sym" variant. errors (nX, may be NULL) receives e_x;
  * mean receives their mean. */
-ss_status ss_map_geodesic_error(const ss_mesh *Y, int nX, const int *map, const int *gt, const int *sym,
-                                double *errors, double *mean, ss_error *err);
+SS_API ss_status ss_map_geodesic_error(const ss_mesh *Y, int nX, const int *map, const int *gt, const int *sym,
+                                       double *errors, double *mean, ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -16,41 +16,41 @@ extern "C" {
  * from the list `vertex_indices` (or `vertex_index`), everything else skipped. NaN/Inf coordinate
  * literals are read as such (ss_mesh_check reports them). Files without faces, polygons with fewer
  * than 3 vertices and out-of-range indices are errors (SS_ERR_PARSE). On failure *m is zeroed. */
-ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
-ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
-ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
-ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
+SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
+SS_API ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
+SS_API ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
+SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
 
 /* Write by extension (.off or .ply; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
  * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue).
  * Coordinates are written losslessly (%.17g text, float64 binary): write -> read is exact. */
-ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
-ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
+SS_API ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
+SS_API ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 typedef enum ss_ply_format { SS_PLY_ASCII = 0, SS_PLY_BINARY_LE = 1, SS_PLY_BINARY_BE = 2 } ss_ply_format;
-ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_ply_format fmt,
-                       ss_error *err);
+SS_API ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_ply_format fmt,
+                              ss_error *err);
 
 /* NumPy .npy (format 1.0, '<f8', C order) of a rows x cols matrix given column-major in `a`. */
-ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
+SS_API ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
 /* Reads '<f8' or '>f8', C or Fortran order, 1-D or 2-D; returns a freshly malloc'd column-major array. */
-ss_status ss_read_npy(const char *path, double **a, int *rows, int *cols, ss_error *err);
+SS_API ss_status ss_read_npy(const char *path, double **a, int *rows, int *cols, ss_error *err);
 
 /* Text vectors: one value a line. Integers (labels, maps, landmark indices) and doubles (%.17g;
  * "inf" allowed). Readers allocate *out with malloc and set *n; comments (#) and blank lines skipped.
  * A line with two values, a non-number or an int out of range is an error "PATH:LINE: what". */
-ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err);
-ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err);
-ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err);
-ss_status ss_write_doubles(const char *path, const double *v, int n, ss_error *err);
+SS_API ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err);
+SS_API ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err);
+SS_API ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err);
+SS_API ss_status ss_write_doubles(const char *path, const double *v, int n, ss_error *err);
 /* Landmark file: one landmark a line, "i" (same vertex on both shapes) or "i j" (i on the first shape,
  * j on the second); '#' comments and blank lines skipped. *lx, *ly: n malloc'd vertex indices (ly =
  * lx on one-column lines). columns (may be NULL): 2 when any line has two indices, else 1. Errors
  * "PATH:LINE: what" (negative or non-integer index, three values); an empty file is SS_ERR_PARSE. */
-ss_status ss_read_landmarks(const char *path, int **lx, int **ly, int *n, int *columns, ss_error *err);
+SS_API ss_status ss_read_landmarks(const char *path, int **lx, int **ly, int *n, int *columns, ss_error *err);
 /* The same, with *lines (NULL: not wanted): the n malloc'd 1-based line numbers of the landmarks, so a
  * caller that checks them against its meshes can say "PATH:LINE: ..." too. */
-ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
-                                  ss_error *err);
+SS_API ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
+                                         ss_error *err);
 
 #ifdef __cplusplus
 }

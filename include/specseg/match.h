@@ -1,6 +1,8 @@
-/* specseg — shape matching with coherent segments as probe functions (paper §6): per-shape
- * preparation (segmentation + eigenpairs, cacheable), pairing of the segments through landmark
- * distance fields (§6.1), and the whole STD / ASA / DIFF pipeline on two meshes. */
+/* specseg — shape matching with coherent segments as probe functions (paper §6): pairing of the
+ * segments through landmark distance fields (§6.1), the paired segments as probe functions,
+ * per-shape preparation (segmentation + eigenpairs, cacheable) and the whole STD / ASA / DIFF
+ * pipeline from two meshes to a point map. The functional-map machinery it builds on (descriptors,
+ * Eq. (1), point maps, ZoomOut) is in fmap.h and knows nothing of segments. */
 #ifndef SPECSEG_MATCH_H
 #define SPECSEG_MATCH_H
 
@@ -28,22 +30,31 @@ typedef struct ss_segment_pairs {
  * the same y*, only the one with the smallest energy keeps it (the paper's conservative rule).
  * Output pairs sorted by sx. Needs nl ≥ 1. Segmentations must come from ss_segment on an input that
  * its sanitizer left unchanged (psi indexed by input vertex). Free with ss_segment_pairs_free. */
-ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
-                           const int *lmY, ss_segment_pairs *out, ss_error *err);
+SS_API ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
+                                  const int *lmY, ss_segment_pairs *out, ss_error *err);
 /* The same from precomputed landmark fields at the critical points: dX (mx x nl, column-major,
  * dX[s + mx·i] = scaled distance from landmark i to critical point s of X), likewise dY (my x nl). */
-/* The probe functions of paired segments on one shape: E (malloc'd, sg->nv x npairs, column-major),
- * column p is segment seg[p] of sg as an indicator (profile 0), as a tent 1 − d/R over the
- * segment (profile 1; d = the segmentation's distance to the segment's centre, R its maximum), or as
- * its soft iVd membership (profile 2): exp(−d_s/τ) / Σ_j exp(−d_j/τ) over all m segments, d_j the
- * NPP22-graph distance on the work mesh from centre j (pulled back through Ψ), τ = 0.2·√area(work);
- * a partition of unity whose arg-max is the segment itself. */
-ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, int profile, double **E,
-                            ss_error *err);
+SS_API ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
+                                         ss_segment_pairs *out, ss_error *err);
+SS_API void ss_segment_pairs_free(ss_segment_pairs *p);
 
-ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
-                                  ss_segment_pairs *out, ss_error *err);
-void ss_segment_pairs_free(ss_segment_pairs *p);
+/* ---- Segment probe functions (segment_probes.c) ------------------------------------------------- */
+
+typedef enum ss_segment_profile {
+  SS_PROFILE_INDICATOR = 0, /* 1 on the segment, 0 elsewhere */
+  SS_PROFILE_TENT = 1,      /* 1 − d/R on the segment (d: the segmentation's distance to the segment's
+                               centre, R: its largest value on the segment), 0 elsewhere */
+  SS_PROFILE_SOFT = 2       /* soft iVd membership exp(−d_s/τ) / Σ_j exp(−d_j/τ) over all m segments,
+                               d_j the NPP22-graph distance on the work mesh from centre j (pulled
+                               back through Ψ), τ = 0.2·√area(work): a partition of unity whose
+                               arg-max is the segment itself */
+} ss_segment_profile;
+
+/* The probe functions of paired segments on one shape: E (malloc'd, sg->nv x npairs, column-major),
+ * column p is segment seg[p] of sg in the given profile. The tent needs the segmentation's distances
+ * (work_dist, psi), the soft profile its work mesh and critical points (m graph Dijkstras). */
+SS_API ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, ss_segment_profile profile,
+                                   double **E, ss_error *err);
 
 /* ---- Per-shape preparation (match_shapes.c) ----------------------------------------------------- */
 
@@ -62,9 +73,9 @@ typedef struct ss_shape_prep {
  * result depends only on the shape, so it can be computed once and reused across pairs. Fails with
  * SS_ERR_INVALID on a mesh the sanitizer would change (non-manifold or degenerate input): repair it
  * first (its vertex indices are what landmarks and maps refer to). */
-ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
-                                ss_error *err);
-void ss_shape_prep_free(ss_shape_prep *p);
+SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
+                                       ss_error *err);
+SS_API void ss_shape_prep_free(ss_shape_prep *p);
 
 /* ---- The matching pipeline (match_shapes.c) ----------------------------------------------------- */
 
@@ -78,25 +89,12 @@ typedef struct ss_match_options {
   ss_probe_set probes;        /* default DIFF */
   ss_fmap_match_options fmap; /* k, WKS, weights; fmap.zoomout_kmax > k enables ZoomOut */
   ss_segment_options seg;     /* segmentation of both shapes */
-  /* profile of a paired segment's probe function (ASA and DIFF): 0 = its indicator; 1 = a tent,
-   * 1 − d/R on the segment (d: the segmentation's distance to the segment's centre, R: its largest
-   * value on the segment), 0 elsewhere (default); 2 = soft iVd membership (ss_segment_probes). The
-   * tent weights the centre, which corresponds well across shapes, over the boundary, which does
-   * not. FAUST, 10 pairs, segments in the data term only: DIFF 0.0457 (indicator) vs 0.0382 (tent),
-   * STD 0.0402; see ss_fmap_match_options. Tent vs soft iVd, FAUST BEST, DIFF / STD on 20 tuning
-   * pairs (bench_match --seed 7) | 30 held-out pairs (--seed 11), w_extra 0.5:
-   *   k 50: STD 0.0358 | 0.0347, tent 0.970 | 0.966, soft 0.983 | 0.982 (soft beats tent 13/20 | 15/30);
-   *   k 60: STD — | 0.0325, tent — | 1.007, soft — | 0.955 (soft beats tent 21/30);
-   *   k 70: STD 0.0336 | 0.0320, tent 1.030 | 1.051, soft 0.945 | 0.943 (soft beats tent 13/20 | 23/30).
-   * The tent keeps a step where a segment meets a nearer neighbour; a larger basis represents that
-   * step, and the boundaries disagree between shapes, so the tent turns harmful above k 50 while the
-   * soft membership (no step) keeps helping. Default stays the tent at the default k 50 (no gain
-   * there); with k >= 60 use 2. Neither reaches DIFF <= 0.8 x STD: segments carried to Y by the
-   * ground truth (perfectly consistent) give 0.80-0.82 (k 50) and 0.75 (k 70, soft). */
-  int segment_profile;
+  /* the profile of a paired segment's probe function (ASA and DIFF); default SS_PROFILE_TENT at the
+   * default k = 50, SS_PROFILE_SOFT is better for k >= 60 (docs/tuning.md) */
+  ss_segment_profile segment_profile;
 } ss_match_options;
 
-void ss_match_default_options(ss_match_options *o);
+SS_API void ss_match_default_options(ss_match_options *o);
 
 typedef struct ss_match_result {
   int nX;           /* vertices of X */
@@ -111,13 +109,13 @@ typedef struct ss_match_result {
 
 /* Matches two prepared shapes (each with ≥ max(k, zoomout_kmax) eigenpairs). lmX/lmY: nl input
  * vertices. With STD the pairing is still computed (and reported) but not used. */
-ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_match_options *opts, ss_match_result *out, ss_error *err);
+SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                                   const ss_match_options *opts, ss_match_result *out, ss_error *err);
 
 /* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL. */
-ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
-                   const ss_match_options *opts, ss_match_result *out, ss_error *err);
-void ss_match_result_free(ss_match_result *r);
+SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
+                          const ss_match_options *opts, ss_match_result *out, ss_error *err);
+SS_API void ss_match_result_free(ss_match_result *r);
 
 #ifdef __cplusplus
 }

@@ -1,4 +1,4 @@
-/* specseg — mesh topology, checks and repair, synthetic shapes. */
+/* specseg — mesh checks, repair and subdivision. */
 #ifndef SPECSEG_MESH_H
 #define SPECSEG_MESH_H
 
@@ -30,7 +30,7 @@ typedef struct ss_mesh_report {
  * distinct vertices are counted as degenerate but kept, and so are duplicates (whose edges then show
  * as non-manifold). Boundary loops are traced per vertex fan, so loops touching at a pinched vertex
  * count separately. Fails (SS_ERR_INVALID) only on out-of-range indices or bad sizes. */
-ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err);
+SS_API ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err);
 
 /* Make a mesh the pipeline can process: drops degenerate/duplicate faces and unreferenced vertices,
  * splits pinched (non-manifold) vertices into one copy per fan. `to_input[i]` (malloc'd, out->nv
@@ -40,22 +40,12 @@ ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err);
  * Output vertices keep the input order (copies of a split vertex are adjacent) and faces keep their
  * order and orientation, so a mesh that needs no repair comes back identical with to_input = identity.
  * Non-finite coordinates are an error only on vertices that a kept face uses. */
-ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char *warnings,
-                           size_t warnings_size, ss_error *err);
+SS_API ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char *warnings,
+                                  size_t warnings_size, ss_error *err);
 
 /* 1->4 midpoint subdivision (each edge split at its midpoint, no smoothing): nv + #edges vertices,
  * 4 nf faces; input vertices keep their indices. `out` is allocated (free with ss_mesh_free). */
-ss_status ss_mesh_subdivide(const ss_mesh *in, ss_mesh *out, ss_error *err);
-
-/* Synthetic shapes (deterministic). */
-ss_status ss_synth_icosphere(int subdivisions, ss_mesh *m, ss_error *err); /* unit sphere */
-ss_status ss_synth_torus(double R, double r, int nu, int nv, ss_mesh *m, ss_error *err);
-/* Closed manifold humanoid (torso, head, arms, legs, finger/toe stubs), ~5–10k vertices. All poses
- * share one connectivity and vertex order (ground truth = identity). pose 0 is the rest pose. */
-ss_status ss_synth_humanoid(int pose, ss_mesh *m, ss_error *err);
-int ss_synth_humanoid_pose_count(void);
-/* One-line description of a pose ("?" when out of range). */
-const char *ss_synth_humanoid_pose_name(int pose);
+SS_API ss_status ss_mesh_subdivide(const ss_mesh *in, ss_mesh *out, ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -25,7 +25,10 @@ typedef struct ss_render_options {
                                   Give several panels the same scale (ss_render_fit_scale) to compare sizes. */
 } ss_render_options;
 
-void ss_render_default_options(ss_render_options *o);
+/* sizeof the render library's public struct named "ss_render_options" or "ss_render_scene" (for
+ * bindings that mirror them, as ss_struct_size in abi.h); 0 for an unknown name. */
+SS_API size_t ss_render_struct_size(const char *name);
+SS_API void ss_render_default_options(ss_render_options *o);
 
 /* What to draw. Start from ss_render_scene_init (mesh set, everything else off). */
 typedef struct ss_render_scene {
@@ -42,23 +45,23 @@ typedef struct ss_render_scene {
   double marker_radius;            /* world units; <= 0: 1.2% of the mesh's bounding-box diagonal */
 } ss_render_scene;
 
-void ss_render_scene_init(ss_render_scene *s, const ss_mesh *m);
+SS_API void ss_render_scene_init(ss_render_scene *s, const ss_mesh *m);
 
 /* Render the scene into `rgb`. Fails (SS_ERR_INVALID) on bad sizes, face indices out of range, a NULL
  * marker array with nmarkers > 0; SS_ERR_NOMEM when the buffers cannot be allocated. */
-ss_status ss_render(const ss_render_scene *s, const ss_render_options *o, unsigned char *rgb, ss_error *err);
+SS_API ss_status ss_render(const ss_render_scene *s, const ss_render_options *o, unsigned char *rgb, ss_error *err);
 
 /* Shorthand: the mesh with per-face colours `face_rgb` (wins) or per-vertex `vertex_rgb`, grey when both
  * are NULL. */
-ss_status ss_render_mesh(const ss_mesh *m, const unsigned char *vertex_rgb, const unsigned char *face_rgb,
-                         const ss_render_options *o, unsigned char *rgb, ss_error *err);
+SS_API ss_status ss_render_mesh(const ss_mesh *m, const unsigned char *vertex_rgb, const unsigned char *face_rgb,
+                                const ss_render_options *o, unsigned char *rgb, ss_error *err);
 
 /* The scale (pixels per world unit) at which `m`, seen from o's view, fills o's image minus margins.
  * The smallest over several meshes shows them all at one common scale. 0 for an empty mesh. */
-double ss_render_fit_scale(const ss_mesh *m, const ss_render_options *o);
+SS_API double ss_render_fit_scale(const ss_mesh *m, const ss_render_options *o);
 
 /* 8-bit RGB PNG. */
-ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err);
+SS_API ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err);
 
 /* ---- colours ---------------------------------------------------------------------------------- */
 
@@ -68,54 +71,54 @@ typedef enum ss_colormap_kind {
 } ss_colormap_kind;
 
 /* Perceptual colormap (viridis-like), t clamped to [0,1]; NaN maps to 0. */
-void ss_colormap(double t, unsigned char rgb[3]);
-void ss_colormap_kind_rgb(ss_colormap_kind kind, double t, unsigned char rgb[3]);
+SS_API void ss_colormap(double t, unsigned char rgb[3]);
+SS_API void ss_colormap_kind_rgb(ss_colormap_kind kind, double t, unsigned char rgb[3]);
 /* Distinct colour for a segment label (well separated hues for the first ~20 labels); < 0: grey. */
-void ss_label_color(int label, unsigned char rgb[3]);
+SS_API void ss_label_color(int label, unsigned char rgb[3]);
 
 /* Per-face colours of a segmentation (labels: one per vertex, -1 = none): a face whose three corners
  * share label l gets ss_label_color(l), faces across segments get `neutral` (NULL: light grey
  * 225,225,220) — the paper's convention for boundary triangles. face_rgb: 3*nf bytes. */
-ss_status ss_segmentation_face_colors(const ss_mesh *m, const int *labels, const unsigned char *neutral,
-                                      unsigned char *face_rgb, ss_error *err);
+SS_API ss_status ss_segmentation_face_colors(const ss_mesh *m, const int *labels, const unsigned char *neutral,
+                                             unsigned char *face_rgb, ss_error *err);
 /* Renumber `labels` (n vertices, ids >= -1) in place so that its segment ids agree with `ref` on the same
  * vertices where they overlap most (greedy on the overlap counts, each reference id used once); segments
  * left without a partner get ids after the reference's largest. Gives corresponding segments of shapes
  * in correspondence (e.g. FAUST poses, identity ground truth) the same colour. */
-ss_status ss_labels_align(int *labels, const int *ref, int n, ss_error *err);
+SS_API ss_status ss_labels_align(int *labels, const int *ref, int n, ss_error *err);
 
 /* ---- 2-D drawing on an RGB image (everything clipped to the image) ------------------------------ */
 
-void ss_image_fill(unsigned char *rgb, int w, int h, const unsigned char c[3]);
+SS_API void ss_image_fill(unsigned char *rgb, int w, int h, const unsigned char c[3]);
 /* Copy a sw x sh image into dst at (x, y). */
-void ss_image_blit(unsigned char *dst, int dw, int dh, const unsigned char *src, int sw, int sh, int x, int y);
-void ss_image_rect(unsigned char *rgb, int w, int h, int x, int y, int rw, int rh, const unsigned char c[3]);
+SS_API void ss_image_blit(unsigned char *dst, int dw, int dh, const unsigned char *src, int sw, int sh, int x, int y);
+SS_API void ss_image_rect(unsigned char *rgb, int w, int h, int x, int y, int rw, int rh, const unsigned char c[3]);
 /* Text in a built-in 5x7 pixel font, each font pixel drawn as a scale x scale block; (x, y) is the
  * top-left corner. Covers digits, letters (lower case drawn as upper case), space and . , - + : / % ( ) = _ #;
  * other characters are drawn as a box. Returns the width drawn in pixels. */
-int ss_draw_text(unsigned char *rgb, int w, int h, int x, int y, int scale, const unsigned char c[3],
-                 const char *text);
-int ss_text_width(const char *text, int scale);
+SS_API int ss_draw_text(unsigned char *rgb, int w, int h, int x, int y, int scale, const unsigned char c[3],
+                        const char *text);
+SS_API int ss_text_width(const char *text, int scale);
 /* A vertical colour bar with its range written beside it: the box (x, y, bw, bh), hi at the top,
  * tick labels lo, mid and hi (printf %.3g) in `text_rgb` to its right, and an optional title above. */
-void ss_draw_colorbar(unsigned char *rgb, int w, int h, int x, int y, int bw, int bh, ss_colormap_kind kind,
-                      double lo, double hi, const char *title, int text_scale, const unsigned char text_rgb[3]);
+SS_API void ss_draw_colorbar(unsigned char *rgb, int w, int h, int x, int y, int bw, int bh, ss_colormap_kind kind,
+                             double lo, double hi, const char *title, int text_scale, const unsigned char text_rgb[3]);
 
 /* ---- colours of maps and fields (map_colors.c, scalar_colors.c) -------------------------------- */
 
 /* Smooth per-vertex colours from the positions normalised to the bounding box (x → red, y → green,
  * z → blue, each in [0.12, 0.97] of full scale): the "texture" a map transfers. rgb: 3*nv bytes. */
-void ss_coordinate_colors(const ss_mesh *m, unsigned char *rgb);
+SS_API void ss_coordinate_colors(const ss_mesh *m, unsigned char *rgb);
 /* The same with a smooth 3-D checker pattern darkening half of its cells (cell size period/2 times
  * the bounding-box diagonal): shows where a map shifts or turns a part (e.g. the head) by less than
  * the colour ramps can reveal. period <= 0: plain ss_coordinate_colors. */
-void ss_coordinate_pattern_colors(const ss_mesh *m, double period, unsigned char *rgb);
+SS_API void ss_coordinate_pattern_colors(const ss_mesh *m, double period, unsigned char *rgb);
 /* Colour transfer through a point map (pull-back): out[i] = target_rgb[map[i]] for the nx source
  * vertices. SS_ERR_INVALID on a map entry outside [0, ny). */
-ss_status ss_map_transfer_colors(int nx, const int *map, int ny, const unsigned char *target_rgb, unsigned char *out,
-                                 ss_error *err);
+SS_API ss_status ss_map_transfer_colors(int nx, const int *map, int ny, const unsigned char *target_rgb, unsigned char *out,
+                                        ss_error *err);
 /* Per-vertex colours of a field: colormap `kind` over [lo, hi] (clamped); non-finite values grey. */
-void ss_scalar_colors(const double *v, int n, ss_colormap_kind kind, double lo, double hi, unsigned char *rgb);
+SS_API void ss_scalar_colors(const double *v, int n, ss_colormap_kind kind, double lo, double hi, unsigned char *rgb);
 
 /* ---- panels: several scenes on one image (panels.c) ------------------------------------------- */
 
@@ -136,14 +139,14 @@ typedef struct ss_panel_layout {
   const char *heading;       /* NULL (default): none; else a line of text above the grid */
 } ss_panel_layout;
 
-void ss_panel_layout_init(ss_panel_layout *l);
+SS_API void ss_panel_layout_init(ss_panel_layout *l);
 
 /* Renders the n panels, o->width x o->height pixels each, row by row into a grid (text scale grows
  * with the panel height) and returns the malloc'd image in *rgb (*width x *height). SS_ERR_INVALID on
  * bad sizes or an image beyond 32768 pixels a side or 10^8 pixels; ss_render's errors for the
  * scenes. */
-ss_status ss_render_panels(const ss_panel *panels, int n, const ss_render_options *o, const ss_panel_layout *l,
-                           unsigned char **rgb, int *width, int *height, ss_error *err);
+SS_API ss_status ss_render_panels(const ss_panel *panels, int n, const ss_render_options *o, const ss_panel_layout *l,
+                                  unsigned char **rgb, int *width, int *height, ss_error *err);
 
 /* ---- a comparison of point maps X -> Y, as the paper's Figures 9–11 (map_comparison.c) ---------- */
 
@@ -175,7 +178,7 @@ typedef struct ss_map_comparison {
   const char *heading;           /* a line above the panels; NULL: none */
 } ss_map_comparison;
 
-void ss_map_comparison_init(ss_map_comparison *c, const ss_mesh *x, const ss_mesh *y);
+SS_API void ss_map_comparison_init(ss_map_comparison *c, const ss_mesh *x, const ss_mesh *y);
 
 /* Two rows of o->width x o->height panels at one scale (ss_render_panels): top, Y coloured by its
  * coordinates, then X pulled back through each map (colour transfer), then X's segments; bottom, X
@@ -184,8 +187,8 @@ void ss_map_comparison_init(ss_map_comparison *c, const ss_mesh *x, const ss_mes
  * segments. Returns the malloc'd image in *rgb (*width x *height) and the scale's top in *error_max
  * (may be NULL). SS_ERR_INVALID on a missing map, a map, gt, landmark, label, centre or pair out of
  * range; ss_render_panels' errors. */
-ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_options *o, unsigned char **rgb,
-                                   int *width, int *height, double *error_max, ss_error *err);
+SS_API ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_options *o, unsigned char **rgb,
+                                          int *width, int *height, double *error_max, ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -31,13 +31,13 @@ typedef enum ss_crit_type {
  * type (may be NULL): nv entries, ss_crit_type of each vertex AFTER clean-up (dropped ones REGULAR).
  * points/npoints: malloc'd list of the critical vertices after clean-up, ascending vertex index.
  * nraw (may be NULL): number of critical points before clean-up. Vertices in no face are regular. */
-ss_status ss_fiedler_critical_points(const ss_mesh *m, const double *phi, int cleanup_rings,
-                                     signed char *type, int **points, int *npoints, int *nraw,
-                                     ss_error *err);
+SS_API ss_status ss_fiedler_critical_points(const ss_mesh *m, const double *phi, int cleanup_rings,
+                                            signed char *type, int **points, int *npoints, int *nraw,
+                                            ss_error *err);
 
 /* Per-vertex gradient magnitude of a P1 function: |area-weighted mean of the incident faces'
  * gradients|. grad_norm: nv entries (0 for isolated vertices). */
-ss_status ss_vertex_gradient_norm(const ss_mesh *m, const double *phi, double *grad_norm, ss_error *err);
+SS_API ss_status ss_vertex_gradient_norm(const ss_mesh *m, const double *phi, double *grad_norm, ss_error *err);
 
 /* ---- Intrinsic Voronoi diagram (§4.3) ----------------------------------------------------------- */
 
@@ -46,24 +46,21 @@ ss_status ss_vertex_gradient_norm(const ss_mesh *m, const double *phi, double *g
  * of every node it strictly improves; then ρ = max s again. On return s[i] = distance to the nearest
  * centre and tag[i] = index into `centers` of that centre (ties go to the earlier centre), -1 and
  * INFINITY for nodes no centre reaches. s and tag: g->n entries each. */
-ss_status ss_ivd(const ss_graph *g, const int *centers, int ncenters, double *s, int *tag, ss_error *err);
+SS_API ss_status ss_ivd(const ss_graph *g, const int *centers, int ncenters, double *s, int *tag, ss_error *err);
 
 /* ---- The whole pipeline ------------------------------------------------------------------------- */
 
 typedef struct ss_segment_options {
   int target_faces;    /* remeshing target triangle count; default 15000 */
   int no_streamline;   /* 1: Fiedler + critical points + iVd straight on the input (no CMCF/remesh) */
-  int cleanup_rings;   /* critical-point clean-up radius in rings (0 = off); default 5 (the authors').
-                          On streamlined FAUST it never fires (8 raw points); it merges clusters on raw
-                          inputs and on a few TOSCA animals. */
-  int n_eigs;          /* eigenpairs computed (the Fiedler vector is the 2nd); default 2, min 2: the
-                          critical points from k = 2, 3, 10 and 50 are identical on FAUST */
+  int cleanup_rings;   /* critical-point clean-up radius in rings (0 = off); default 5 (the authors') */
+  int n_eigs;          /* eigenpairs computed (the Fiedler vector is the 2nd); default 2, min 2 */
   int cmcf_steps;      /* 0 = streamline module default */
   double cmcf_dt;      /* 0 = streamline module default */
   int sanitize;        /* 1: ss_mesh_sanitize the input first (pinched vertices, degenerate faces) */
 } ss_segment_options;
 
-void ss_segment_default_options(ss_segment_options *o);
+SS_API void ss_segment_default_options(ss_segment_options *o);
 
 typedef struct ss_segmentation {
   int nv;              /* input vertices */
@@ -94,9 +91,21 @@ typedef struct ss_segmentation {
  * TOSCA's small holes) are closed with a centroid fan before smoothing, since the remesher takes
  * closed surfaces; the added vertices are not part of the output. Critical points are ordered by
  * vertex index of `work`, and segment s is the iVd cell of crit[s]. On failure `out` is zeroed. */
-ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts, ss_segmentation *out,
-                     ss_error *err);
-void ss_segmentation_free(ss_segmentation *s);
+SS_API ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts, ss_segmentation *out,
+                            ss_error *err);
+SS_API void ss_segmentation_free(ss_segmentation *s);
+
+/* ---- Coherency (§5) ----------------------------------------------------------------------------- */
+
+/* Coherency of a segmentation of Y with the segmentation of a reference shape X0: for every vertex y
+ * of Y, with u the centre of y's segment, the check passes when GT(y) and GT(u) lie in the same
+ * segment of X0. Returns the fraction of vertices that pass in *coherency.
+ *   labels0: nv0 labels of X0 (any integers; only equality matters).
+ *   labels:  nv labels of Y, each in [0, m); centers: m vertices of Y (the centre of each segment).
+ *   gt:      nv vertices of X0 (GT(y)); NULL = identity (then nv must equal nv0).
+ * Fails with SS_ERR_INVALID on out-of-range labels, centres or map entries. O(nv). */
+SS_API ss_status ss_coherency(const int *labels0, int nv0, const int *labels, const int *centers, int m, int nv,
+                              const int *gt, double *coherency, ss_error *err);
 
 #ifdef __cplusplus
 }

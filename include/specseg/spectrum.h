@@ -8,14 +8,27 @@
 extern "C" {
 #endif
 
+/* Where the time of one ss_eigs call went (wall seconds). */
+typedef struct ss_eigs_stats {
+  int null_pairs;          /* exact λ = 0 pairs (components) */
+  double factor_nnz;       /* non-zeros of the Cholesky factor */
+  double t_factor, t_arpack;
+  int operator_applications;
+  double t_solves;         /* inside t_arpack */
+  double t_completeness;   /* inertia check and recovery of missed pairs */
+  int recovered;
+  double t_orthonormalize, t_rayleigh;
+} ss_eigs_stats;
+
 typedef struct ss_eigs_options {
   double sigma; /* shift; default -1e-8 (just below 0 so W - σM is positive definite) */
   double tol;   /* ARPACK tolerance; default 1e-10 */
   int ncv;      /* Krylov dimension; 0 = automatic */
   int maxiter;  /* 0 = automatic */
+  ss_eigs_stats *stats; /* NULL (default), or receives the timing breakdown of the call */
 } ss_eigs_options;
 
-void ss_eigs_default_options(ss_eigs_options *o);
+SS_API void ss_eigs_default_options(ss_eigs_options *o);
 
 /* W: symmetric n x n (both triangles stored); M: n positive lumped masses. Writes the k smallest
  * eigenvalues ascending into evals[k] and M-orthonormal eigenvectors, column-major n x k, into evecs
@@ -26,17 +39,17 @@ void ss_eigs_default_options(ss_eigs_options *o);
  * SS_ERR_NUMERIC (singular shifted matrix, no convergence, ARPACK failure), SS_ERR_NOMEM.
  * For sigma <= 0 the λ = 0 pairs of components on which W annihilates constants (any Laplacian) are
  * returned exactly (φ = 1/sqrt(component area) on the component) and deflated from the Lanczos
- * operator. With the environment variable SS_EIGS_VERBOSE set, a timing breakdown goes to stderr. */
-ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_options *opts, double *evals,
-                  double *evecs, ss_error *err);
+ * operator. */
+SS_API ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_options *opts, double *evals,
+                         double *evecs, ss_error *err);
 
 /* Accuracy of computed pairs: max over i of ||W φ_i − λ_i M φ_i|| / ((|λ_i|+1) ||M φ_i||) and
  * max |ΦᵀMΦ − I|. Either output pointer may be NULL. */
-ss_status ss_eigs_check(const ss_sparse *W, const double *M, int k, const double *evals, const double *evecs,
-                        double *max_rel_residual, double *max_orth_error, ss_error *err);
+SS_API ss_status ss_eigs_check(const ss_sparse *W, const double *M, int k, const double *evals, const double *evecs,
+                               double *max_rel_residual, double *max_orth_error, ss_error *err);
 
 /* Convenience: W, M (barycentric) of the mesh, then ss_eigs. */
-ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss_error *err);
+SS_API ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss_error *err);
 
 #ifdef __cplusplus
 }

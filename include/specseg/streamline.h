@@ -46,12 +46,12 @@ typedef struct ss_cmcf_options {
                                           afresh every step (only for testing the reuse) */
 } ss_cmcf_options;
 
-void ss_cmcf_default_options(ss_cmcf_options *opt);
+SS_API void ss_cmcf_default_options(ss_cmcf_options *opt);
 
 /* `opt` may be NULL (defaults). `out` receives a new mesh (free with ss_mesh_free); it may not alias
  * `in`. Fails with SS_ERR_INVALID on an empty / zero-area mesh or bad indices, SS_ERR_NUMERIC when
  * the factorisation fails. */
-ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt, ss_mesh *out, ss_error *err);
+SS_API ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt, ss_mesh *out, ss_error *err);
 
 /* ---------------------------------------------------------------------------------------------
  * Isotropic remeshing (Botsch & Kobbelt 2004): split edges longer than 4/3·L, collapse edges shorter
@@ -71,9 +71,9 @@ typedef struct ss_remesh_options {
                          it is off by more than tolerance/5 after the topological rounds */
 } ss_remesh_options;
 
-void ss_remesh_default_options(ss_remesh_options *opt);
+SS_API void ss_remesh_default_options(ss_remesh_options *opt);
 
-ss_status ss_remesh(const ss_mesh *in, const ss_remesh_options *opt, ss_mesh *out, ss_error *err);
+SS_API ss_status ss_remesh(const ss_mesh *in, const ss_remesh_options *opt, ss_mesh *out, ss_error *err);
 
 /* Quality figures used by the tests and `specseg remesh`. `ref` (may be NULL) is the surface the
  * deviation is measured against (max over vertices of the distance to the closest point of `ref`,
@@ -86,13 +86,13 @@ typedef struct ss_remesh_quality {
   double max_deviation;     /* relative to ref's bbox diagonal */
 } ss_remesh_quality;
 
-ss_status ss_remesh_quality_measure(const ss_mesh *m, const ss_mesh *ref, ss_remesh_quality *q,
-                                    ss_error *err);
+SS_API ss_status ss_remesh_quality_measure(const ss_mesh *m, const ss_mesh *ref, ss_remesh_quality *q,
+                                           ss_error *err);
 
 /* ---------------------------------------------------------------------------------------------
  * Ψ: for each of the np query points P (3*np doubles) the index of the nearest vertex of `target`
  * (exact Euclidean nearest, ties → smallest index), via a uniform grid. */
-ss_status ss_closest_vertices(const double *P, int np, const ss_mesh *target, int *out, ss_error *err);
+SS_API ss_status ss_closest_vertices(const double *P, int np, const ss_mesh *target, int *out, ss_error *err);
 
 #ifdef __cplusplus
 }

@@ -62,7 +62,7 @@ class ss_segmentation(C.Structure):
 class ss_fmap_match_options(C.Structure):
     _fields_ = [("k", C.c_int), ("n_energies", C.c_int), ("sigma_factor", C.c_double), ("descr_step", C.c_int),
                 ("w_descr", C.c_double), ("w_lap", C.c_double), ("w_dcomm", C.c_double), ("fix_constant", C.c_int),
-                ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int), ("verbose", C.c_int),
+                ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int),
                 ("w_extra", C.c_double), ("extra_dcomm", C.c_int)]
 
 
@@ -125,7 +125,13 @@ def _load():
             errors.append("%s: not found" % path)
             continue
         try:
-            return C.CDLL(path), path
+            core = C.CDLL(path)
+            # the render library sits beside the core; its handle also resolves the core's symbols
+            rpath = os.path.join(os.path.dirname(path), os.path.basename(path).replace("libspecseg", "libspecseg_render", 1))
+            try:
+                return C.CDLL(rpath), path
+            except OSError:
+                return core, path
         except OSError as e:
             hint = ""
             if "asan" in str(e).lower() or "ASan runtime" in str(e):
@@ -152,9 +158,12 @@ def _sig(name, restype, *argtypes):
 
 # ss_struct_size may be missing in an older library: then the check is skipped
 _struct_size = _sig("ss_struct_size", C.c_size_t, C.c_char_p)
+_render_struct_size = _sig("ss_render_struct_size", C.c_size_t, C.c_char_p)
 if _struct_size is not None:
     for _s in MIRRORS:
         _want = _struct_size(_s.__name__.encode())
+        if not _want and _render_struct_size is not None:
+            _want = _render_struct_size(_s.__name__.encode())
         if _want and _want != C.sizeof(_s):
             raise ImportError("specseg: struct %s is %d bytes in %s but %d in the Python mirror; update "
                               "python/specseg/_clib.py" % (_s.__name__, _want, lib_path, C.sizeof(_s)))

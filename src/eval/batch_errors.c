@@ -27,6 +27,7 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, in
   int *off = malloc(sizeof(int) * ((size_t)nv + 1)), *img = malloc(sizeof(int) * cap), *tmp = malloc(sizeof(int) * nmaps);
   int *src = NULL, *dst = NULL, *dst2 = NULL;
   double *d = NULL, *ds = NULL;
+  ss_geodesic_landmarks *acc = NULL; /* built by the first batch that has enough far pairs */
   if (!off || !img || !tmp) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
   size_t nq = 0;
   for (int x = 0; x < nv; x++) {
@@ -46,14 +47,14 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, in
   /* d(image, x), grouped by image (as ss_geodesic_pairs does) */
   for (int x = 0; x < nv; x++)
     for (int q = off[x]; q < off[x + 1]; q++) src[q] = img[q], dst[q] = x;
-  if ((st = ss_geodesic_pairs(gm, src, dst, (int)nq, d, err))) goto done;
+  if ((st = ss_geodesic_pairs(gm, &acc, src, dst, (int)nq, d, err))) goto done;
   /* symmetric error min(d(image, x), d(image, sym x)): when a lower bound on d(image, sym x) (straight
    * distance, landmark fields) already exceeds d(image, x), the minimum is d(image, x) (a good map's
    * every vertex, a bad map's many); otherwise one query from the image stopping at the nearer */
   size_t nn = 0;
   for (int x = 0; x < nv; x++)
     for (int q = off[x]; q < off[x + 1]; q++) {
-      if (ss_geodesic_lower_bound(gm, img[q], sym[x]) > d[q] * (1 + 1e-9)) {
+      if (ss_geodesic_lower_bound(gm, acc, img[q], sym[x]) > d[q] * (1 + 1e-9)) {
         ds[q] = d[q];
         continue;
       }
@@ -64,7 +65,7 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, in
   if (nn > 0) {
     double *dn = malloc(sizeof(double) * nn);
     if (!dn) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
-    if ((st = ss_geodesic_nearest_of(gm, src, dst2, 2, (int)nn, dn, err))) { free(dn); goto done; }
+    if ((st = ss_geodesic_nearest_of(gm, &acc, src, dst2, 2, (int)nn, dn, err))) { free(dn); goto done; }
     for (size_t i = 0; i < nn; i++) ds[dst[i]] = dn[i];
     free(dn);
   }
@@ -82,6 +83,7 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, in
     sum[r] = s, sum_sym[r] = s2;
   }
 done:
+  ss_geodesic_landmarks_free(acc);
   free(off), free(img), free(tmp), free(src), free(dst), free(dst2), free(d), free(ds);
   return st;
 }

@@ -1,7 +1,6 @@
 /* §5 coherency of a whole set of shapes with its first shape, with and without streamlining
  * (reuses ss_segment and ss_coherency). */
 #include "specseg/eval.h"
-#include "specseg/evaluation.h"
 #include "specseg/io.h"
 #include "specseg/segment.h"
 
@@ -23,6 +22,8 @@ ss_status ss_eval_coherency_set(const char *name, int n, const char *const *path
   if (!seg || !nvs) { free(seg); free(nvs); return ss_fail(err, SS_ERR_NOMEM, "coherency: out of memory"); }
   int failed = 0;
   ss_error ferr = {{0}};
+  omp_lock_t err_lock;
+  omp_init_lock(&err_lock);
   /* one task per (shape, with/without streamlining) */
   int nth = jobs > 0 ? jobs : 1;
 #ifdef _OPENMP
@@ -38,18 +39,18 @@ ss_status ss_eval_coherency_set(const char *name, int n, const char *const *path
     o.no_streamline = w;
     ss_error e;
     ss_status s1 = ss_read_mesh(paths[i], &m, &e);
-    /* ARPACK (in ss_eigs) is not thread-safe: one segmentation at a time (see eval_shape.c) */
-#pragma omp critical(ss_eval_arpack)
     if (!s1) s1 = ss_segment(&m, &o, &seg[2 * i + w], &e);
     if (s1) {
-#pragma omp critical(coh_err)
-      if (!failed) failed = 1, snprintf(ferr.msg, sizeof ferr.msg, "%.300s: %.700s", paths[i], e.msg);
+      omp_set_lock(&err_lock);
+      if (!failed) failed = s1, snprintf(ferr.msg, sizeof ferr.msg, "%.300s: %.700s", paths[i], e.msg);
+      omp_unset_lock(&err_lock);
     }
     nvs[i] = m.nv;
     ss_mesh_free(&m);
   }
+  omp_destroy_lock(&err_lock);
   ss_status st = SS_OK;
-  if (failed) st = ss_fail(err, SS_ERR_NUMERIC, "coherency: %s", ferr.msg);
+  if (failed) st = ss_fail(err, (ss_status)failed, "coherency: %s", ferr.msg);
   for (int w = 0; w < 2 && !st; w++) {
     double sum = 0, mn = 1;
     const ss_segmentation *s0 = &seg[w];

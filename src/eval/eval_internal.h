@@ -3,7 +3,7 @@
 #ifndef SS_EVAL_INTERNAL_H
 #define SS_EVAL_INTERNAL_H
 
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 #include "specseg/match.h"
 
 #define EV_NL 5 /* landmarks per set (paper: 5) */

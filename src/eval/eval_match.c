@@ -21,7 +21,6 @@ static ss_fmap_shape fmap_shape(const ev_shape *s) {
 
 static ss_fmap_match_options fmap_options(const ev_context *ctx) {
   ss_fmap_match_options fo = ctx->mopt.fmap;
-  fo.verbose = 0;
   return fo;
 }
 

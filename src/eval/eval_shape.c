@@ -179,9 +179,6 @@ fail:
 ss_status ev_shape_prepare(ev_shape *s, const ev_context *ctx, ss_error *err) {
   ss_status st;
   double t0 = ss_time();
-  /* ARPACK (inside ss_eigs) keeps state in Fortran SAVE variables and is not thread-safe: until
-   * ss_eigs serialises it itself, no two threads may segment / decompose at the same time */
-#pragma omp critical(ss_eval_arpack)
   st = ss_shape_prep_compute(&s->mesh, &ctx->mopt.seg, ctx->kev, &s->prep, err);
   if (st) goto fail;
   if ((st = ev_fps_landmarks(&s->mesh, &s->prep.seg, &ctx->mopt.seg, 0, s->fps, err))) goto fail;

@@ -3,7 +3,7 @@
  * with the first shape's (FAUST shares vertex order, so the ground truth is the identity) so that
  * corresponding parts share a colour; boundary triangles are neutral and segment centres black
  * spheres, as in the paper's figures; panels at one common scale, 5 a row. */
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 #include "specseg/io.h"
 #include "specseg/segment.h"
 

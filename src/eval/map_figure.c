@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64_t seed, int k, int lmset, int x,
+ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64_t seed, int k, ss_lm_set lmset, int x,
                              int y, const ss_render_options *o, const char *png, ss_map_figure *info, ss_error *err) {
   if (!data_dir || !o || !png || lmset < 0 || lmset > 2 || x < 0 || x > 99 || y < 0 || y > 99 || x == y || k < 3)
     return ss_fail(err, SS_ERR_INVALID, "figure: bad arguments (pair %d, %d, landmarks %d, k %d)", x, y, lmset, k);

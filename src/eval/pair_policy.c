@@ -1,5 +1,5 @@
 /* Pairing policies of paper §6.1: random pairs, same subject ("subj"), same pose ("pose"). */
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,5 +1,5 @@
 /* The results CSV of `specseg eval --table1` and the Table 1 aggregation. */
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 
 #include <errno.h>
 #include <math.h>

@@ -1,6 +1,6 @@
 /* splitmix64 (Steele, Lea, Flood 2014): tiny, fast and the same stream everywhere, so pairs and
  * landmarks depend on the seed only — never on the C library's rand(). */
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
 
 void ss_rng_seed(ss_rng *r, uint64_t seed) { r->state = seed; }
 

@@ -1,6 +1,7 @@
 /* Left–right symmetry map of an approximately mirror-symmetric shape (FAUST's "sym" rows of Table 1):
  * an extrinsic mirror plane fitted by ICP, then an intrinsic check on landmark distances. */
-#include "specseg/evaluation.h"
+#include "specseg/eval.h"
+#include "specseg/geodesic.h"
 #include "specseg/streamline.h"
 
 #include <lapacke.h>

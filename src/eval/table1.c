@@ -8,8 +8,8 @@
 #include "eval_internal.h"
 #include "specseg/io.h"
 
-#include <cblas.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,22 +68,23 @@ static int repair_tail(const char *path) {
   return keep > 0;
 }
 
-static void progress(double t0, long done, long total, int shapes_done, int shapes_total) {
-  double el = ss_time() - t0;
-  char eta[32] = "--";
-  if (done > 0) {
-    double r = el / done * (total - done);
-    snprintf(eta, sizeof eta, "%dm%02ds", (int)(r / 60), (int)fmod(r, 60));
-  }
-  int w = 30, fill = total ? (int)(w * done / total) : w;
-  char bar[64];
-  for (int i = 0; i < w; i++) bar[i] = i < fill ? '#' : '.';
-  bar[w] = 0;
-  if (shapes_done < shapes_total)
-    fprintf(stderr, "\r  preparing shapes %d/%d  %.0fs      ", shapes_done, shapes_total, el);
-  else
-    fprintf(stderr, "\r  [%s] %ld/%ld rows  %.0fs elapsed  ETA %s   ", bar, done, total, el, eta);
-  fflush(stderr);
+/* The caller's progress callback, if any (called inside a critical section: one call at a time). */
+static void report(const ss_table1_options *o, double t0, long done, long total, int shapes_done, int shapes_total) {
+  if (!o->progress) return;
+  ss_table1_progress p = {shapes_done, shapes_total, done, total, ss_time() - t0};
+  o->progress(o->user, &p);
+}
+
+/* The caller's log callback, if any: one line, printf-style. */
+static void say(const ss_table1_options *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void say(const ss_table1_options *o, const char *fmt, ...) {
+  if (!o->log) return;
+  char line[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(line, sizeof line, fmt, ap);
+  va_end(ap);
+  o->log(o->user, line);
 }
 
 static int int_cmp(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
@@ -117,7 +118,12 @@ static int error_samples(uint64_t seed, int y, int S, int nv, const int *sym, in
   return k;
 }
 
-ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err) {
+/* The locks of one run (worker errors; output and progress), local to the call. */
+typedef struct run_locks {
+  omp_lock_t err, progress;
+} run_locks;
+
+static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks *locks, ss_error *err) {
   if (new_rows) *new_rows = 0;
   if (!o || !o->data_dir || !o->out_csv) return ss_fail(err, SS_ERR_INVALID, "table1: data folder and output needed");
   if (o->npairs < 1 || o->shard_n < 1 || o->shard_i < 0 || o->shard_i >= o->shard_n || o->k < 3 ||
@@ -137,7 +143,7 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
   ss_eval_row *old = NULL;
   FILE *out = NULL;
   ss_mesh m0 = {0};
-  int nlmb = 0, nold = 0, blas_threads = -1;
+  int nlmb = 0, nold = 0;
   char path[4096];
 
   /* 1. landmarks, pairs, the unit list and this shard's slice */
@@ -177,9 +183,8 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
       if ((o->methods_mask >> mth & 1) && !done[row_key(U[u].policy, U[u].lmset, mth, U[u].x, U[u].y)]) todo++;
     if (todo) U[nwork++] = U[u], total_rows += todo;
   }
-  if (o->verbose)
-    fprintf(stderr, "table1: shard %d/%d: %d units, %d to do (%ld rows), %d rows already in %s\n", o->shard_i + 1,
-            o->shard_n, u1 - u0, nwork, total_rows, nold, o->out_csv);
+  say(o, "table1: shard %d/%d: %d units, %d to do (%ld rows), %d rows already in %s", o->shard_i + 1, o->shard_n,
+      u1 - u0, nwork, total_rows, nold, o->out_csv);
   if (nwork == 0) goto done;
 
   /* 3. shared inputs: GT landmarks and the symmetry map (error samples are drawn per target below) */
@@ -187,9 +192,9 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
   int gt_shape = -1;
   /* without GT rows the GT landmarks are never used (they stay 0, which the cache key records) */
   if ((o->lm_mask >> SS_LM_GT & 1) && (st = ev_gt_landmarks(o->data_dir, o->seed, &ctx, ctx.gt, &gt_shape, err))) goto done;
-  if (o->verbose && gt_shape >= 0)
-    fprintf(stderr, "table1: GT landmarks from tr_reg_%03d: %d %d %d %d %d\n", gt_shape, ctx.gt[0], ctx.gt[1], ctx.gt[2],
-            ctx.gt[3], ctx.gt[4]);
+  if (gt_shape >= 0)
+    say(o, "table1: GT landmarks from tr_reg_%03d: %d %d %d %d %d", gt_shape, ctx.gt[0], ctx.gt[1], ctx.gt[2], ctx.gt[3],
+        ctx.gt[4]);
   snprintf(path, sizeof path, "%s/faust/tr_reg_000.off", o->data_dir);
   if ((st = ss_read_mesh(path, &m0, err))) goto done;
   const int nv = m0.nv;
@@ -200,9 +205,8 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
     int mir[EV_NL] = {ctx.best[0], ctx.best[4], ctx.best[3], ctx.best[2], ctx.best[1]};
     ss_symmetry_stats ss;
     if ((st = ss_symmetry_map(&m0, EV_NL, ctx.best, mir, sym, &ss, err))) goto done;
-    if (o->verbose)
-      fprintf(stderr, "table1: symmetry map of tr_reg_000: involution on %.1f%% of vertices, %d refined\n",
-              100 * ss.involution, ss.refined);
+    say(o, "table1: symmetry map of tr_reg_000: involution on %.1f%% of vertices, %d refined", 100 * ss.involution,
+        ss.refined);
   }
   /* 4. prepare every shape this slice needs, once, in parallel */
   need = calloc(NSHAPES, sizeof(int));
@@ -213,9 +217,8 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
   for (int s = 0; s < NSHAPES; s++)
     if (need[s]) list[nneed++] = s;
   if (o->cache_dir) mkdir(o->cache_dir, 0755);
-  /* parallelism is over shapes and pairs: BLAS calls inside run on one thread each (OpenBLAS's own
+  /* parallelism is over shapes and pairs (the caller should run BLAS single-threaded: OpenBLAS's own
    * pthreads would oversubscribe the cores) */
-  blas_threads = openblas_get_num_threads();
   int failed = 0, prepared = 0;
   ss_error perr = {{0}};
   int nthreads = o->jobs > 0 ? o->jobs : 0;
@@ -224,28 +227,30 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
 #else
   nthreads = 1;
 #endif
-  openblas_set_num_threads(1);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
   for (int i = 0; i < nneed; i++) {
     if (failed) continue;
     ss_error e;
-    if (ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e) ||
-        ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e)) {
-#pragma omp critical(table1_err)
-      if (!failed) failed = 1, perr = e;
+    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e);
+    if (!ws) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
+    if (ws) {
+      omp_set_lock(&locks->err);
+      if (!failed) failed = ws, perr = e;
+      omp_unset_lock(&locks->err);
       continue;
     }
-#pragma omp critical(table1_progress)
+    omp_set_lock(&locks->progress);
     {
       prepared++;
-      if (o->progress) progress(t_start, 0, total_rows, prepared, nneed);
+      report(o, t_start, 0, total_rows, prepared, nneed);
     }
+    omp_unset_lock(&locks->progress);
   }
   if (failed) {
-    st = ss_fail(err, SS_ERR_NUMERIC, "table1: preparing shapes: %s", perr.msg);
+    st = ss_fail(err, (ss_status)failed, "table1: preparing shapes: %s", perr.msg);
     goto done;
   }
-  if (o->verbose) fprintf(stderr, "%stable1: %d shapes prepared in %.1f s\n", o->progress ? "\n" : "", nneed, ss_time() - t_start);
+  say(o, "table1: %d shapes prepared in %.1f s", nneed, ss_time() - t_start);
 
   /* 5. the units, in parallel, grouped by target shape */
   out = fopen(o->out_csv, have_header ? "ab" : "wb");
@@ -272,8 +277,9 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
     const int **rmap = malloc(sizeof(int *) * (size_t)maxrows);
     double *sum = malloc(sizeof(double) * (size_t)maxrows), *sum_sym = malloc(sizeof(double) * (size_t)maxrows);
     if (!mapbuf || !scratch || !samples || !sympos || !fields || !rows || !rmap || !sum || !sum_sym) {
-#pragma omp critical(table1_err)
-      if (!failed) failed = 1, snprintf(perr.msg, sizeof perr.msg, "out of memory");
+      omp_set_lock(&locks->err);
+      if (!failed) failed = SS_ERR_NOMEM, snprintf(perr.msg, sizeof perr.msg, "out of memory");
+      omp_unset_lock(&locks->err);
     }
 #pragma omp for schedule(dynamic, 1)
     for (int g = 0; g < ngroups; g++) {
@@ -337,34 +343,44 @@ ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err
         rows[i].error_sym = sum_sym[i] / rows[i].samples * scale;
         char line[512];
         ss_eval_csv_format_row(&rows[i], line, sizeof line);
-#pragma omp critical(table1_progress)
+        omp_set_lock(&locks->progress);
         {
           fprintf(out, "%s\n", line);
           fflush(out);
           rows_done++;
-          if (o->progress) progress(t_rows, rows_done, total_rows, 1, 1);
+          report(o, t_rows, rows_done, total_rows, 1, 1);
         }
+        omp_unset_lock(&locks->progress);
       }
       ss_geodesic_mesh_free(gm);
       if (s2) {
-#pragma omp critical(table1_err)
-        if (!failed) failed = 1, perr = e;
+        omp_set_lock(&locks->err);
+        if (!failed) failed = s2, perr = e;
+        omp_unset_lock(&locks->err);
       }
     }
     free(mapbuf), free(scratch), free(samples), free(sympos), free(fields), free(rows), free(rmap), free(sum), free(sum_sym);
   }
   free(gstart);
-  if (o->progress) fputc('\n', stderr);
   if (new_rows) *new_rows = (int)rows_done;
-  if (o->verbose) fprintf(stderr, "table1: %ld rows in %.1f s (%.1f s total)\n", rows_done, ss_time() - t_rows, ss_time() - t_start);
-  if (failed) st = ss_fail(err, SS_ERR_NUMERIC, "table1: %s", perr.msg);
+  say(o, "table1: %ld rows in %.1f s (%.1f s total)", rows_done, ss_time() - t_rows, ss_time() - t_start);
+  if (failed) st = ss_fail(err, (ss_status)failed, "table1: %s", perr.msg);
 done:
-  if (blas_threads > 0) openblas_set_num_threads(blas_threads);
   if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write failed", o->out_csv);
   if (shapes)
     for (int s = 0; s < NSHAPES; s++) ev_shape_free(&shapes[s]);
   free(shapes), free(need), free(U), free(px), free(py), free(lmb), free(sym);
   free(done), free(old);
   ss_mesh_free(&m0);
+  return st;
+}
+
+ss_status ss_table1_run(const ss_table1_options *o, int *new_rows, ss_error *err) {
+  run_locks locks;
+  omp_init_lock(&locks.err);
+  omp_init_lock(&locks.progress);
+  ss_status st = table1_run(o, new_rows, &locks, err);
+  omp_destroy_lock(&locks.err);
+  omp_destroy_lock(&locks.progress);
   return st;
 }

@@ -7,27 +7,13 @@
  * them — so building them apart gives exactly the columns of building them together, and a pair's
  * base probes can be computed once per shape and landmark set and shared by STD, ASA and DIFF. Only
  * the kept columns are synthesised (in the spectral domain, then one dgemm). */
-#include "specseg/fmap.h"
+#include "fmap/fmap_options.h"
 #include "specseg/laplacian.h"
 
 #include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static ss_status check_shape(const ss_fmap_shape *s, int k, ss_error *err) {
-  if (!s || !s->mesh || !s->evals || !s->evecs || s->mesh->nv < 1)
-    return ss_fail(err, SS_ERR_INVALID, "probes: shape incomplete");
-  if (s->kev < k) return ss_fail(err, SS_ERR_INVALID, "probes: shape has %d eigenpairs, %d needed", s->kev, k);
-  return SS_OK;
-}
-
-static ss_status check_options(const ss_fmap_match_options *o, ss_error *err) {
-  if (o->k < 3 || o->n_energies < 1 || o->descr_step < 1 || !(o->sigma_factor > 0))
-    return ss_fail(err, SS_ERR_INVALID, "probes: invalid options (k %d, energies %d, step %d)", o->k, o->n_energies,
-                   o->descr_step);
-  return SS_OK;
-}
 
 /* Kept virtual columns c in [c_from, c_to) (c ≡ 0 mod step) as functions F (n x *nf, malloc'd).
  * Item 0 (columns 0..ne-1) is the WKS; item i ≥ 1 is the wave filter of the function whose
@@ -96,12 +82,10 @@ static ss_status finish(int n, int k, const double *evecs, const double *M, doub
  * against them, *out zeroed. */
 static ss_status start(const ss_fmap_shape *s, const ss_fmap_match_options *opts, ss_fmap_probes *out,
                        ss_fmap_match_options *o, ss_error *err) {
-  if (opts) *o = *opts;
-  else ss_fmap_match_default_options(o);
   if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
   memset(out, 0, sizeof *out);
-  ss_status st = check_options(o, err);
-  return st ? st : check_shape(s, o->k, err);
+  ss_status st = ssi_fmap_options_resolve(opts, o, err);
+  return st ? st : ssi_fmap_check_shape(s, "of the probes", o->k, err);
 }
 
 /* the shape's lumped masses: its own, or barycentric ones in *own */

@@ -26,6 +26,7 @@ ss_status ss_map_geodesic_error(const ss_mesh *Y, int nX, const int *map, const 
   int *src = malloc(sizeof(int) * (size_t)nX), *dst = malloc(sizeof(int) * (size_t)nX * k);
   double *d = malloc(sizeof(double) * (size_t)nX);
   ss_geodesic_mesh *gm = NULL;
+  ss_geodesic_landmarks *acc = NULL;
   ss_status st = SS_OK;
   if (!src || !dst || !d) { st = ss_fail(err, SS_ERR_NOMEM, "map error: out of memory"); goto done; }
   /* sources are the estimated images; with a symmetry map each query stops at the nearer of the
@@ -36,7 +37,7 @@ ss_status ss_map_geodesic_error(const ss_mesh *Y, int nX, const int *map, const 
     if (sym) dst[k * x + 1] = gt ? gt[sym[x]] : sym[x];
   }
   if ((st = ss_geodesic_mesh_build(Y, &gm, err))) goto done;
-  if ((st = ss_geodesic_nearest_of(gm, src, dst, k, nX, d, err))) goto done;
+  if ((st = ss_geodesic_nearest_of(gm, &acc, src, dst, k, nX, d, err))) goto done;
   double s = 0, scale = 1.0 / sqrt(area);
   for (int x = 0; x < nX; x++) {
     double e = d[x] * scale;
@@ -45,6 +46,7 @@ ss_status ss_map_geodesic_error(const ss_mesh *Y, int nX, const int *map, const 
   }
   *mean = s / nX;
 done:
+  ss_geodesic_landmarks_free(acc);
   if (gm) ss_geodesic_mesh_free(gm);
   free(src);
   free(dst);

@@ -7,20 +7,29 @@
 #include <stdlib.h>
 #include <string.h>
 
-ss_status ss_geodesic_mesh_prepare_queries(ss_geodesic_mesh *gm, int nlandmarks, ss_error *err) {
+void ss_geodesic_landmarks_free(ss_geodesic_landmarks *acc) {
+  if (!acc) return;
+  free(acc->lm);
+  free(acc);
+}
+
+ss_status ss_geodesic_landmarks_new(const ss_geodesic_mesh *gm, int nlandmarks, ss_geodesic_landmarks **out,
+                                    ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "null output");
+  *out = NULL;
   if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
-  if (nlandmarks < 0 || nlandmarks > SS_GEODESIC_MAX_LANDMARKS)
-    return ss_fail(err, SS_ERR_INVALID, "landmark count %d outside [0,%d]", nlandmarks, SS_GEODESIC_MAX_LANDMARKS);
+  if (nlandmarks < 1 || nlandmarks > SS_GEODESIC_MAX_LANDMARKS)
+    return ss_fail(err, SS_ERR_INVALID, "landmark count %d outside [1,%d]", nlandmarks, SS_GEODESIC_MAX_LANDMARKS);
   int nv = gm->nv, K = nlandmarks < nv ? nlandmarks : nv;
-  free(gm->lm);
-  gm->lm = NULL;
-  gm->nlm = 0;
-  gm->lm_off = K == 0; /* an explicit 0 also turns the automatic preparation off */
-  if (K == 0) return SS_OK;
+  ss_geodesic_landmarks *acc = calloc(1, sizeof *acc);
+  if (!acc) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
   ss_mesh view = {gm->nv, gm->nf, gm->V, gm->F};
   ss_graph g;
   ss_status st = ss_graph_edges(&view, &g, err);
-  if (st) return st;
+  if (st) {
+    free(acc);
+    return st;
+  }
   int lmk[SS_GEODESIC_MAX_LANDMARKS];
   double *dg = malloc(sizeof(double) * (size_t)nv), *mind = malloc(sizeof(double) * (size_t)nv);
   double *F = malloc(sizeof(double) * (size_t)nv * (size_t)K), *lm = malloc(sizeof(double) * (size_t)nv * (size_t)K);
@@ -45,24 +54,26 @@ ss_status ss_geodesic_mesh_prepare_queries(ss_geodesic_mesh *gm, int nlandmarks,
   if ((st = ss_geodesic_fields(gm, lmk, K, 0, F, err))) goto done;
   for (int v = 0; v < nv; v++)
     for (int k = 0; k < K; k++) lm[(size_t)v * K + k] = F[(size_t)k * nv + v];
-  /* publish: the count and the contents before the pointer (queries of concurrent ss_geodesic_pairs
-   * calls on the same mesh read the pointer with acquire semantics) */
-  gm->nlm = K;
-  __atomic_store_n(&gm->lm, lm, __ATOMIC_RELEASE);
+  acc->nv = nv;
+  acc->nlm = K;
+  acc->lm = lm;
   lm = NULL;
+  *out = acc;
+  acc = NULL;
 done:
   ss_graph_free(&g);
   free(dg); free(mind); free(F); free(lm);
+  ss_geodesic_landmarks_free(acc);
   return st;
 }
 
-double ss_geodesic_lower_bound(const ss_geodesic_mesh *gm, int a, int b) {
+double ss_geodesic_lower_bound(const ss_geodesic_mesh *gm, const ss_geodesic_landmarks *acc, int a, int b) {
   if (!gm || a < 0 || b < 0 || a >= gm->nv || b >= gm->nv) return 0.0;
   const double *pa = gm->V + 3 * (size_t)a, *pb = gm->V + 3 * (size_t)b;
   double dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2], lb = sqrt(dx * dx + dy * dy + dz * dz);
-  const double *lm = __atomic_load_n(&gm->lm, __ATOMIC_ACQUIRE);
-  if (lm) {
-    const int K = gm->nlm;
+  if (acc && acc->nv == gm->nv) {
+    const double *lm = acc->lm;
+    const int K = acc->nlm;
     const double *la = lm + (size_t)a * K, *lb2 = lm + (size_t)b * K;
     for (int k = 0; k < K; k++) {
       double t = fabs(la[k] - lb2[k]);

@@ -19,8 +19,7 @@ static int cmp_key(const void *x, const void *y) {
 
 void ss_geodesic_mesh_free(ss_geodesic_mesh *gm) {
   if (!gm) return;
-  omp_destroy_lock(&gm->lm_lock);
-  free(gm->F); free(gm->V); free(gm->twin); free(gm->fr); free(gm->vptr); free(gm->vcorner); free(gm->vflag); free(gm->cang); free(gm->ang); free(gm->theta); free(gm->lm);
+  free(gm->F); free(gm->V); free(gm->twin); free(gm->fr); free(gm->vptr); free(gm->vcorner); free(gm->vflag); free(gm->cang); free(gm->ang); free(gm->theta);
   free(gm);
 }
 
@@ -29,19 +28,18 @@ int ss_geodesic_mesh_nv(const ss_geodesic_mesh *gm) { return gm ? gm->nv : 0; }
 ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "null output");
   *out = NULL;
-  ss_status st = ss_graph_check_mesh(m, err);
+  ss_status st = ssi_graph_check_mesh(m, err);
   if (st) return st;
   if (m->nv < 1) return ss_fail(err, SS_ERR_INVALID, "empty mesh");
   int nv = m->nv, nf = m->nf;
   size_t nh = 3 * (size_t)nf;
   ss_geodesic_mesh *gm = calloc(1, sizeof *gm);
   if (!gm) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
-  omp_init_lock(&gm->lm_lock);
   gm->nv = nv; gm->nf = nf;
   gm->F = malloc(sizeof(int) * (nh ? nh : 1));
   gm->V = malloc(sizeof(double) * 3 * (size_t)nv);
   gm->twin = malloc(sizeof(int) * (nh ? nh : 1));
-  gm->fr = malloc(sizeof(ss_he_frame) * (nh ? nh : 1));
+  gm->fr = malloc(sizeof(ssi_he_frame) * (nh ? nh : 1));
   gm->vptr = calloc((size_t)nv + 1, sizeof(int));
   gm->vcorner = malloc(sizeof(int) * (nh ? nh : 1));
   gm->vflag = calloc((size_t)nv, 1);
@@ -73,7 +71,7 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
       double area2 = sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
       double lq = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
       if (!(L > 0) || !(area2 > 1e-14 * L * lq) || !(lq > 0)) { dead[f] = 1; break; }
-      ss_he_frame *fr = gm->fr + 3 * (size_t)f + i;
+      ssi_he_frame *fr = gm->fr + 3 * (size_t)f + i;
       fr->len = L;
       fr->cx = (e[0] * q[0] + e[1] * q[1] + e[2] * q[2]) / L;
       fr->cy = area2 / L;
@@ -81,7 +79,7 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
     if (!dead[f])
       for (int i = 0; i < 3; i++) {
         /* interior angle at t[i] between half-edge i and the reversed half-edge i+2 */
-        const ss_he_frame *fr = gm->fr + 3 * (size_t)f + i;
+        const ssi_he_frame *fr = gm->fr + 3 * (size_t)f + i;
         gm->ang[3 * (size_t)f + i] = atan2(fr->cy, fr->cx);
         angle[t[i]] += gm->ang[3 * (size_t)f + i];
       }
@@ -105,7 +103,7 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
     while (j < nk && keys[j].lo == keys[i].lo && keys[j].hi == keys[i].hi) j++;
     if (j - i == 2) {
       int h0 = keys[i].h, h1 = keys[i + 1].h;
-      if (m->F[h0] == m->F[ss_he_next(h1)] && m->F[h1] == m->F[ss_he_next(h0)]) {
+      if (m->F[h0] == m->F[ssi_he_next(h1)] && m->F[h1] == m->F[ssi_he_next(h0)]) {
         gm->twin[h0] = h1; gm->twin[h1] = h0;
       }
     }
@@ -129,7 +127,7 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
     for (int i = 0; i < 3; i++) {
       int h = 3 * f + i, v = m->F[h];
       gm->vcorner[pos[v]++] = h;
-      if (gm->twin[h] < 0) { gm->vflag[v] |= SS_GV_PSEUDO; gm->vflag[m->F[ss_he_next(h)]] |= SS_GV_PSEUDO; }
+      if (gm->twin[h] < 0) { gm->vflag[v] |= SS_GV_PSEUDO; gm->vflag[m->F[ssi_he_next(h)]] |= SS_GV_PSEUDO; }
     }
   }
   for (int v = 0; v < nv; v++) {
@@ -150,7 +148,7 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
     do {
       gm->cang[h] = cum;
       cum += atan2(gm->fr[h].cy, gm->fr[h].cx);
-      int t = gm->twin[ss_he_prev(h)];
+      int t = gm->twin[ssi_he_prev(h)];
       if (t < 0) { ok = 0; break; }
       h = t;
       k++;

@@ -5,33 +5,35 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <omp.h>
 
 #define SS_GEODESIC_LANDMARK_BATCH 32
 #define SS_GEODESIC_DEFAULT_LANDMARKS 8
 
 struct ss_geodesic_query {
   const ss_geodesic_mesh *gm;
-  ss_vtp_ws *ws;
+  const ss_geodesic_landmarks *lm;
+  ssi_vtp_ws *ws;
 };
 
-ss_status ss_geodesic_query_new(const ss_geodesic_mesh *gm, ss_geodesic_query **out, ss_error *err) {
+ss_status ss_geodesic_query_new(const ss_geodesic_mesh *gm, const ss_geodesic_landmarks *lm, ss_geodesic_query **out,
+                                ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "null output");
   *out = NULL;
   if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
   ss_geodesic_query *q = calloc(1, sizeof *q);
-  if (!q || !(q->ws = ss_vtp_ws_new(gm->nv, gm->nf))) {
+  if (!q || !(q->ws = ssi_vtp_ws_new(gm->nv, gm->nf))) {
     free(q);
     return ss_fail(err, SS_ERR_NOMEM, "out of memory");
   }
   q->gm = gm;
+  q->lm = lm;
   *out = q;
   return SS_OK;
 }
 
 void ss_geodesic_query_free(ss_geodesic_query *q) {
   if (!q) return;
-  ss_vtp_ws_free(q->ws);
+  ssi_vtp_ws_free(q->ws);
   free(q);
 }
 
@@ -41,13 +43,13 @@ ss_status ss_geodesic_query_run(ss_geodesic_query *q, int source, const int *tar
   if (ntargets < 0 || (ntargets > 0 && (!targets || !out))) return ss_fail(err, SS_ERR_INVALID, "invalid target list");
   if (source < 0 || source >= q->gm->nv) return ss_fail(err, SS_ERR_INVALID, "source vertex %d outside [0,%d)", source, q->gm->nv);
   if (ntargets == 0) return SS_OK;
-  return ss_vtp_query(q->gm, q->ws, source, targets, ntargets, 1, 0, out, err);
+  return ssi_vtp_query(q->gm, q->lm, q->ws, source, targets, ntargets, 1, 0, out, err);
 }
 
-ss_status ss_geodesic_one_to_many(const ss_geodesic_mesh *gm, int source, const int *targets, int ntargets,
-                                  double *out, ss_error *err) {
+ss_status ss_geodesic_one_to_many(const ss_geodesic_mesh *gm, const ss_geodesic_landmarks *lm, int source,
+                                  const int *targets, int ntargets, double *out, ss_error *err) {
   ss_geodesic_query *q;
-  ss_status st = ss_geodesic_query_new(gm, &q, err);
+  ss_status st = ss_geodesic_query_new(gm, lm, &q, err);
   if (st) return st;
   st = ss_geodesic_query_run(q, source, targets, ntargets, out, err);
   ss_geodesic_query_free(q);
@@ -55,23 +57,18 @@ ss_status ss_geodesic_one_to_many(const ss_geodesic_mesh *gm, int source, const 
 }
 
 /* Far pairs (straight distance over a tenth of the bounding-box diagonal) are what landmark bounds
- * speed up: a batch with at least SS_GEODESIC_LANDMARK_BATCH of them attaches landmark fields to
- * the mesh structure once (a few full fields; far pairs then cost a corridor instead of a disc).
- * The decision depends on the input only, never on timing. */
+ * speed up: a batch with at least SS_GEODESIC_LANDMARK_BATCH of them builds landmark fields into the
+ * caller's empty accelerator slot (a few full fields; far pairs then cost a corridor instead of a
+ * disc). The decision depends on the input only, never on timing. */
 static int is_far(const ss_geodesic_mesh *gm, int a, int b) {
   const double *p = gm->V + 3 * (size_t)a, *q = gm->V + 3 * (size_t)b;
   double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2], r = 0.1 * gm->scale;
   return dx * dx + dy * dy + dz * dz > r * r;
 }
 
-static ss_status auto_landmarks(const ss_geodesic_mesh *gm, long nfar, ss_error *err) {
-  if (nfar < SS_GEODESIC_LANDMARK_BATCH) return SS_OK;
-  ss_status st = SS_OK;
-  ss_geodesic_mesh *mgm = (ss_geodesic_mesh *)gm; /* a cache: distances do not depend on it */
-  omp_set_lock(&mgm->lm_lock);
-  if (!__atomic_load_n(&mgm->lm, __ATOMIC_ACQUIRE) && !mgm->lm_off) st = ss_geodesic_mesh_prepare_queries(mgm, SS_GEODESIC_DEFAULT_LANDMARKS, err);
-  omp_unset_lock(&mgm->lm_lock);
-  return st;
+static ss_status auto_landmarks(const ss_geodesic_mesh *gm, ss_geodesic_landmarks **lm, long nfar, ss_error *err) {
+  if (!lm || *lm || nfar < SS_GEODESIC_LANDMARK_BATCH) return SS_OK;
+  return ss_geodesic_landmarks_new(gm, SS_GEODESIC_DEFAULT_LANDMARKS, lm, err);
 }
 
 typedef struct {
@@ -88,8 +85,8 @@ static int cmp_pair(const void *x, const void *y) {
  * (d is symmetric) was tried: it gathers the maps evaluated at the same x into one query, but a
  * multi-target query must bound the way to its nearest target, so one far target makes the whole
  * group expensive; measured slower (0.38 vs 0.26 s CPU for three maps). */
-ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const int *dst, int npairs,
-                            double *out, ss_error *err) {
+ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, ss_geodesic_landmarks **lm, const int *src, const int *dst,
+                            int npairs, double *out, ss_error *err) {
   if (!gm || npairs < 0 || (npairs > 0 && (!src || !dst || !out)))
     return ss_fail(err, SS_ERR_INVALID, "invalid arguments to ss_geodesic_pairs");
   int nv = gm->nv;
@@ -99,8 +96,9 @@ ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const in
   if (npairs == 0) return SS_OK;
   long nfar = 0;
   for (int i = 0; i < npairs; i++) nfar += is_far(gm, src[i], dst[i]);
-  ss_status lst = auto_landmarks(gm, nfar, err);
+  ss_status lst = auto_landmarks(gm, lm, nfar, err);
   if (lst) return lst;
+  const ss_geodesic_landmarks *acc = lm ? *lm : NULL;
   pair_ref *pr = malloc(sizeof(pair_ref) * (size_t)npairs);
   int *groups = malloc(sizeof(int) * ((size_t)npairs + 1));
   if (!pr || !groups) {
@@ -123,7 +121,7 @@ ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const in
   int failed = 0;
 #pragma omp parallel if (ng > 1)
   {
-    ss_vtp_ws *ws = ss_vtp_ws_new(nv, gm->nf);
+    ssi_vtp_ws *ws = ssi_vtp_ws_new(nv, gm->nf);
     int cap = 0, *tg = NULL;
     double *val = NULL;
     if (!ws) {
@@ -159,7 +157,7 @@ ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const in
           k = nt;
         if (k == nt) tg[nt++] = o;
       }
-      if (ss_vtp_query(gm, ws, pr[a].root, tg, nt, 1, 0, val, NULL)) {
+      if (ssi_vtp_query(gm, acc, ws, pr[a].root, tg, nt, 1, 0, val, NULL)) {
 #pragma omp atomic write
         failed = 1;
         continue;
@@ -171,15 +169,15 @@ ss_status ss_geodesic_pairs(const ss_geodesic_mesh *gm, const int *src, const in
       }
     }
     free(tg); free(val);
-    ss_vtp_ws_free(ws);
+    ssi_vtp_ws_free(ws);
   }
   free(pr); free(groups);
   if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic pairs");
   return SS_OK;
 }
 
-ss_status ss_geodesic_nearest_of(const ss_geodesic_mesh *gm, const int *src, const int *dst, int k, int n,
-                                 double *out, ss_error *err) {
+ss_status ss_geodesic_nearest_of(const ss_geodesic_mesh *gm, ss_geodesic_landmarks **lm, const int *src,
+                                 const int *dst, int k, int n, double *out, ss_error *err) {
   if (!gm || n < 0 || k < 1 || (n > 0 && (!src || !dst || !out)))
     return ss_fail(err, SS_ERR_INVALID, "invalid arguments to ss_geodesic_nearest_of");
   int nv = gm->nv;
@@ -194,12 +192,13 @@ ss_status ss_geodesic_nearest_of(const ss_geodesic_mesh *gm, const int *src, con
     for (int j = 0; j < k && all; j++) all = is_far(gm, src[i], dst[(size_t)i * k + j]);
     nfar += all;
   }
-  ss_status lst = auto_landmarks(gm, nfar, err);
+  ss_status lst = auto_landmarks(gm, lm, nfar, err);
   if (lst) return lst;
+  const ss_geodesic_landmarks *acc = lm ? *lm : NULL;
   int failed = 0;
 #pragma omp parallel if (n > 1)
   {
-    ss_vtp_ws *ws = ss_vtp_ws_new(nv, gm->nf);
+    ssi_vtp_ws *ws = ssi_vtp_ws_new(nv, gm->nf);
     if (!ws) {
 #pragma omp atomic write
       failed = 1;
@@ -211,12 +210,12 @@ ss_status ss_geodesic_nearest_of(const ss_geodesic_mesh *gm, const int *src, con
       int zero = 0;
       for (int j = 0; j < k; j++) zero |= t[j] == src[i];
       if (zero) { out[i] = 0; continue; }
-      if (ss_vtp_query(gm, ws, src[i], t, k, 1, 1, out + i, NULL)) {
+      if (ssi_vtp_query(gm, acc, ws, src[i], t, k, 1, 1, out + i, NULL)) {
 #pragma omp atomic write
         failed = 1;
       }
     }
-    ss_vtp_ws_free(ws);
+    ssi_vtp_ws_free(ws);
   }
   if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic distances");
   return SS_OK;

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-ss_status ss_graph_check_mesh(const ss_mesh *m, ss_error *err) {
+ss_status ssi_graph_check_mesh(const ss_mesh *m, ss_error *err) {
   if (!m || m->nv < 0 || m->nf < 0 || (m->nv > 0 && !m->V) || (m->nf > 0 && !m->F))
     return ss_fail(err, SS_ERR_INVALID, "invalid mesh");
   for (long i = 0; i < 3L * m->nf; i++)
@@ -16,7 +16,7 @@ ss_status ss_graph_check_mesh(const ss_mesh *m, ss_error *err) {
   return SS_OK;
 }
 
-ss_status ss_graph_from_arcs(int n, const ss_arc *arcs, size_t narcs, ss_graph *g, ss_error *err) {
+ss_status ssi_graph_from_arcs(int n, const ssi_arc *arcs, size_t narcs, ss_graph *g, ss_error *err) {
   memset(g, 0, sizeof *g);
   int *ptr = calloc((size_t)n + 1, sizeof(int));
   int *adj = malloc(sizeof(int) * (2 * narcs + 1));

@@ -5,15 +5,15 @@
 
 #include "specseg/geodesic.h"
 
-typedef struct ss_arc {
+typedef struct ssi_arc {
   int u, v;
   double w;
-} ss_arc;
+} ssi_arc;
 
 /* Arcs are given once per undirected pair (either orientation). */
-ss_status ss_graph_from_arcs(int n, const ss_arc *arcs, size_t narcs, ss_graph *g, ss_error *err);
+ss_status ssi_graph_from_arcs(int n, const ssi_arc *arcs, size_t narcs, ss_graph *g, ss_error *err);
 
 /* Checks nv/nf/F indices, finite coordinates. */
-ss_status ss_graph_check_mesh(const ss_mesh *m, ss_error *err);
+ss_status ssi_graph_check_mesh(const ss_mesh *m, ss_error *err);
 
 #endif

@@ -40,11 +40,11 @@ static double unfolded_length(const double *a, const double *b, const double *c,
 }
 
 ss_status ss_graph_npp22(const ss_mesh *m, ss_graph *g, ss_error *err) {
-  ss_status st = ss_graph_check_mesh(m, err);
+  ss_status st = ssi_graph_check_mesh(m, err);
   if (st) return st;
   size_t nh = 3 * (size_t)m->nf;
   half_edge *he = malloc(sizeof(half_edge) * (nh ? nh : 1));
-  ss_arc *arcs = malloc(sizeof(ss_arc) * (2 * nh + 1));
+  ssi_arc *arcs = malloc(sizeof(ssi_arc) * (2 * nh + 1));
   if (!he || !arcs) {
     free(he); free(arcs);
     return ss_fail(err, SS_ERR_NOMEM, "out of memory building the NPP22 graph");
@@ -76,7 +76,7 @@ ss_status ss_graph_npp22(const ss_mesh *m, ss_graph *g, ss_error *err) {
     i = j;
   }
   free(he);
-  st = ss_graph_from_arcs(m->nv, arcs, na, g, err);
+  st = ssi_graph_from_arcs(m->nv, arcs, na, g, err);
   free(arcs);
   return st;
 }

@@ -39,7 +39,7 @@ typedef struct {
 
 enum { VS_SETTLED = 1, VS_TARGET = 2, VS_SOURCE = 4, VS_TOUCHED = 8 };
 
-struct ss_vtp_ws {
+struct ssi_vtp_ws {
   int nv;
   unsigned char *vs;
   int *arr_he;     /* arrival of the current estimate: corner half-edge (tail = vertex), -1 unknown */
@@ -51,7 +51,7 @@ struct ss_vtp_ws {
   hent *heap;
   size_t hsize, hcap;
   int *hpos; /* nh + nv: heap position of each half-edge / vertex entry, -1 when absent */
-  ss_vtp_stats st;
+  ssi_vtp_stats st;
   int nomem;
   /* per half-edge: the best path to the opposite vertex found so far whose last segment crosses the
    * face from the edge (distance, crossing abscissa); valid when stamp == run */
@@ -84,8 +84,8 @@ struct ss_vtp_ws {
   const double *lmf;                                      /* the mesh's landmark fields, this run */
 };
 
-ss_vtp_ws *ss_vtp_ws_new(int nv, int nf) {
-  ss_vtp_ws *ws = calloc(1, sizeof *ws);
+ssi_vtp_ws *ssi_vtp_ws_new(int nv, int nf) {
+  ssi_vtp_ws *ws = calloc(1, sizeof *ws);
   if (!ws) return NULL;
   ws->nv = nv;
   ws->nh = 3 * nf;
@@ -116,7 +116,7 @@ ss_vtp_ws *ss_vtp_ws_new(int nv, int nf) {
     for (size_t i = 0; i < nh + nvv; i++) ws->hpos[i] = -1;
   if (!ws->head || !ws->hkey || !ws->hgen || !ws->vgen || !ws->arr_he || !ws->arr_y || !ws->arr_x || !ws->bestd || !ws->bestx || !ws->stamp || !ws->vs || !ws->pool || !ws->freeids || !ws->heap ||
       !ws->hpos || !ws->dd || !ws->vkey || !ws->emitted || !ws->touched) {
-    ss_vtp_ws_free(ws);
+    ssi_vtp_ws_free(ws);
     return NULL;
   }
   for (int i = 0; i < nv; i++) { ws->dd[i] = INFINITY; ws->vkey[i] = INFINITY; ws->emitted[i] = INFINITY; ws->arr_he[i] = -1; }
@@ -124,7 +124,7 @@ ss_vtp_ws *ss_vtp_ws_new(int nv, int nf) {
   return ws;
 }
 
-void ss_vtp_ws_free(ss_vtp_ws *ws) {
+void ssi_vtp_ws_free(ssi_vtp_ws *ws) {
   if (!ws) return;
   free(ws->bestd); free(ws->bestx); free(ws->stamp); free(ws->head); free(ws->hkey); free(ws->hgen); free(ws->vgen);
   free(ws->arr_he); free(ws->arr_y); free(ws->arr_x);
@@ -133,19 +133,19 @@ void ss_vtp_ws_free(ss_vtp_ws *ws) {
   free(ws);
 }
 
-void ss_vtp_ws_stats(const ss_vtp_ws *ws, ss_vtp_stats *st) { *st = ws->st; }
+void ssi_vtp_ws_stats(const ssi_vtp_ws *ws, ssi_vtp_stats *st) { *st = ws->st; }
 
 /* ---- indexed 4-ary heap (shallower than a binary heap: fewer unpredictable branches per pop) --
  * One entry per half-edge / vertex at most, keyed by its current key: a lower key moves the entry
  * up instead of queueing a second one, so no stale entries are popped (half of all pops before). */
-static inline int hslot(const ss_vtp_ws *ws, int id) { return id >= 0 ? id : ws->nh - id - 1; }
+static inline int hslot(const ssi_vtp_ws *ws, int id) { return id >= 0 ? id : ws->nh - id - 1; }
 
-static inline void heap_place(ss_vtp_ws *ws, size_t i, hent e) {
+static inline void heap_place(ssi_vtp_ws *ws, size_t i, hent e) {
   ws->heap[i] = e;
   ws->hpos[hslot(ws, e.id)] = (int)i;
 }
 
-static void heap_sift_down(ss_vtp_ws *ws, size_t i, hent e) {
+static void heap_sift_down(ssi_vtp_ws *ws, size_t i, hent e) {
   hent *h = ws->heap;
   size_t n = ws->hsize;
   for (;;) {
@@ -164,7 +164,7 @@ static void heap_sift_down(ss_vtp_ws *ws, size_t i, hent e) {
 }
 
 /* Insert id with `key`, or move its entry to `key`. */
-static int heap_push(ss_vtp_ws *ws, double key, int id) {
+static int heap_push(ssi_vtp_ws *ws, double key, int id) {
   int p = ws->hpos[hslot(ws, id)];
   hent e = {key, id};
   size_t i;
@@ -192,7 +192,7 @@ static int heap_push(ss_vtp_ws *ws, double key, int id) {
   return 0;
 }
 
-static hent heap_pop(ss_vtp_ws *ws) {
+static hent heap_pop(ssi_vtp_ws *ws) {
   hent top = ws->heap[0], last = ws->heap[--ws->hsize];
   ws->hpos[hslot(ws, top.id)] = -1;
   if (ws->hsize > 0) heap_sift_down(ws, 0, last);
@@ -200,13 +200,13 @@ static hent heap_pop(ss_vtp_ws *ws) {
 }
 
 /* Entries left by an early stop leave the index clean for the next run. */
-static void heap_clear(ss_vtp_ws *ws) {
+static void heap_clear(ssi_vtp_ws *ws) {
   for (size_t i = 0; i < ws->hsize; i++) ws->hpos[hslot(ws, ws->heap[i].id)] = -1;
   ws->hsize = 0;
 }
 
 /* ---- window pool -------------------------------------------------------------------------- */
-static int win_alloc(ss_vtp_ws *ws) {
+static int win_alloc(ssi_vtp_ws *ws) {
   if (ws->nfree > 0) return ws->freeids[--ws->nfree];
   if (ws->npool == ws->cappool) {
     int nc = ws->cappool * 2;
@@ -224,11 +224,11 @@ static int win_alloc(ss_vtp_ws *ws) {
 }
 
 /* ---- touched vertices and A* bounds ------------------------------------------------------- */
-static inline void v_touch(ss_vtp_ws *ws, int v) {
+static inline void v_touch(ssi_vtp_ws *ws, int v) {
   if (!(ws->vs[v] & VS_TOUCHED)) { ws->vs[v] |= VS_TOUCHED; ws->touched[ws->ntouched++] = v; }
 }
 
-static void ws_reset(ss_vtp_ws *ws) {
+static void ws_reset(ssi_vtp_ws *ws) {
   for (int k = 0; k < ws->ntouched; k++) {
     int v = ws->touched[k];
     ws->dd[v] = INFINITY; ws->vkey[v] = INFINITY; ws->emitted[v] = INFINITY; ws->arr_he[v] = -1; ws->vs[v] = 0;
@@ -240,12 +240,12 @@ static void ws_reset(ss_vtp_ws *ws) {
  * paths are 3D curves) and, when the mesh carries landmark fields, |d_L(p) - d_L(t)| (triangle
  * inequality). Lowered by a relative 1e-12 and the tolerance so that round-off never lifts a bound
  * above the true remaining length. */
-static inline double heur_safe(const ss_vtp_ws *ws, double b) {
+static inline double heur_safe(const ssi_vtp_ws *ws, double b) {
   b = b * (1 - 1e-12) - ws->tol;
   return b > 0 ? b : 0;
 }
 
-static inline double heur_pt(const ss_vtp_ws *ws, int v) {
+static inline double heur_pt(const ssi_vtp_ws *ws, int v) {
   if (!ws->astar) return 0;
   const double *p = ws->gm->V + 3 * (size_t)v;
   const double *lv = ws->nlm ? ws->lmf + (size_t)v * ws->nlm : NULL;
@@ -265,10 +265,10 @@ static inline double heur_pt(const ss_vtp_ws *ws, int v) {
 
 /* Same for the piece [b0,b1] of half-edge h: the nearest point of the piece to the target, and
  * landmark distances along the edge bracketed by the 1-Lipschitz bounds from its end vertices. */
-static inline double heur_seg(const ss_vtp_ws *ws, int h, double b0, double b1) {
+static inline double heur_seg(const ssi_vtp_ws *ws, int h, double b0, double b1) {
   if (!ws->astar) return 0;
   const ss_geodesic_mesh *gm = ws->gm;
-  int ia = gm->F[h], ib = gm->F[ss_he_next(h)];
+  int ia = gm->F[h], ib = gm->F[ssi_he_next(h)];
   const double *a = gm->V + 3 * (size_t)ia, *b = gm->V + 3 * (size_t)ib;
   double L = gm->fr[h].len, inv = 1.0 / L;
   double u[3] = {(b[0] - a[0]) * inv, (b[1] - a[1]) * inv, (b[2] - a[2]) * inv};
@@ -309,7 +309,7 @@ static inline double heur_seg(const ss_vtp_ws *ws, int h, double b0, double b1) 
  * corner's frame (hc = -1: the
  * path bends on the way, direction not recorded). Pseudo-source vertices keep the arrival direction
  * of a straight arrival, also on a tie, so that they emit only where a geodesic can continue. */
-static void vertex_update(ss_vtp_ws *ws, int v, double val, int hc, double dy, double dx) {
+static void vertex_update(ssi_vtp_ws *ws, int v, double val, int hc, double dy, double dx) {
   if (!ws->astar && (ws->vs[v] & VS_SETTLED)) return;
   if (!(val < ws->d[v])) {
     if (hc >= 0 && ws->arr_he[v] < 0 && val <= ws->d[v] + ws->tol) { ws->arr_he[v] = hc; ws->arr_y[v] = dy; ws->arr_x[v] = dx; }
@@ -326,7 +326,7 @@ static void vertex_update(ss_vtp_ws *ws, int v, double val, int hc, double dy, d
   }
 }
 
-static inline void he_touch(ss_vtp_ws *ws, int h) {
+static inline void he_touch(ssi_vtp_ws *ws, int h) {
   if (ws->stamp[h] != ws->run) {
     ws->stamp[h] = ws->run;
     ws->bestd[h] = INFINITY;
@@ -339,10 +339,10 @@ static inline void he_touch(ss_vtp_ws *ws, int h) {
 /* ---- pruning ------------------------------------------------------------------------------ */
 /* Cut from [*b0,*b1] the parts dominated by the vertices of the two faces beside half-edge h.
  * Returns 0 when nothing is left. */
-static int prune(const ss_vtp_ws *ws, int h, double *pb0, double *pb1, double sx, double sy, double sigma) {
+static int prune(const ssi_vtp_ws *ws, int h, double *pb0, double *pb1, double sx, double sy, double sigma) {
   const ss_geodesic_mesh *gm = ws->gm;
   const double *d = ws->d, tol = ws->tol;
-  const ss_he_frame *fr = gm->fr + h;
+  const ssi_he_frame *fr = gm->fr + h;
   double L = fr->len, b0 = *pb0, b1 = *pb1;
   double sy2 = sy * sy;
   /* tail A at x = 0: h_A(x) = sigma + |s - x| - d(A) - x is non-increasing in x */
@@ -362,7 +362,7 @@ static int prune(const ss_vtp_ws *ws, int h, double *pb0, double *pb1, double sx
     }
   }
   /* head B at x = L: mirror image */
-  double dB = d[gm->F[ss_he_next(h)]];
+  double dB = d[gm->F[ssi_he_next(h)]];
   if (dB < INFINITY) {
     double a = dB + tol - sigma, tx = L - sx;
     double q1 = L - b1 + a;
@@ -378,7 +378,7 @@ static int prune(const ss_vtp_ws *ws, int h, double *pb0, double *pb1, double sx
   }
   if (!(b1 - b0 > 1e-12 * L)) return 0;
   /* off-edge vertices: C in this face, P in the face the window came through */
-  double dC = d[gm->F[ss_he_prev(h)]];
+  double dC = d[gm->F[ssi_he_prev(h)]];
   if (dC < INFINITY && dC >= sigma) {
     double px = fr->cx, py = fr->cy;
     double t0 = sigma + sqrt((b0 - sx) * (b0 - sx) + sy2) - dC - sqrt((b0 - px) * (b0 - px) + py * py);
@@ -389,7 +389,7 @@ static int prune(const ss_vtp_ws *ws, int h, double *pb0, double *pb1, double sx
   }
   int t = gm->twin[h];
   if (t >= 0) {
-    double dP = d[gm->F[ss_he_prev(t)]];
+    double dP = d[gm->F[ssi_he_prev(t)]];
     if (dP < INFINITY && dP >= sigma) {
       double px = L - gm->fr[t].cx, py = -gm->fr[t].cy;
       double t0 = sigma + sqrt((b0 - sx) * (b0 - sx) + sy2) - dP - sqrt((b0 - px) * (b0 - px) + py * py);
@@ -408,7 +408,7 @@ static double win_key(double b0, double b1, double sx, double sy, double sigma) 
   return sigma + sqrt((xm - sx) * (xm - sx) + sy * sy);
 }
 
-static void add_window(ss_vtp_ws *ws, int h, double b0, double b1, double sx, double sy, double sigma) {
+static void add_window(ssi_vtp_ws *ws, int h, double b0, double b1, double sx, double sy, double sigma) {
   if (sy > 0) sy = 0; /* round-off: the source is never on the face's side */
   if (!prune(ws, h, &b0, &b1, sx, sy, sigma)) return;
   double key = win_key(b0, b1, sx, sy, sigma);
@@ -435,7 +435,7 @@ static void add_window(ss_vtp_ws *ws, int h, double b0, double b1, double sx, do
 /* ---- pseudo-source ------------------------------------------------------------------------ */
 /* Where the ray from the corner's tail at local angle phi meets the opposite side a->b, as a
  * fraction from a. */
-static double corner_hit(const ss_he_frame *fh, double phi) {
+static double corner_hit(const ssi_he_frame *fh, double phi) {
   double ux = cos(phi), uy = sin(phi);
   double ex = fh->cx - fh->len, ey = fh->cy;
   double den = ux * ey - uy * ex;
@@ -444,22 +444,22 @@ static double corner_hit(const ss_he_frame *fh, double phi) {
 }
 
 /* Windows from v over local angles [p0,p1] of corner h (v->a, face v,a,b). */
-static void emit_corner(ss_vtp_ws *ws, int h, double p0, double p1, double sigma) {
+static void emit_corner(ssi_vtp_ws *ws, int h, double p0, double p1, double sigma) {
   const ss_geodesic_mesh *gm = ws->gm;
-  const ss_he_frame *fh = gm->fr + h;
-  int ho = ss_he_next(h), hp = ss_he_prev(h);
+  const ssi_he_frame *fh = gm->fr + h;
+  int ho = ssi_he_next(h), hp = ssi_he_prev(h);
   double ang = gm->ang[h];
   if (p0 <= 0) vertex_update(ws, gm->F[ho], sigma + fh->len, ho, gm->fr[ho].cy, gm->fr[ho].cx);
   if (p1 >= ang) vertex_update(ws, gm->F[hp], sigma + gm->fr[hp].len, hp, 0, 1);
   int t = gm->twin[ho];
   if (t < 0) return;
-  const ss_he_frame *fo = gm->fr + ho;
+  const ssi_he_frame *fo = gm->fr + ho;
   double L = fo->len;
   double t0 = p0 <= 0 ? 0 : corner_hit(fh, p0), t1 = p1 >= ang ? 1 : corner_hit(fh, p1);
   if (t1 > t0) add_window(ws, t, (1 - t1) * L, (1 - t0) * L, L - fo->cx, -fo->cy, sigma);
 }
 
-static void emit(ss_vtp_ws *ws, int v) {
+static void emit(ssi_vtp_ws *ws, int v) {
   const ss_geodesic_mesh *gm = ws->gm;
   double sigma = ws->d[v];
   int hin = ws->arr_he[v];
@@ -487,10 +487,10 @@ static void emit(ss_vtp_ws *ws, int v) {
 /* ---- propagation through a face ----------------------------------------------------------- */
 static inline double clamp01(double x) { return x > 0 ? (x < 1 ? x : 1) : 0; } /* NaN -> 0 */
 
-static void propagate(ss_vtp_ws *ws, const vwin *w) {
+static void propagate(ssi_vtp_ws *ws, const vwin *w) {
   const ss_geodesic_mesh *gm = ws->gm;
-  int h = w->he, h1 = ss_he_next(h), h2 = ss_he_prev(h);
-  const ss_he_frame *fr = gm->fr + h;
+  int h = w->he, h1 = ssi_he_next(h), h2 = ssi_he_prev(h);
+  const ssi_he_frame *fr = gm->fr + h;
   double L = fr->len, cx = fr->cx, cy = fr->cy;
   double sx = w->sx, sy = w->sy, sigma = w->sigma, b0 = w->b0, b1 = w->b1;
   double xC = sx + (cx - sx) * (-sy) / (cy - sy); /* where the ray through C crosses the edge */
@@ -544,7 +544,7 @@ static void propagate(ss_vtp_ws *ws, const vwin *w) {
      * B (frame of B->C, built from exact coordinate differences), not from (L - cx, -cy): when B-C
      * is tiny against A-B that difference cancels and the rotation error would be multiplied by
      * the distance to the source (seen on needle triangles). */
-    const ss_he_frame *f1 = gm->fr + h1;
+    const ssi_he_frame *f1 = gm->fr + h1;
     double cb = f1->cx / L, sb = f1->cy / L;        /* cos, sin of the angle at B */
     double ex = lBC * cb, ey = -lBC * sb;            /* B - C */
     double qx = sx - L + lBC * cb, qy = sy - lBC * sb; /* s - C */
@@ -575,7 +575,8 @@ static void propagate(ss_vtp_ws *ws, const vwin *w) {
  * yet processed is queued with a key <= the true distance. Hence when a target's current event pops,
  * every queued key is >= its estimate and the estimate is exact. Vertex estimates may still drop
  * after a pseudo-source vertex emitted, so it emits again when they do (A* only). */
-static ss_status run_core(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sources, int nsources,
+static ss_status run_core(const ss_geodesic_mesh *gm, const ss_geodesic_landmarks *lm, ssi_vtp_ws *ws,
+                          const int *sources, int nsources,
                           double max_dist, const int *targets, int ntargets, int astar, int first,
                           double *settled_radius, int *first_hit, ss_error *err) {
   if (!gm || !ws || ws->nv != gm->nv || ws->nh != 3 * gm->nf) return ss_fail(err, SS_ERR_INVALID, "invalid geodesic workspace");
@@ -602,9 +603,9 @@ static ss_status run_core(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *
   ws->nht = 0;
   if (ws->astar) {
     ws->maxd = INFINITY;
-    const double *lmf = __atomic_load_n(&gm->lm, __ATOMIC_ACQUIRE);
+    const double *lmf = lm && lm->nv == nv ? lm->lm : NULL;
     ws->lmf = lmf;
-    ws->nlm = lmf ? gm->nlm : 0;
+    ws->nlm = lmf ? lm->nlm : 0;
     for (int i = 0; i < ntargets; i++) {
       int dup = 0;
       for (int j = 0; j < ws->nht; j++) dup |= ws->hv[j] == targets[i];
@@ -707,11 +708,11 @@ static ss_status run_core(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *
   return SS_OK;
 }
 
-ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sources, int nsources,
+ss_status ssi_vtp_run(const ss_geodesic_mesh *gm, ssi_vtp_ws *ws, const int *sources, int nsources,
                      double max_dist, const int *targets, int ntargets, double *dist,
                      double *settled_radius, ss_error *err) {
   if (!dist) return ss_fail(err, SS_ERR_INVALID, "null distance output");
-  ss_status st = run_core(gm, ws, sources, nsources, max_dist, targets, ntargets, 0, 0, settled_radius, NULL, err);
+  ss_status st = run_core(gm, NULL, ws, sources, nsources, max_dist, targets, ntargets, 0, 0, settled_radius, NULL, err);
   if (st) return st;
   memcpy(dist, ws->dd, sizeof(double) * (size_t)gm->nv);
   if (ws->maxd < INFINITY)
@@ -720,11 +721,11 @@ ss_status ss_vtp_run(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, const int *sourc
   return SS_OK;
 }
 
-ss_status ss_vtp_query(const ss_geodesic_mesh *gm, ss_vtp_ws *ws, int source, const int *targets, int ntargets,
-                       int astar, int first, double *out, ss_error *err) {
+ss_status ssi_vtp_query(const ss_geodesic_mesh *gm, const ss_geodesic_landmarks *lm, ssi_vtp_ws *ws, int source,
+                        const int *targets, int ntargets, int astar, int first, double *out, ss_error *err) {
   if (ntargets < 1 || !targets || !out) return ss_fail(err, SS_ERR_INVALID, "invalid target query");
   int hit = -1;
-  ss_status st = run_core(gm, ws, &source, 1, 0, targets, ntargets, astar, first, NULL, &hit, err);
+  ss_status st = run_core(gm, lm, ws, &source, 1, 0, targets, ntargets, astar, first, NULL, &hit, err);
   if (st) return st;
   if (first) {
     *out = hit >= 0 ? ws->dd[hit] : INFINITY; /* no hit: every target unreachable */

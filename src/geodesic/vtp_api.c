@@ -9,10 +9,10 @@
 ss_status ss_vtp_distances(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
                            double *dist, ss_error *err) {
   if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
-  ss_vtp_ws *ws = ss_vtp_ws_new(gm->nv, gm->nf);
+  ssi_vtp_ws *ws = ssi_vtp_ws_new(gm->nv, gm->nf);
   if (!ws) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
-  ss_status st = ss_vtp_run(gm, ws, sources, nsources, max_dist, NULL, 0, dist, NULL, err);
-  ss_vtp_ws_free(ws);
+  ss_status st = ssi_vtp_run(gm, ws, sources, nsources, max_dist, NULL, 0, dist, NULL, err);
+  ssi_vtp_ws_free(ws);
   return st;
 }
 
@@ -20,10 +20,10 @@ ss_status ss_vtp_distances_targets(const ss_geodesic_mesh *gm, const int *source
                                    const int *targets, int ntargets, double *dist, ss_error *err) {
   if (!gm) return ss_fail(err, SS_ERR_INVALID, "null geodesic mesh");
   if (ntargets < 0 || (ntargets > 0 && !targets)) return ss_fail(err, SS_ERR_INVALID, "invalid target list");
-  ss_vtp_ws *ws = ss_vtp_ws_new(gm->nv, gm->nf);
+  ssi_vtp_ws *ws = ssi_vtp_ws_new(gm->nv, gm->nf);
   if (!ws) return ss_fail(err, SS_ERR_NOMEM, "out of memory");
-  ss_status st = ss_vtp_run(gm, ws, sources, nsources, 0, targets, ntargets, dist, NULL, err);
-  ss_vtp_ws_free(ws);
+  ss_status st = ssi_vtp_run(gm, ws, sources, nsources, 0, targets, ntargets, dist, NULL, err);
+  ssi_vtp_ws_free(ws);
   return st;
 }
 
@@ -37,7 +37,7 @@ ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int
   int failed = 0;
 #pragma omp parallel
   {
-    ss_vtp_ws *ws = ss_vtp_ws_new(gm->nv, gm->nf);
+    ssi_vtp_ws *ws = ssi_vtp_ws_new(gm->nv, gm->nf);
     if (!ws) {
 #pragma omp atomic write
       failed = 1;
@@ -45,12 +45,12 @@ ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int
 #pragma omp for schedule(dynamic, 1)
     for (int j = 0; j < nsources; j++) {
       if (!ws) continue;
-      if (ss_vtp_run(gm, ws, sources + j, 1, max_dist, NULL, 0, dist + (size_t)j * gm->nv, NULL, NULL)) {
+      if (ssi_vtp_run(gm, ws, sources + j, 1, max_dist, NULL, 0, dist + (size_t)j * gm->nv, NULL, NULL)) {
 #pragma omp atomic write
         failed = 1;
       }
     }
-    ss_vtp_ws_free(ws);
+    ssi_vtp_ws_free(ws);
   }
   if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic fields");
   return SS_OK;

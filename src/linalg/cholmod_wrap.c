@@ -8,21 +8,21 @@
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
-struct ss_chol {
+struct ssi_chol {
   cholmod_common cc;
   cholmod_factor *L;
   cholmod_dense *X, *Y, *E; /* solve workspaces, reused across calls */
   int n;
 };
 
-int ss_chol_size(const ss_chol *c) { return c->n; }
-double ss_chol_nnz(const ss_chol *c) {
+int ssi_chol_size(const ssi_chol *c) { return c->n; }
+double ssi_chol_nnz(const ssi_chol *c) {
   if (!c->L || !c->L->p) return 0;
   const int *p = c->L->p;
   return (double)p[c->n];
 }
 
-void ss_chol_free(ss_chol *c) {
+void ssi_chol_free(ssi_chol *c) {
   if (!c) return;
   if (c->L) cholmod_free_factor(&c->L, &c->cc);
   if (c->X) cholmod_free_dense(&c->X, &c->cc);
@@ -67,12 +67,12 @@ static ss_status shifted_upper(const ss_sparse *A, double alpha, const double *d
   return SS_OK;
 }
 
-ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_chol **out, ss_error *err) {
+ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi_chol **out, ss_error *err) {
   *out = NULL;
   if (!A || A->nrows != A->ncols || A->nrows < 1)
     return ss_fail(err, SS_ERR_INVALID, "factorisation needs a non-empty square matrix");
   int n = A->ncols;
-  ss_chol *c = calloc(1, sizeof *c);
+  ssi_chol *c = calloc(1, sizeof *c);
   if (!c) return ss_fail(err, SS_ERR_NOMEM, "out of memory for a factorisation");
   c->n = n;
   cholmod_start(&c->cc);
@@ -84,14 +84,14 @@ ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_c
   cholmod_sparse *S = NULL;
   ss_status st = shifted_upper(A, alpha, d, &c->cc, &S, err);
   if (st) {
-    ss_chol_free(c);
+    ssi_chol_free(c);
     return st;
   }
   c->L = cholmod_analyze(S, &c->cc);
   if (!c->L) {
     int st = c->cc.status;
     cholmod_free_sparse(&S, &c->cc);
-    ss_chol_free(c);
+    ssi_chol_free(c);
     return ss_fail(err, st == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
                    "CHOLMOD analysis failed (status %d)", st);
   }
@@ -99,13 +99,13 @@ ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_c
   cholmod_free_sparse(&S, &c->cc);
   if (!ok || c->cc.status == CHOLMOD_OUT_OF_MEMORY) {
     int st = c->cc.status;
-    ss_chol_free(c);
+    ssi_chol_free(c);
     return ss_fail(err, st == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
                    "CHOLMOD factorisation failed (status %d)", st);
   }
   if (c->L->minor < (size_t)n) {
     size_t minor = c->L->minor;
-    ss_chol_free(c);
+    ssi_chol_free(c);
     return ss_fail(err, SS_ERR_NUMERIC, "factorisation broke down at column %zu: matrix is singular (choose another shift)",
                    minor);
   }
@@ -117,7 +117,7 @@ ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_c
   for (int j = 0; j < n; j++) {
     double dj = Lx[Lp[j]];
     if (!isfinite(dj) || dj == 0.0) {
-      ss_chol_free(c);
+      ssi_chol_free(c);
       return ss_fail(err, SS_ERR_NUMERIC,
                      "shifted matrix is singular (pivot %g at column %d); choose another shift", dj, j);
     }
@@ -126,7 +126,7 @@ ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_c
   return SS_OK;
 }
 
-ss_status ss_chol_solve(ss_chol *c, const double *B, double *X, int nrhs, ss_error *err) {
+ss_status ssi_chol_solve(ssi_chol *c, const double *B, double *X, int nrhs, ss_error *err) {
   if (nrhs < 1) return SS_OK;
   cholmod_dense b;
   memset(&b, 0, sizeof b);
@@ -145,7 +145,7 @@ ss_status ss_chol_solve(ss_chol *c, const double *B, double *X, int nrhs, ss_err
 }
 
 
-ss_status ss_chol_inertia(ss_chol *c, const ss_sparse *A, double alpha, const double *d, int *negative,
+ss_status ssi_chol_inertia(ssi_chol *c, const ss_sparse *A, double alpha, const double *d, int *negative,
                           ss_error *err) {
   if (!A || A->ncols != c->n || A->nrows != c->n) return ss_fail(err, SS_ERR_INVALID, "inertia: size mismatch");
   cholmod_sparse *S = NULL;

@@ -5,25 +5,25 @@
 
 #include "specseg/core.h"
 
-typedef struct ss_chol ss_chol;
+typedef struct ssi_chol ssi_chol;
 
 /* A: symmetric n x n CSC with both triangles stored (only the upper one is read). d may be NULL
  * (then alpha is ignored). Fails with SS_ERR_NUMERIC when the matrix is numerically singular or
  * the factorisation breaks down, SS_ERR_NOMEM on allocation failure. */
-ss_status ss_chol_factor(const ss_sparse *A, double alpha, const double *d, ss_chol **out, ss_error *err);
+ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi_chol **out, ss_error *err);
 
 /* X = (A + alpha D)^{-1} B for nrhs column-major right-hand sides of length n. X may alias B. */
-ss_status ss_chol_solve(ss_chol *c, const double *B, double *X, int nrhs, ss_error *err);
+ss_status ssi_chol_solve(ssi_chol *c, const double *B, double *X, int nrhs, ss_error *err);
 
 /* Number of negative pivots of the LDLᵀ factorisation of A + alpha*diag(d) (same pattern as the
  * factored matrix, refactored without a new analysis). By Sylvester's law of inertia, with A = W and
  * d = M (positive), alpha = -τ, that is the number of eigenvalues of W φ = λ M φ below τ. */
-ss_status ss_chol_inertia(ss_chol *c, const ss_sparse *A, double alpha, const double *d, int *negative,
+ss_status ssi_chol_inertia(ssi_chol *c, const ss_sparse *A, double alpha, const double *d, int *negative,
                           ss_error *err);
 
-int ss_chol_size(const ss_chol *c);
+int ssi_chol_size(const ssi_chol *c);
 /* Number of nonzeros in the factor (for diagnostics). */
-double ss_chol_nnz(const ss_chol *c);
-void ss_chol_free(ss_chol *c);
+double ssi_chol_nnz(const ssi_chol *c);
+void ssi_chol_free(ssi_chol *c);
 
 #endif

@@ -20,7 +20,7 @@ static int has_key(const uint64_t *keys, size_t n, uint64_t k) {
   return lo < n && keys[lo] == k;
 }
 
-ss_status ss_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_error *err) {
+ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_error *err) {
   memset(out, 0, sizeof *out);
   *nholes = 0;
   int nv = in->nv, nf = in->nf;

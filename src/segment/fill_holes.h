@@ -10,6 +10,6 @@
  * order. *nholes = number of loops closed (0: out is a plain copy). Fails with SS_ERR_UNSUPPORTED
  * when a vertex has more than one outgoing boundary edge (pinched boundary) or an edge has more than
  * two faces. */
-ss_status ss_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_error *err);
+ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_error *err);
 
 #endif

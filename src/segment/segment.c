@@ -114,7 +114,7 @@ ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts_in, ss
     /* the remesher takes closed surfaces: close small holes (TOSCA) with centroid fans first; the
      * extra vertices are smoothed and remeshed with the rest but no input vertex maps to them */
     int nholes = 0;
-    if ((st = ss_fill_holes_fan(proc, &closed, &nholes, err))) goto fail;
+    if ((st = ssi_fill_holes_fan(proc, &closed, &nholes, err))) goto fail;
     double t0 = ss_time();
     ss_cmcf_options co;
     ss_cmcf_default_options(&co);

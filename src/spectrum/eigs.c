@@ -19,9 +19,13 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* ARPACK is not reentrant (Fortran SAVE variables): one dsaupd/dseupd run at a time per process. */
+static pthread_mutex_t arpack_lock = PTHREAD_MUTEX_INITIALIZER;
 
 #include "linalg/cholmod_wrap.h"
 #include "specseg/laplacian.h"
@@ -31,6 +35,7 @@ void ss_eigs_default_options(ss_eigs_options *o) {
   o->tol = 1e-10;
   o->ncv = 0;
   o->maxiter = 0;
+  o->stats = NULL;
 }
 
 static const char *arpack_info_msg(int info) {
@@ -207,7 +212,7 @@ static void project_out(double *x, int n, const int *label, const double *sqm, c
 /* What the Lanczos operator needs: OP = P M^{1/2} (W − σM)^{-1} M^{1/2} P, where P projects out the
  * exact null pairs and (when recovering missed eigenvalues) already found eigenvectors. */
 typedef struct {
-  ss_chol *chol;
+  ssi_chol *chol;
   const double *sqm, *mass;
   const int *label;
   double *acc;
@@ -245,7 +250,7 @@ static ss_status arpack_iterate(lanczos_ctx *c, int nev, int ncv, double *resid,
     project_all(c, y);
     for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
     double ts = ss_time();
-    ss_status st = ss_chol_solve(c->chol, y, y, 1, err);
+    ss_status st = ssi_chol_solve(c->chol, y, y, 1, err);
     c->tsolve += ss_time() - ts;
     c->nops++;
     if (st) return st;
@@ -292,8 +297,9 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
   /* ARPACK's Fortran core keeps SAVEd state between reverse-communication calls, so one run must not
    * interleave with another: serialise whole runs across OpenMP threads (the factorisation, the
    * Ritz vectors and everything else stay parallel). */
-#pragma omp critical(ss_arpack)
+  pthread_mutex_lock(&arpack_lock);
   st = arpack_iterate(c, nev, ncv, resid, V, iparam, ipntr, workd, workl, lworkl, &info, err);
+  pthread_mutex_unlock(&arpack_lock);
   if (st) goto out;
   if (info < 0) {
     st = ss_fail(err, SS_ERR_NUMERIC, "eigs: ARPACK dsaupd failed (info %d: %s)", (int)info, arpack_info_msg((int)info));
@@ -367,7 +373,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   double *X = evecs ? evecs : malloc(sizeof(double) * nn * (size_t)k);
   double *mass = NULL, *acc = NULL, *lam = NULL;
   double *WX = NULL, *G = NULL;
-  ss_chol *chol = NULL;
+  ssi_chol *chol = NULL;
   if (!sqm || !label || !X) { st = ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory (n = %d)", n); goto done; }
   for (size_t i = 0; i < nn; i++) sqm[i] = sqrt(M[i]);
 
@@ -399,7 +405,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   if (kk > 0) {
     lam = malloc(sizeof(double) * (size_t)k);
     if (!lam) { st = ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory"); goto done; }
-    st = ss_chol_factor(W, -o.sigma, M, &chol, err);
+    st = ssi_chol_factor(W, -o.sigma, M, &chol, err);
     tt1 = ss_time();
     if (st) goto done;
     lc.chol = chol;
@@ -417,7 +423,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
       double tau = top * (1 - 1e-6);
       int below = 0, have = c0;
       ss_error ierr;
-      if (ss_chol_inertia(chol, W, -tau, M, &below, &ierr) != SS_OK) break; /* cannot check: keep ARPACK's */
+      if (ssi_chol_inertia(chol, W, -tau, M, &below, &ierr) != SS_OK) break; /* cannot check: keep ARPACK's */
       for (int j = 0; j < kk; j++) have += lam[j] < tau;
       if (below <= have) break;
       int miss = below - have;
@@ -501,14 +507,14 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
       }
     }
   st = SS_OK;
-  if (getenv("SS_EIGS_VERBOSE"))
-    fprintf(stderr, "eigs: n=%d k=%d null=%d factor %.3f s (nnz(L)=%.0f), arpack %.3f s (%d ops, solves %.3f s), "
-            "completeness check %.3f s (%d recovered), orth %.3f s, rayleigh %.3f s\n",
-            n, k, c0, tt1 - tt0, chol ? ss_chol_nnz(chol) : 0.0, tt2 - tt1, lc.nops, lc.tsolve, tp0 - tt2, recovered,
-            tp1 - tp0, ss_time() - tp1);
+  if (o.stats) {
+    ss_eigs_stats es = {c0, chol ? ssi_chol_nnz(chol) : 0.0, tt1 - tt0, tt2 - tt1, lc.nops, lc.tsolve,
+                        tp0 - tt2, recovered, tp1 - tp0, ss_time() - tp1};
+    *o.stats = es;
+  }
 
 done:
-  ss_chol_free(chol);
+  ssi_chol_free(chol);
   free(sqm); free(label); free(mass); free(acc); free(lam); free(WX); free(G);
   if (X != evecs) free(X);
   return st;

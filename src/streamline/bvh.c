@@ -26,7 +26,7 @@ static void select_nth(const double *cen, int *tri, int lo, int hi, int nth, int
   }
 }
 
-static void node_bounds(const ss_bvh *b, ss_bvh_node *n) {
+static void node_bounds(const ssi_bvh *b, ssi_bvh_node *n) {
   for (int k = 0; k < 3; k++) { n->lo[k] = INFINITY; n->hi[k] = -INFINITY; }
   for (int i = n->first; i < n->first + n->count; i++) {
     const int *f = b->F + 3 * b->tri[i];
@@ -39,17 +39,17 @@ static void node_bounds(const ss_bvh *b, ss_bvh_node *n) {
   }
 }
 
-ss_status ss_bvh_build(const ss_mesh *m, ss_bvh *b, ss_error *err) {
+ss_status ssi_bvh_build(const ss_mesh *m, ssi_bvh *b, ss_error *err) {
   memset(b, 0, sizeof *b);
   b->V = m->V; b->F = m->F; b->nf = m->nf;
   if (m->nf <= 0) return ss_fail(err, SS_ERR_INVALID, "bvh: empty mesh");
   int cap = 2 * m->nf + 1; /* a binary tree with at most nf leaves */
-  b->nodes = malloc(sizeof(ss_bvh_node) * cap);
+  b->nodes = malloc(sizeof(ssi_bvh_node) * cap);
   b->tri = malloc(sizeof(int) * m->nf);
   int *stack = malloc(sizeof(int) * 128);
   double *cen = malloc(sizeof(double) * 3 * (size_t)m->nf);
   if (!b->nodes || !b->tri || !stack || !cen) {
-    free(stack); free(cen); ss_bvh_free(b);
+    free(stack); free(cen); ssi_bvh_free(b);
     return ss_fail(err, SS_ERR_NOMEM, "bvh: out of memory");
   }
   for (int i = 0; i < m->nf; i++) {
@@ -63,7 +63,7 @@ ss_status ss_bvh_build(const ss_mesh *m, ss_bvh *b, ss_error *err) {
   stack[sp++] = 0;
   while (sp) {
     int ni = stack[--sp];
-    ss_bvh_node *n = &b->nodes[ni];
+    ssi_bvh_node *n = &b->nodes[ni];
     node_bounds(b, n);
     if (n->count <= LEAF_SIZE) continue;
     double clo[3] = {INFINITY, INFINITY, INFINITY}, chi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -79,7 +79,7 @@ ss_status ss_bvh_build(const ss_mesh *m, ss_bvh *b, ss_error *err) {
     select_nth(cen, b->tri, n->first, n->first + n->count, n->first + half, ax);
     int l = b->nnodes;
     b->nnodes += 2;
-    ss_bvh_node *L = &b->nodes[l], *R = &b->nodes[l + 1];
+    ssi_bvh_node *L = &b->nodes[l], *R = &b->nodes[l + 1];
     L->first = n->first; L->count = half; L->left = -1;
     R->first = n->first + half; R->count = n->count - half; R->left = -1;
     n->left = l;
@@ -91,7 +91,7 @@ ss_status ss_bvh_build(const ss_mesh *m, ss_bvh *b, ss_error *err) {
   return SS_OK;
 }
 
-void ss_bvh_free(ss_bvh *b) {
+void ssi_bvh_free(ssi_bvh *b) {
   free(b->nodes);
   free(b->tri);
   memset(b, 0, sizeof *b);
@@ -100,7 +100,7 @@ void ss_bvh_free(ss_bvh *b) {
 static inline double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* Region test in barycentric terms (Voronoi regions of the vertices, edges and face). */
-void ss_closest_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
+void ssi_closest_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
                                double q[3]) {
   double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   double ac[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
@@ -137,7 +137,7 @@ void ss_closest_point_triangle(const double p[3], const double a[3], const doubl
   for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k] + w * ac[k];
 }
 
-static inline double box_d2(const ss_bvh_node *n, const double p[3]) {
+static inline double box_d2(const ssi_bvh_node *n, const double p[3]) {
   double d = 0;
   for (int k = 0; k < 3; k++) {
     double e = 0;
@@ -148,14 +148,14 @@ static inline double box_d2(const ss_bvh_node *n, const double p[3]) {
   return d;
 }
 
-static inline double tri_d2(const ss_bvh *b, int t, const double p[3], double q[3]) {
+static inline double tri_d2(const ssi_bvh *b, int t, const double p[3], double q[3]) {
   const int *f = b->F + 3 * t;
-  ss_closest_point_triangle(p, b->V + 3 * f[0], b->V + 3 * f[1], b->V + 3 * f[2], q);
+  ssi_closest_point_triangle(p, b->V + 3 * f[0], b->V + 3 * f[1], b->V + 3 * f[2], q);
   double dx = q[0] - p[0], dy = q[1] - p[1], dz = q[2] - p[2];
   return dx * dx + dy * dy + dz * dz;
 }
 
-int ss_bvh_closest(const ss_bvh *b, const double p[3], int hint, double q[3], double *d2) {
+int ssi_bvh_closest(const ssi_bvh *b, const double p[3], int hint, double q[3], double *d2) {
   double best = INFINITY, bq[3] = {0, 0, 0}, tq[3];
   int bt = -1;
   if (hint >= 0 && hint < b->nf) {
@@ -165,7 +165,7 @@ int ss_bvh_closest(const ss_bvh *b, const double p[3], int hint, double q[3], do
   int stack[128], sp = 0;
   stack[sp++] = 0;
   while (sp) {
-    const ss_bvh_node *n = &b->nodes[stack[--sp]];
+    const ssi_bvh_node *n = &b->nodes[stack[--sp]];
     if (box_d2(n, p) >= best && bt >= 0) continue;
     if (n->left < 0) {
       for (int i = n->first; i < n->first + n->count; i++) {
@@ -176,7 +176,7 @@ int ss_bvh_closest(const ss_bvh *b, const double p[3], int hint, double q[3], do
       }
       continue;
     }
-    const ss_bvh_node *L = &b->nodes[n->left], *R = &b->nodes[n->left + 1];
+    const ssi_bvh_node *L = &b->nodes[n->left], *R = &b->nodes[n->left + 1];
     double dl = box_d2(L, p), dr = box_d2(R, p);
     /* push the farther child first so the nearer one is explored first */
     if (dl <= dr) {

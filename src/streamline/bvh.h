@@ -5,30 +5,30 @@
 
 #include "specseg/core.h"
 
-typedef struct ss_bvh_node {
+typedef struct ssi_bvh_node {
   double lo[3], hi[3];
   int left;        /* internal: index of the left child (right = left + 1); leaf: -1 */
   int first, count; /* leaf: range in tri[] */
-} ss_bvh_node;
+} ssi_bvh_node;
 
-typedef struct ss_bvh {
+typedef struct ssi_bvh {
   const double *V; /* borrowed from the mesh */
   const int *F;
   int nf, nnodes;
-  ss_bvh_node *nodes;
+  ssi_bvh_node *nodes;
   int *tri;        /* triangle order, leaves point into it */
-} ss_bvh;
+} ssi_bvh;
 
-ss_status ss_bvh_build(const ss_mesh *m, ss_bvh *b, ss_error *err);
-void ss_bvh_free(ss_bvh *b);
+ss_status ssi_bvh_build(const ss_mesh *m, ssi_bvh *b, ss_error *err);
+void ssi_bvh_free(ssi_bvh *b);
 
 /* Closest point of the surface to p. `hint` (a triangle index or -1) seeds the search bound: with a
  * nearby hint the traversal prunes almost everything. Writes the point to q (may be NULL) and
  * returns the triangle; *d2 receives the squared distance. */
-int ss_bvh_closest(const ss_bvh *b, const double p[3], int hint, double q[3], double *d2);
+int ssi_bvh_closest(const ssi_bvh *b, const double p[3], int hint, double q[3], double *d2);
 
 /* Closest point of triangle (a, b, c) to p. */
-void ss_closest_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
+void ssi_closest_point_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
                                double q[3]);
 
 #endif

@@ -25,7 +25,7 @@ void ss_remesh_default_options(ss_remesh_options *opt) {
 /* Move every vertex towards the area-weighted centroid of its incident triangles' centroids (a
  * Lloyd-like step), keep only the tangential part of the move, then put it back on the reference
  * surface. sw/sc/sn/tmp are scratch arrays of at least m->nv (sc, sn, tmp: 3*nv). */
-static void relax_project(rm_mesh *m, const ss_bvh *ref, double *sw, double *sc, double *sn, double *tmp) {
+static void relax_project(rm_mesh *m, const ssi_bvh *ref, double *sw, double *sc, double *sn, double *tmp) {
   const int nv = m->nv;
   memset(sw, 0, sizeof(double) * nv);
   memset(sc, 0, sizeof(double) * 3 * nv);
@@ -61,7 +61,7 @@ static void relax_project(rm_mesh *m, const ss_bvh *ref, double *sw, double *sc,
       memcpy(q, p, sizeof q);
     }
     double d2;
-    m->hint[v] = ss_bvh_closest(ref, q, m->hint[v], tmp + 3 * v, &d2);
+    m->hint[v] = ssi_bvh_closest(ref, q, m->hint[v], tmp + 3 * v, &d2);
   }
   for (int v = 0; v < nv; v++)
     if (!m->vdead[v]) memcpy(m->V + 3 * v, tmp + 3 * v, 3 * sizeof(double));
@@ -82,8 +82,8 @@ ss_status ss_remesh(const ss_mesh *in, const ss_remesh_options *opt_in, ss_mesh 
   if (st != SS_OK) return st;
   double area = ss_mesh_area(in);
   if (!(area > 0)) { rm_free(&m); return ss_fail(err, SS_ERR_INVALID, "remesh: mesh has zero area"); }
-  ss_bvh ref;
-  st = ss_bvh_build(in, &ref, err);
+  ssi_bvh ref;
+  st = ssi_bvh_build(in, &ref, err);
   if (st != SS_OK) { rm_free(&m); return st; }
   for (int v = 0; v < m.nv; v++) if (!m.vdead[v]) m.hint[v] = m.vh[v] / 3; /* own triangle */
 
@@ -139,7 +139,7 @@ ss_status ss_remesh(const ss_mesh *in, const ss_remesh_options *opt_in, ss_mesh 
 
 done:
   free(sw); free(sc); free(sn); free(tmp);
-  ss_bvh_free(&ref);
+  ssi_bvh_free(&ref);
   rm_free(&m);
   return st;
 }

@@ -65,17 +65,17 @@ ss_status ss_remesh_quality_measure(const ss_mesh *m, const ss_mesh *ref, ss_rem
   q->frac_valence_6 = used ? (double)six / used : 0;
 
   if (ref) {
-    ss_bvh b;
-    ss_status st = ss_bvh_build(ref, &b, err);
+    ssi_bvh b;
+    ss_status st = ssi_bvh_build(ref, &b, err);
     if (st != SS_OK) return st;
     double diag = ss_mesh_bbox_diagonal(ref), mx = 0;
     int hint = -1;
     for (int v = 0; v < m->nv; v++) {
       double d2;
-      hint = ss_bvh_closest(&b, m->V + 3 * v, hint, NULL, &d2);
+      hint = ssi_bvh_closest(&b, m->V + 3 * v, hint, NULL, &d2);
       if (d2 > mx) mx = d2;
     }
-    ss_bvh_free(&b);
+    ssi_bvh_free(&b);
     q->max_deviation = diag > 0 ? sqrt(mx) / diag : 0;
   }
   return SS_OK;

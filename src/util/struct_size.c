@@ -1,8 +1,7 @@
-/* sizeof of the public structs that bindings mirror (see specseg/abi.h). */
+/* sizeof of the core library's public structs that bindings mirror (see specseg/abi.h). */
 #include "specseg/abi.h"
 #include "specseg/geodesic.h"
 #include "specseg/match.h"
-#include "specseg/render.h"
 #include "specseg/segment.h"
 #include "specseg/streamline.h"
 
@@ -24,8 +23,6 @@ size_t ss_struct_size(const char *name) {
       {"ss_match_options", sizeof(ss_match_options)},
       {"ss_segment_pairs", sizeof(ss_segment_pairs)},
       {"ss_match_result", sizeof(ss_match_result)},
-      {"ss_render_options", sizeof(ss_render_options)},
-      {"ss_render_scene", sizeof(ss_render_scene)},
   };
   if (!name) return 0;
   for (size_t i = 0; i < sizeof T / sizeof T[0]; i++)

@@ -1,7 +1,7 @@
 /* Polygonisation of an implicit surface: marching tetrahedra on a BCC lattice (closed manifold by
  * construction), then Delaunay flips + tangential relaxation projected back onto the surface for
  * triangle quality. Used by the synthetic humanoid. */
-#include "mesh/synth_internal.h"
+#include "synth/synth_internal.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -216,7 +216,7 @@ static int march_tet(mt_state *s, const long t[4]) {
   return 0;
 }
 
-ss_status ss_implicit_polygonize_bcc(ss_implicit_fn f, const void *ctx, const double lo[3],
+ss_status ssi_implicit_polygonize_bcc(ssi_implicit_fn f, const void *ctx, const double lo[3],
                                      const double hi[3], double h, ss_mesh *out, ss_error *err) {
   memset(out, 0, sizeof *out);
   if (!(h > 0)) return ss_fail(err, SS_ERR_INVALID, "lattice spacing must be positive");
@@ -380,7 +380,7 @@ static int flip_pass(ss_mesh *m) {
 }
 
 /* Newton steps along the (finite-difference) gradient onto f = 0. */
-static void project(ss_implicit_fn f, const void *ctx, double p[3]) {
+static void project(ssi_implicit_fn f, const void *ctx, double p[3]) {
   const double e = 1e-6;
   for (int it = 0; it < 3; it++) {
     double v = f(p, ctx), g[3];
@@ -554,7 +554,7 @@ out:
   return done;
 }
 
-ss_status ss_implicit_remesh(ss_implicit_fn f, const void *ctx, ss_mesh *m, double L, int iterations,
+ss_status ssi_implicit_remesh(ssi_implicit_fn f, const void *ctx, ss_mesh *m, double L, int iterations,
                              ss_error *err) {
   double *acc = malloc(sizeof(double) * 7 * (size_t)m->nv);
   if (!acc) return ss_fail(err, SS_ERR_NOMEM, "out of memory");

@@ -2,7 +2,7 @@
  * axis and nv around the tube; nu*nv vertices, 2*nu*nv triangles, outward-oriented, genus 1.
  * Each quad is split along alternating diagonals (checkerboard) so the triangulation has no
  * preferred direction. */
-#include "specseg/mesh.h"
+#include "specseg/synth.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,6 +1,6 @@
 /* Icosphere: a regular icosahedron, each triangle split in four `subdivisions` times, projected on
  * the unit sphere. 10*4^s + 2 vertices, 20*4^s faces. */
-#include "specseg/mesh.h"
+#include "specseg/synth.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* Coherency of a segmentation with a reference segmentation (paper §5). */
-#include "specseg/eval.h"
+#include "specseg/segment.h"
 
 ss_status ss_coherency(const int *labels0, int nv0, const int *labels, const int *centers, int m, int nv,
                        const int *gt, double *coherency, ss_error *err) {

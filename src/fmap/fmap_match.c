@@ -1,53 +1,21 @@
 /* The functional-map matching pipeline of paper §6: STD (WKS + landmark wave-kernel maps, descriptor
  * commutativity, NO17), plus paired extra probes (ASA raw / DIFF wave-filtered), optional ZoomOut. */
-#include "specseg/fmap.h"
+#include "fmap/fmap_options.h"
 #include "specseg/laplacian.h"
 
 #include <cblas.h>
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-/* process CPU seconds: with --verbose the stages report wall and CPU time (the latter is what a
- * shared, overloaded machine still measures faithfully) */
-static double cpu_now(void) { return (double)clock() / CLOCKS_PER_SEC; }
-
-void ss_fmap_match_default_options(ss_fmap_match_options *o) {
-  memset(o, 0, sizeof *o);
-  o->k = 50;
-  o->n_energies = 100;
-  o->sigma_factor = 7.0;
-  o->descr_step = 5;
-  o->w_descr = 30.0; /* tuned on FAUST (BEST landmarks): 0.1 (pyFM) 0.0396, 1 0.0371, 10 0.0317, 30 0.0308,
-                        100 0.0307, 1000 0.0345 mean Euclidean error / sqrt(area), 15 random pairs */
-  o->w_lap = 1e-3;   /* 1e-3 .. 1: no measurable effect next to the commutativity term */
-  o->w_dcomm = 1.0;
-  o->fix_constant = 1;
-  o->zoomout_kmax = 0;
-  o->zoomout_step = 1;
-  o->w_extra = 0.5; /* segments (tent profile, data term only), FAUST seed 7 pairs 0-9 / 10-19 vs STD:
-                       1: 0.949 / 1.053 x STD, 0.5: 0.944 / 1.005, 2: 0.993 / - (see fmap.h) */
-  o->extra_dcomm = 0;
-}
-
-static ss_status check_shape(const ss_fmap_shape *s, const char *name, int need, ss_error *err) {
-  if (!s || !s->mesh || !s->evals || !s->evecs || s->mesh->nv < 1)
-    return ss_fail(err, SS_ERR_INVALID, "match: shape %s incomplete", name);
-  if (s->kev < need)
-    return ss_fail(err, SS_ERR_INVALID, "match: shape %s has %d eigenpairs, %d needed", name, s->kev, need);
-  return SS_OK;
-}
 
 ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
                                ss_fmap_weights *w, ss_error *err) {
   ss_fmap_match_options o;
-  if (opts) o = *opts;
-  else ss_fmap_match_default_options(&o);
-  ss_status st = check_shape(X, "X", o.k, err);
-  if (!st) st = check_shape(Y, "Y", o.k, err);
+  ss_status st = ssi_fmap_options_resolve(opts, &o, err);
+  if (!st) st = ssi_fmap_check_shape(X, "X", o.k, err);
+  if (!st) st = ssi_fmap_check_shape(Y, "Y", o.k, err);
   if (st) return st;
   const int k = o.k;
   double sd = 0, areaX = 0, areaY = 0;
@@ -71,12 +39,12 @@ ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
 ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
                                const double *Ck, int *map, double *C, ss_error *err) {
   ss_fmap_match_options o;
-  if (opts) o = *opts;
-  else ss_fmap_match_default_options(&o);
-  const int k = o.k, need = o.zoomout_kmax > k ? o.zoomout_kmax : k;
+  ss_status st0 = ssi_fmap_options_resolve(opts, &o, err);
+  if (st0) return st0;
+  const int k = o.k, need = ssi_fmap_basis_needed(&o);
   if (!Ck || !map) return ss_fail(err, SS_ERR_INVALID, "match: NULL functional map or output");
-  ss_status st0 = check_shape(X, "X", need, err);
-  if (!st0) st0 = check_shape(Y, "Y", need, err);
+  st0 = ssi_fmap_check_shape(X, "X", need, err);
+  if (!st0) st0 = ssi_fmap_check_shape(Y, "Y", need, err);
   if (st0) return st0;
   if (o.zoomout_kmax > k) return ss_zoomout(Y->mesh->nv, X->mesh->nv, Y->evecs, X->evecs, X->M, k, Ck, o.zoomout_kmax,
                                              o.zoomout_step, map, C, err);
@@ -89,22 +57,15 @@ ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, 
                         int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
                         const ss_fmap_match_options *opts, int *map, double *C, ss_error *err) {
   ss_fmap_match_options o;
-  if (opts) o = *opts;
-  else ss_fmap_match_default_options(&o);
-  if (!(o.w_extra >= 0)) return ss_fail(err, SS_ERR_INVALID, "match: negative extra-probe weight %g", o.w_extra);
-  if (o.k < 3 || o.n_energies < 1 || o.descr_step < 1 || !(o.sigma_factor > 0) || o.zoomout_step < 1)
-    return ss_fail(err, SS_ERR_INVALID, "match: invalid options (k %d, energies %d, step %d)", o.k, o.n_energies,
-                   o.descr_step);
-  if (o.zoomout_kmax != 0 && o.zoomout_kmax < o.k)
-    return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut size %d below k = %d", o.zoomout_kmax, o.k);
-  int need = o.zoomout_kmax > o.k ? o.zoomout_kmax : o.k;
-  ss_status st = check_shape(X, "X", need, err);
-  if (!st) st = check_shape(Y, "Y", need, err);
+  ss_status st = ssi_fmap_options_resolve(opts, &o, err);
+  if (st) return st;
+  const int need = ssi_fmap_basis_needed(&o);
+  st = ssi_fmap_check_shape(X, "X", need, err);
+  if (!st) st = ssi_fmap_check_shape(Y, "Y", need, err);
   if (st) return st;
   if (nl < 0 || nextra < 0 || (nl > 0 && (!lmX || !lmY)) || (nextra > 0 && (!extraX || !extraY)))
     return ss_fail(err, SS_ERR_INVALID, "match: missing landmarks or extra probes");
   const int k = o.k, ops = o.w_dcomm > 0, xops = ops && o.extra_dcomm;
-  double t0 = ss_time(), c0 = cpu_now();
   ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0};
   ss_fmap_system *sys = NULL;
   ss_fmap_shape sX = *X, sY = *Y;
@@ -127,22 +88,13 @@ ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, 
     if ((st = ss_fmap_extra_probes(&sX, nl, nextra, extraX, extra_filter, &o, xops, &xX, err))) goto done;
     if ((st = ss_fmap_extra_probes(&sY, nl, nextra, extraY, extra_filter, &o, xops, &xY, err))) goto done;
   }
-  double t1 = ss_time(), c1 = cpu_now();
-  if (o.verbose)
-    fprintf(stderr, "timing: fmap_probes %.4f cpu %.4f (%d + %d probes)\n", t1 - t0, c1 - c0, bX.p, nextra > 0 ? xX.p : 0);
-  t0 = t1, c0 = c1;
   /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
   ss_fmap_weights w;
   if ((st = ss_fmap_pair_weights(&sX, &sY, &o, &w, err))) goto done;
   if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto done;
   if ((st = ss_fmap_system_solve(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, o.w_extra, o.extra_dcomm, Ck, err)))
     goto done;
-  t1 = ss_time(), c1 = cpu_now();
-  if (o.verbose) fprintf(stderr, "timing: fmap_solve %.4f cpu %.4f\n", t1 - t0, c1 - c0);
-  t0 = t1, c0 = c1;
   st = ss_fmap_match_finish(&sX, &sY, &o, Ck, map, C, err);
-  t1 = ss_time(), c1 = cpu_now();
-  if (o.verbose) fprintf(stderr, "timing: %s %.4f cpu %.4f\n", o.zoomout_kmax > k ? "zoomout" : "fmap_p2p", t1 - t0, c1 - c0);
 done:
   ss_fmap_system_free(sys);
   ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);

@@ -1,5 +1,5 @@
 /* Farthest point sampling with exact geodesics (paper Appendix A). */
-#include "specseg/evaluation.h"
+#include "specseg/geodesic.h"
 
 #include <math.h>
 #include <stdlib.h>

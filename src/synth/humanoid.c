@@ -14,8 +14,8 @@
  *     centimetres around each joint and are exactly rigid (0/1) elsewhere.
  *  4. Poses: forward kinematics of per-joint rotations, dual-quaternion skinning of the rest mesh.
  *     All poses share the rest connectivity and vertex order, so the ground-truth map is identity. */
-#include "mesh/synth_internal.h"
-#include "specseg/mesh.h"
+#include "synth/synth_internal.h"
+#include "specseg/synth.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -318,7 +318,7 @@ static void matvec3(const double *A, const double *x, double *y) {
 }
 
 /* Forward kinematics: world transform of every bone; bones are numbered parents first. */
-static void pose_transforms(const body *B, const pose_def *P, ss_rigid *G) {
+static void pose_transforms(const body *B, const pose_def *P, ssi_rigid *G) {
   double L[NBONES][9];
   for (int b = 0; b < NBONES; b++) axis_angle((double[3]){1, 0, 0}, 0, L[b]);
   for (int i = 0; i < P->n; i++) {
@@ -335,7 +335,7 @@ static void pose_transforms(const body *B, const pose_def *P, ss_rigid *G) {
       memcpy(G[b].R, L[b], sizeof G[b].R);
       memcpy(G[b].t, loc_t, sizeof G[b].t);
     } else {
-      const ss_rigid *p = &G[B->parent[b]];
+      const ssi_rigid *p = &G[B->parent[b]];
       matmul3(p->R, L[b], G[b].R);
       matvec3(p->R, loc_t, G[b].t);
       for (int d = 0; d < 3; d++) G[b].t[d] += p->t[d];
@@ -436,9 +436,9 @@ ss_status ss_synth_humanoid(int pose, ss_mesh *m, ss_error *err) {
     hi[d] += 3 * h;
   }
   ss_mesh rest;
-  ss_status st = ss_implicit_polygonize_bcc(body_field, &B, lo, hi, h, &rest, err);
+  ss_status st = ssi_implicit_polygonize_bcc(body_field, &B, lo, hi, h, &rest, err);
   if (st) return st;
-  st = ss_implicit_remesh(body_field, &B, &rest, 0.0166, 10, err);
+  st = ssi_implicit_remesh(body_field, &B, &rest, 0.0166, 10, err);
   if (st) { ss_mesh_free(&rest); return st; }
   if (pose == 0) {
     *m = rest;
@@ -447,7 +447,7 @@ ss_status ss_synth_humanoid(int pose, ss_mesh *m, ss_error *err) {
   double *W = NULL;
   st = skin_weights(&B, &rest, &W, err);
   if (st) { ss_mesh_free(&rest); return st; }
-  ss_rigid G[NBONES];
+  ssi_rigid G[NBONES];
   pose_def P = POSES[pose];
   pose_transforms(&B, &P, G);
   double *V = malloc(sizeof(double) * 3 * (size_t)rest.nv);
@@ -456,7 +456,7 @@ ss_status ss_synth_humanoid(int pose, ss_mesh *m, ss_error *err) {
     ss_mesh_free(&rest);
     return ss_fail(err, SS_ERR_NOMEM, "out of memory for a humanoid pose");
   }
-  st = ss_dq_skin(rest.nv, rest.V, NBONES, W, G, V, err);
+  st = ssi_dq_skin(rest.nv, rest.V, NBONES, W, G, V, err);
   free(W);
   if (st) { free(V); ss_mesh_free(&rest); return st; }
   free(rest.V);

@@ -1,7 +1,7 @@
 /* Dual-quaternion skinning (Kavan et al. 2008): blending unit dual quaternions instead of matrices
  * keeps the blended transform rigid, so joints bend without the volume loss / "candy wrapper" of
  * linear blend skinning. */
-#include "mesh/synth_internal.h"
+#include "synth/synth_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -44,7 +44,7 @@ static void mat_to_quat(const double *R, double *q) {
   }
 }
 
-ss_status ss_dq_skin(int nv, const double *V0, int nb, const double *W, const ss_rigid *T, double *V,
+ss_status ssi_dq_skin(int nv, const double *V0, int nb, const double *W, const ssi_rigid *T, double *V,
                      ss_error *err) {
   double *dq = malloc(sizeof(double) * 8 * (size_t)(nb > 0 ? nb : 1));
   if (!dq) return ss_fail(err, SS_ERR_NOMEM, "out of memory for skinning");

@@ -1,0 +1,19 @@
+/* Internal: the one place where ss_fmap_match_options are defaulted and checked, and where a shape
+ * handed to the functional-map code is checked (probes, solve, point map and the pipeline all call
+ * these). */
+#ifndef SS_FMAP_OPTIONS_INTERNAL_H
+#define SS_FMAP_OPTIONS_INTERNAL_H
+
+#include "specseg/fmap.h"
+
+/* *o = *opts, or the defaults when opts is NULL; then the checks of ssi_fmap_check_options. */
+ss_status ssi_fmap_options_resolve(const ss_fmap_match_options *opts, ss_fmap_match_options *o, ss_error *err);
+/* k >= 3, energies >= 1, descr_step >= 1, sigma_factor > 0, finite non-negative weights, zoomout_step
+ * >= 1, zoomout_kmax 0 or >= k. */
+ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err);
+/* The shape has its mesh, eigenpairs and at least `need` of them. name: "X", "Y", ... for messages. */
+ss_status ssi_fmap_check_shape(const ss_fmap_shape *s, const char *name, int need, ss_error *err);
+/* Eigenpairs the options need on each shape: max(k, zoomout_kmax). */
+int ssi_fmap_basis_needed(const ss_fmap_match_options *o);
+
+#endif

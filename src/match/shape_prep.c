@@ -1,0 +1,70 @@
+/* Per-shape preparation for matching: the segmentation and the Laplace–Beltrami eigenpairs of one
+ * shape, computed once and shared by every pair the shape takes part in. */
+#include "specseg/match.h"
+#include "specseg/laplacian.h"
+#include "specseg/mesh.h"
+#include "specseg/spectrum.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void ss_shape_prep_free(ss_shape_prep *p) {
+  if (!p) return;
+  ss_segmentation_free(&p->seg);
+  free(p->evals);
+  free(p->evecs);
+  free(p->M);
+  memset(p, 0, sizeof *p);
+}
+
+/* 1 when ss_mesh_sanitize would return the mesh as it is (then input vertex = processed vertex, which
+ * is what Ψ and the landmark indices assume). */
+static ss_status check_clean(const ss_mesh *m, ss_error *err) {
+  ss_mesh clean = {0};
+  int *to_input = NULL;
+  ss_status st = ss_mesh_sanitize(m, &clean, &to_input, NULL, 0, err);
+  if (st) return st;
+  int same = clean.nv == m->nv && clean.nf == m->nf;
+  for (int i = 0; same && i < clean.nv; i++) same = to_input[i] == i;
+  ss_mesh_free(&clean);
+  free(to_input);
+  if (!same)
+    return ss_fail(err, SS_ERR_INVALID,
+                   "match: the mesh has degenerate/duplicate faces, unreferenced or non-manifold vertices; "
+                   "repair it first (its vertex indices are what landmarks and maps refer to)");
+  return SS_OK;
+}
+
+ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
+                                ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  memset(out, 0, sizeof *out);
+  if (!m || m->nv < 4 || m->nf < 1 || !m->V || !m->F) return ss_fail(err, SS_ERR_INVALID, "match: empty mesh");
+  if (kev < 3 || kev >= m->nv)
+    return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs requested on %d vertices", kev, m->nv);
+  ss_status st = check_clean(m, err);
+  if (st) return st;
+  out->mesh = m;
+  double t0 = ss_time();
+  if ((st = ss_segment(m, seg_opts, &out->seg, err))) goto fail;
+  double t1 = ss_time();
+  out->kev = kev;
+  out->evals = malloc(sizeof(double) * (size_t)kev);
+  out->evecs = malloc(sizeof(double) * (size_t)m->nv * kev);
+  out->M = malloc(sizeof(double) * (size_t)m->nv);
+  if (!out->evals || !out->evecs || !out->M) {
+    st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory for %d eigenpairs", kev);
+    goto fail;
+  }
+  if ((st = ss_mesh_eigs(m, kev, out->evals, out->evecs, err))) goto fail;
+  if ((st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, out->M, err))) goto fail;
+  out->area = 0;
+  for (int i = 0; i < m->nv; i++) out->area += out->M[i];
+  out->t_segment = t1 - t0;
+  out->t_eigs = ss_time() - t1;
+  return SS_OK;
+fail:
+  ss_shape_prep_free(out);
+  return st;
+}
+
