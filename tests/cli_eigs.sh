@@ -81,8 +81,7 @@ if [ -n "${SS_DATA_DIR:-}" ] && [ -f "$SS_DATA_DIR/faust/tr_reg_000.off" ]; then
   awk 'NR==1{if ($1 > 1e-8 || $1 < -1e-8) exit 1} NR>1{if ($1 < prev) exit 1} {prev=$1} NR==2{if ($1 < 1) exit 1}' "$TMP/out" &&
     ok || bad "FAUST eigenvalues not ascending from 0"
 else
-  echo "SKIP: no data folder: FAUST eigs"
+  skip "no data folder: FAUST eigs"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

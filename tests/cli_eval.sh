@@ -17,9 +17,8 @@ BIN=${1:?usage: $0 PATH/TO/specseg}
 
 D=${SS_DATA_DIR:-}
 if [ -z "$D" ] || [ ! -f "$D/faust/tr_reg_000.off" ]; then
-  echo "SKIP: no FAUST data (set SS_DATA_DIR); shard/merge identity not checked"
-  echo "$pass passed, $fail failed"
-  exit $((fail > 0))
+  skip "no FAUST data (set SS_DATA_DIR); shard/merge identity not checked"
+  finish
 fi
 
 # tiny: 1 pair per policy, BEST and FPS landmarks, STD and ASA, small basis and error sample
@@ -55,5 +54,4 @@ head -c 30 <(sed -n 7p "$TMP/merged.csv") >> "$TMP/cut.csv"
 cut -d, -f1-10,12 "$TMP/cut_sorted.csv" > "$TMP/c"
 cmp -s "$TMP/c" "$TMP/b" && ok || bad "resumed rows differ: $(diff "$TMP/c" "$TMP/b" | head -4)"
 
-echo "$pass passed, $fail failed"
-exit $((fail > 0))
+finish

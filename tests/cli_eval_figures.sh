@@ -22,9 +22,8 @@ expect2 --figures "$TMP/f" --table1 --data /nonexistent
 
 D=${SS_DATA_DIR:-}
 if [ -z "$D" ] || [ ! -f "$D/faust/tr_reg_001.off" ]; then
-  echo "SKIP: no FAUST data (set SS_DATA_DIR); figures not rendered"
-  echo "$pass passed, $fail failed"
-  exit $((fail > 0))
+  skip "no FAUST data (set SS_DATA_DIR); figures not rendered"
+  finish
 fi
 
 OUT="$TMP/figs"
@@ -37,7 +36,7 @@ grep -q "faust_gallery.png: Figure 3" "$TMP/out" && grep -q "figure9_001_000.png
   bad "summary lines missing: $(cat "$TMP/out")"
 grep -Eq "mean error STD 0\.[0-9]+ ASA 0\.[0-9]+ DIFF 0\.[0-9]+" "$TMP/out" && ok || bad "no mean errors printed"
 if [ -z "$PY" ]; then
-  echo "SKIP: PNG checks (no python3)"
+  skip "PNG checks (no python3)"
 elif [ -s "$G" ] && [ -s "$F" ]; then
   # gallery: 2 panels of 100x200 in a row, a 13-pixel title line under them (text scale 1)
   [ "$(png "$G" size)" = "200 213" ] && ok || bad "gallery size $(png "$G" size), want 200 213"
@@ -58,5 +57,4 @@ fi
   ok || bad "--gallery-only: $(tail -3 "$TMP/err")"
 [ -s "$TMP/g/faust_gallery.png" ] && [ -z "$(ls "$TMP/g" | grep figure)" ] && ok || bad "--gallery-only wrote $(ls "$TMP/g")"
 
-echo "$pass passed, $fail failed"
-exit $((fail > 0))
+finish

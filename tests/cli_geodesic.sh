@@ -50,8 +50,7 @@ if [ -n "$D" ] && [ -f "$D/faust/tr_reg_000.off" ] && [ -f "$D/geodesic_ref/tr_r
       awk '{r=($2>0)?($1-$2)/$2:$1; if(r<0)r=-r; if(r>m)m=r} END{exit !(NR==6890 && m<=1e-9)}' && ok || bad "FAUST reference"
   else bad "FAUST run"; fi
 else
-  echo "SKIP: FAUST data not found"
+  skip "FAUST data not found"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

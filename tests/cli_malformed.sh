@@ -75,8 +75,7 @@ if [ -n "${SS_DATA_DIR:-}" ] && [ -f "$SS_DATA_DIR/faust/tr_reg_000.off" ]; then
     if grep -qE "^$key: [0-9]+\.[0-9]+$" "$TMP/out"; then ok; else bad "FAUST $key line: $(grep "^$key" "$TMP/out")"; fi
   done
 else
-  echo "SKIP: FAUST data not found (SS_DATA_DIR)"
+  skip "FAUST data not found (SS_DATA_DIR)"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -14,7 +14,7 @@ PY=""
 for p in /usr/bin/python3 python3; do
   if command -v "$p" >/dev/null 2>&1 && "$p" -c "import numpy" >/dev/null 2>&1; then PY=$p; break; fi
 done
-if [ -z "$PY" ]; then echo "SKIP: no python3 with numpy"; exit 0; fi
+if [ -z "$PY" ]; then echo "SKIP: no python3 with numpy"; exit 77; fi
 
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
@@ -31,7 +31,7 @@ ENVV=(PYTHONDONTWRITEBYTECODE=1 SPECSEG_LIB="$LIB" PYTHONPATH="$ROOT/python${PYT
 EXTRA=()  # e.g. --no-match to leave the two-shape pipeline out
 if ldd "$LIB" | grep -q libasan; then
   ASAN_RT=$(gcc -print-file-name=libasan.so)
-  if [ ! -f "$ASAN_RT" ]; then echo "SKIP: ASan build but no libasan.so to preload"; exit 0; fi
+  if [ ! -f "$ASAN_RT" ]; then echo "SKIP: ASan build but no libasan.so to preload"; exit 77; fi
   # python itself is not instrumented: preload the runtime, ignore python's own leaks
   ENVV+=(LD_PRELOAD="$ASAN_RT" ASAN_OPTIONS=detect_leaks=0)
   echo "ASan build: preloading $ASAN_RT"

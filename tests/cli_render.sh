@@ -12,9 +12,8 @@ BIN=${1:?usage: $0 PATH/TO/specseg}
 M="$TMP/demo/humanoid_pose0.off"
 M2="$TMP/demo/humanoid_pose2.off"
 if [ ! -s "$M" ]; then
-  echo "SKIP: the demo wrote no humanoid"
-  echo "$pass passed, $fail failed"
-  exit $((fail > 0))
+  skip "the demo wrote no humanoid"
+  finish
 fi
 NV=$(sed -n 2p "$M" | awk '{print $1}')
 # the demo's segmentation picture
@@ -31,7 +30,7 @@ else bad "render --labels: exit $? $(cat "$TMP/err")"; fi
 grep -q "rendered in" "$TMP/out" && ok || bad "no timing line: $(cat "$TMP/out")"
 head -c 8 "$TMP/seg.png" | od -An -c | grep -q "P   N   G" && ok || bad "not a PNG"
 if [ -z "$PY" ]; then
-  echo "SKIP: pixel checks (no python3)"
+  skip "pixel checks (no python3)"
 else
   [ "$(png "$TMP/seg.png" size)" = "300 400" ] && ok || bad "size $(png "$TMP/seg.png" size)"
   [ "$(png "$TMP/seg.png" pixel 0 0)" = "255 255 255" ] && ok || bad "background corner $(png "$TMP/seg.png" pixel 0 0)"
@@ -139,5 +138,4 @@ expect 2 "$M" "$M2" --labels "$TMP/l.txt" --labels "$TMP/l.txt" --labels "$TMP/l
 expect 2 "$M" --bogus -o "$TMP/x.png"
 "$BIN" render --help > /dev/null && ok || bad "--help"
 
-echo "$pass passed, $fail failed"
-exit $((fail > 0))
+finish

@@ -9,9 +9,8 @@ BIN=${1:?usage: $0 PATH/TO/specseg}
 "$BIN" demo -o "$TMP/demo" > /dev/null 2>&1 || bad "demo failed"
 M="$TMP/demo/humanoid_pose0.off"
 if [ ! -s "$M" ]; then
-  echo "SKIP: the demo wrote no humanoid"
-  echo "$pass passed, $fail failed"
-  exit $((fail > 0))
+  skip "the demo wrote no humanoid"
+  finish
 fi
 NV=$(sed -n 2p "$M" | awk '{print $1}')
 
@@ -48,5 +47,4 @@ grep -aq "element vertex $NV" "$TMP/s.ply" && ok || bad "PLY vertex count"
 grep -q '^specseg: error: ' "$TMP/err" && ok || bad "error message format"
 "$BIN" segment "$M" -o "$TMP/nodir/x.txt" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "unwritable output should exit 1"
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -1,10 +1,20 @@
 # Shared preamble of the CLI test scripts (sourced, not run): counters, a scratch folder removed on exit,
 # PNG checks (png, PY).
-# Each script prints "N passed, N failed" at its end.
+# Each script ends with `finish`: it prints "N passed, N failed[, N skipped]" and exits 1 on a failure,
+# 77 (CTest's SKIP_RETURN_CODE: the test shows as skipped) when checks were skipped for lack of data
+# or tools, else 0.
 pass=0
 fail=0
+skipped=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
+skip() { skipped=$((skipped + 1)); echo "SKIP: $*"; }
+finish() {
+  echo "$pass passed, $fail failed${skipped:+, $skipped skipped}"
+  [ "$fail" -gt 0 ] && exit 1
+  [ "$skipped" -gt 0 ] && exit 77
+  exit 0
+}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 # PNG checks through tests/python/png_check.py with the system python3 (PY empty when there is none)
