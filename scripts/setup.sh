@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-pkgs=(cmake make gcc libsuitesparse-dev libarpack2-dev libopenblas-dev liblapacke-dev libpng-dev python3 python3-numpy)
+pkgs=(cmake make gcc pkg-config libsuitesparse-dev libarpack2-dev libopenblas-dev liblapacke-dev libpng-dev
+      python3 python3-numpy python3-venv python3-pip python3-setuptools python3-wheel)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
