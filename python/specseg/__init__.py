@@ -26,8 +26,10 @@ from collections import namedtuple
 import numpy as np
 
 from . import _clib
-from ._clib import LibraryVersionWarning, SpecsegError, check, lib
-from ._validate import as_float, as_float64_array, as_int32, as_int32_array, as_uint8_array
+from ._clib import LibraryVersionWarning, SpecsegError, lib
+from ._clib import check as _check
+from ._validate import as_float as _as_float, as_float64_array as _as_float64_array, as_int32 as _as_int32
+from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_uint8_array
 from ._version import __version__
 
 __all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
@@ -83,7 +85,7 @@ def read_mesh(path):
         the file and line or byte offset).
     """
     m, e = _clib.ss_mesh(), _err()
-    check(lib.ss_read_mesh(os.fsencode(path), C.byref(m), C.byref(e)), e)
+    _check(lib.ss_read_mesh(os.fsencode(path), C.byref(m), C.byref(e)), e)
     return _clib.take_mesh(m)
 
 
@@ -116,11 +118,11 @@ def write_mesh(path, V, F, rgb=None):
     """
     m, V, F = _clib.as_mesh(V, F)
     if rgb is not None:
-        rgb = as_uint8_array(rgb, "rgb")
+        rgb = _as_uint8_array(rgb, "rgb")
         if rgb.shape != (V.shape[0], 3):
             raise ValueError("rgb must be an (n, 3) array of colours, n = %d (got shape %s)" % (V.shape[0], rgb.shape))
     e = _err()
-    check(lib.ss_write_mesh(os.fsencode(path), C.byref(m), _clib.ptr(rgb, C.c_ubyte), C.byref(e)), e)
+    _check(lib.ss_write_mesh(os.fsencode(path), C.byref(m), _clib.ptr(rgb, C.c_ubyte), C.byref(e)), e)
 
 
 def laplacian(V, F, mass="barycentric"):
@@ -160,7 +162,7 @@ def laplacian(V, F, mass="barycentric"):
     m, V, F = _clib.as_mesh(V, F)
     n = V.shape[0]
     W, e = _clib.ss_sparse(), _err()
-    check(lib.ss_cotan_stiffness(C.byref(m), C.byref(W), C.byref(e)), e)
+    _check(lib.ss_cotan_stiffness(C.byref(m), C.byref(W), C.byref(e)), e)
     try:
         nnz = W.colptr[W.ncols]
         indptr = _clib.copy_array(W.colptr, W.ncols + 1, np.int32)
@@ -169,7 +171,7 @@ def laplacian(V, F, mass="barycentric"):
     finally:
         lib.ss_sparse_free(C.byref(W))
     M = np.zeros(n)
-    check(lib.ss_mass_lumped(C.byref(m), kinds[mass], _clib.ptr(M, C.c_double), C.byref(e)), e)
+    _check(lib.ss_mass_lumped(C.byref(m), kinds[mass], _clib.ptr(M, C.c_double), C.byref(e)), e)
     try:
         import scipy.sparse as sp
         return sp.csc_matrix((data, indices, indptr), shape=(n, n)), M
@@ -209,10 +211,10 @@ def eigs(V, F, k):
     n = V.shape[0]
     if n < 2:
         raise ValueError("eigs needs a mesh with at least 2 vertices (got %d)" % n)
-    k = as_int32(k, "k", 1, n - 1)
+    k = _as_int32(k, "k", 1, n - 1)
     evals, evecs = np.zeros(k), np.zeros((k, n))  # column-major n x k == row-major k x n
     e = _err()
-    check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
+    _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
                            C.byref(e)), e)
     return evals, np.ascontiguousarray(evecs.T)
 
@@ -252,11 +254,11 @@ def smooth(V, F, steps=None, dt=None):
     o = _clib.ss_cmcf_options()
     lib.ss_cmcf_default_options(C.byref(o))
     if steps is not None:
-        o.steps = as_int32(steps, "steps")
+        o.steps = _as_int32(steps, "steps")
     if dt is not None:
-        o.dt = as_float(dt, "dt", positive=True)
+        o.dt = _as_float(dt, "dt", positive=True)
     out, e = _clib.ss_mesh(), _err()
-    check(lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
+    _check(lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
     V2, _ = _clib.take_mesh(out)
     return V2
 
@@ -292,9 +294,9 @@ def remesh(V, F, target_faces=15000):
     m, V, F = _clib.as_mesh(V, F)
     o = _clib.ss_remesh_options()
     lib.ss_remesh_default_options(C.byref(o))
-    o.target_faces = as_int32(target_faces, "target_faces")
+    o.target_faces = _as_int32(target_faces, "target_faces")
     out, e = _clib.ss_mesh(), _err()
-    check(lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
+    _check(lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
     return _clib.take_mesh(out)
 
 
@@ -368,16 +370,16 @@ def segment(V, F, target_faces=None, no_streamline=False, cleanup_rings=None, sa
     o = _clib.ss_segment_options()
     lib.ss_segment_default_options(C.byref(o))
     if target_faces is not None:
-        o.target_faces = as_int32(target_faces, "target_faces")
+        o.target_faces = _as_int32(target_faces, "target_faces")
     o.no_streamline = 1 if no_streamline else 0
     if cleanup_rings is not None:
-        o.cleanup_rings = as_int32(cleanup_rings, "cleanup_rings")
+        o.cleanup_rings = _as_int32(cleanup_rings, "cleanup_rings")
     if sanitize is not None:
         o.sanitize = 1 if sanitize else 0
     s, e = _clib.ss_segmentation(), _err()
     st = lib.ss_segment(C.byref(m), C.byref(o), C.byref(s), C.byref(e))
     try:
-        check(st, e)
+        _check(st, e)
         cp = _clib.copy_array
         nw = s.work.nv
         wV = np.ctypeslib.as_array(s.work.V, shape=(nw, 3)).copy() if nw else np.zeros((0, 3))
@@ -428,19 +430,19 @@ def geodesic(V, F, sources, method="exact", max_dist=None):
     if method not in _METHODS:
         raise ValueError("method must be one of %s (got %r)" % (", ".join(_METHODS), method))
     m, V, F = _clib.as_mesh(V, F)
-    src = as_int32_array(np.atleast_1d(sources), "sources", 0, V.shape[0] - 1).ravel()
+    src = _as_int32_array(np.atleast_1d(sources), "sources", 0, V.shape[0] - 1).ravel()
     if src.size == 0:
         raise ValueError("sources is empty: give at least one vertex index")
     d, e = np.zeros(V.shape[0]), _err()
-    md = math.inf if max_dist is None else as_float(max_dist, "max_dist", allow_inf=True)
-    check(lib.ss_geodesic_distances(C.byref(m), _METHODS[method], _clib.ptr(src, C.c_int), src.size, md,
+    md = math.inf if max_dist is None else _as_float(max_dist, "max_dist", allow_inf=True)
+    _check(lib.ss_geodesic_distances(C.byref(m), _METHODS[method], _clib.ptr(src, C.c_int), src.size, md,
                                     _clib.ptr(d, C.c_double), C.byref(e)), e)
     return d
 
 
 def _indices(a, n, what, hi):
     """A 1-D int32 array of n entries, each in 0..hi-1."""
-    a = as_int32_array(np.atleast_1d(a), what, 0, hi - 1)
+    a = _as_int32_array(np.atleast_1d(a), what, 0, hi - 1)
     if a.ndim != 1 or a.shape[0] != n:
         raise ValueError("%s must be a vector of %d entries (got shape %s)" % (what, n, a.shape))
     return a
@@ -527,16 +529,16 @@ def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zo
     lib.ss_match_default_options(C.byref(o))
     o.probes = _PROBES[probes]
     if k is not None:
-        o.fmap.k = as_int32(k, "k")
+        o.fmap.k = _as_int32(k, "k")
     if zoomout is not None:
-        o.fmap.zoomout_kmax = as_int32(zoomout, "zoomout")
+        o.fmap.zoomout_kmax = _as_int32(zoomout, "zoomout")
     if segment_profile is not None:
         o.segment_profile = profiles[segment_profile]
     r, e = _clib.ss_match_result(), _err()
     st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
                       C.byref(o), C.byref(r), C.byref(e))
     try:
-        check(st, e)
+        _check(st, e)
         cp = _clib.copy_array
         Cm = cp(r.C, r.kc * r.kc, np.float64).reshape(r.kc, r.kc).T.copy() if r.kc else np.zeros((0, 0))
         return Match(map=cp(r.map, r.nX, np.int32), C=Cm, pairs_x=cp(r.pairs.sx, r.pairs.n, np.int32),
@@ -586,14 +588,14 @@ def error(map, VY, FY, gt=None, sym=None):
     if not _clib.has("ss_map_geodesic_error"):
         raise NotImplementedError("this libspecseg (%s) has no ss_map_geodesic_error" % library_path)
     my, VY, FY = _clib.as_mesh(VY, FY)
-    mp = as_int32_array(map, "map", 0, VY.shape[0] - 1).ravel()
+    mp = _as_int32_array(map, "map", 0, VY.shape[0] - 1).ravel()
     n = mp.size
     if gt is None and n > VY.shape[0]:
         raise ValueError("identity ground truth needs a map with at most %d entries (got %d)" % (VY.shape[0], n))
     g = None if gt is None else _indices(gt, n, "gt", VY.shape[0])
     s = None if sym is None else _indices(sym, n, "sym", n)
     errs, mean, e = np.zeros(n), C.c_double(0), _err()
-    check(lib.ss_map_geodesic_error(C.byref(my), n, _clib.ptr(mp, C.c_int), _clib.ptr(g, C.c_int),
+    _check(lib.ss_map_geodesic_error(C.byref(my), n, _clib.ptr(mp, C.c_int), _clib.ptr(g, C.c_int),
                                     _clib.ptr(s, C.c_int), _clib.ptr(errs, C.c_double), C.byref(mean),
                                     C.byref(e)), e)
     return errs, mean.value
@@ -626,12 +628,12 @@ def align_labels(labels, ref):
         The render library (libspecseg_render) could not be loaded.
     """
     rl = _clib.need_render("align_labels")
-    lab = np.array(as_int32_array(labels, "labels", -1), dtype=np.int32).ravel()  # a copy: renumbered in place
-    r = as_int32_array(ref, "ref", -1).ravel()
+    lab = np.array(_as_int32_array(labels, "labels", -1), dtype=np.int32).ravel()  # a copy: renumbered in place
+    r = _as_int32_array(ref, "ref", -1).ravel()
     if r.size != lab.size:
         raise ValueError("labels and ref must have the same length (got %d and %d)" % (lab.size, r.size))
     e = _err()
-    check(rl.ss_labels_align(_clib.ptr(lab, C.c_int), _clib.ptr(r, C.c_int), lab.size, C.byref(e)), e)
+    _check(rl.ss_labels_align(_clib.ptr(lab, C.c_int), _clib.ptr(r, C.c_int), lab.size, C.byref(e)), e)
     return lab
 
 
@@ -656,7 +658,7 @@ def label_colors(labels):
         The render library (libspecseg_render) could not be loaded.
     """
     rl = _clib.need_render("label_colors")
-    labels = as_int32_array(labels, "labels").ravel()
+    labels = _as_int32_array(labels, "labels").ravel()
     uniq, inv = np.unique(labels, return_inverse=True)
     table = np.zeros((uniq.size, 3), np.uint8)
     for i, l in enumerate(uniq):
@@ -728,23 +730,23 @@ def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isoli
     else:
         if len(view) != 2:
             raise ValueError("view must be a name or (azimuth, elevation) in degrees (got %r)" % (view,))
-        az, el = as_float(view[0], "view azimuth"), as_float(view[1], "view elevation")
+        az, el = _as_float(view[0], "view azimuth"), _as_float(view[1], "view elevation")
     if len(size) != 2:
         raise ValueError("size must be (width, height) (got %r)" % (size,))
-    width, height = as_int32(size[0], "size width", 1), as_int32(size[1], "size height", 1)
+    width, height = _as_int32(size[0], "size width", 1), _as_int32(size[1], "size height", 1)
     if len(background) != 3:
         raise ValueError("background must be an (r, g, b) colour (got %r)" % (background,))
-    bg = as_uint8_array(background, "background").ravel()
+    bg = _as_uint8_array(background, "background").ravel()
     if labels is not None:
-        lab = as_int32_array(labels, "labels", -1).ravel()
+        lab = _as_int32_array(labels, "labels", -1).ravel()
         if lab.size != n:
             raise ValueError("labels must have one entry per vertex (%d, got %d)" % (n, lab.size))
         face_rgb = np.zeros((nf, 3), np.uint8)
         e = _err()
-        check(rl.ss_segmentation_face_colors(C.byref(m), _clib.ptr(lab, C.c_int), None,
+        _check(rl.ss_segmentation_face_colors(C.byref(m), _clib.ptr(lab, C.c_int), None,
                                              _clib.ptr(face_rgb, C.c_ubyte), C.byref(e)), e)
-    fr = None if face_rgb is None else as_uint8_array(face_rgb, "face_rgb")
-    vr = None if vertex_rgb is None else as_uint8_array(vertex_rgb, "vertex_rgb")
+    fr = None if face_rgb is None else _as_uint8_array(face_rgb, "face_rgb")
+    vr = None if vertex_rgb is None else _as_uint8_array(vertex_rgb, "vertex_rgb")
     if fr is not None and fr.shape != (nf, 3):
         raise ValueError("face_rgb must be (m, 3), m = %d (got shape %s)" % (nf, fr.shape))
     if vr is not None and vr.shape != (n, 3):
@@ -754,13 +756,13 @@ def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isoli
     sc.vertex_rgb, sc.face_rgb = _clib.ptr(vr, C.c_ubyte), _clib.ptr(fr, C.c_ubyte)
     sv = None
     if scalar is not None:
-        sv = as_float64_array(scalar, "scalar").ravel()
+        sv = _as_float64_array(scalar, "scalar").ravel()
         if sv.size != n:
             raise ValueError("scalar must have one entry per vertex (%d, got %d)" % (n, sv.size))
-        sc.scalar, sc.isolines = _clib.ptr(sv, C.c_double), as_int32(isolines, "isolines", 0)
+        sc.scalar, sc.isolines = _clib.ptr(sv, C.c_double), _as_int32(isolines, "isolines", 0)
     mk = None
     if markers is not None:
-        mk = as_float64_array(markers, "markers", finite=True)
+        mk = _as_float64_array(markers, "markers", finite=True)
         if mk.size % 3:
             raise ValueError("markers must be a (p, 3) array of points (got shape %s)" % (mk.shape,))
         mk = mk.reshape(-1, 3)
@@ -769,11 +771,11 @@ def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isoli
     rl.ss_render_default_options(C.byref(o))
     o.width, o.height = width, height
     o.azimuth, o.elevation = az, el
-    o.supersample = as_int32(supersample, "supersample")
+    o.supersample = _as_int32(supersample, "supersample")
     for c in range(3):
         o.background[c] = int(bg[c])
     img, e = np.zeros((height, width, 3), np.uint8), _err()
-    check(rl.ss_render(C.byref(sc), C.byref(o), _clib.ptr(img, C.c_ubyte), C.byref(e)), e)
+    _check(rl.ss_render(C.byref(sc), C.byref(o), _clib.ptr(img, C.c_ubyte), C.byref(e)), e)
     return img
 
 
@@ -801,10 +803,10 @@ def write_png(path, img):
         The render library (libspecseg_render) could not be loaded.
     """
     rl = _clib.need_render("write_png")
-    img = as_uint8_array(img, "img")
+    img = _as_uint8_array(img, "img")
     if img.ndim != 3 or img.shape[2] != 3:
         raise ValueError("img must be an (H, W, 3) uint8 array (got shape %s)" % (img.shape,))
     if img.shape[0] > _clib.INT32_MAX or img.shape[1] > _clib.INT32_MAX:
         raise ValueError("img is too large for PNG (%d x %d)" % (img.shape[1], img.shape[0]))
     e = _err()
-    check(rl.ss_write_png(os.fsencode(path), _clib.ptr(img, C.c_ubyte), img.shape[1], img.shape[0], C.byref(e)), e)
+    _check(rl.ss_write_png(os.fsencode(path), _clib.ptr(img, C.c_ubyte), img.shape[1], img.shape[0], C.byref(e)), e)
