@@ -1,6 +1,7 @@
 """Finding and loading the C libraries, and mirroring the C structs the binding passes (ctypes).
 
-Where the libraries are looked for (the first folder holding the core library wins):
+Where the libraries are looked for (the first core library that loads wins; the ImportError otherwise
+lists every place tried):
 
 1. ``$SPECSEG_LIB``: the core library itself (``.../libspecseg.so``) or a folder holding it. When set,
    nothing else is tried, so a wrong value is reported instead of silently using another copy.
