@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The Python binding (python/specseg) against the CLI on the same input. $1: the specseg binary; the
-# shared library is taken from the same build folder. Under an ASan build the library can only be
+# The Python binding (python/specseg) against the CLI on the same input (test_binding.py), and the
+# package's own checks (test_package.py). $1: the specseg binary; the shared library is taken from
+# the same build folder. Under an ASan build the library can only be
 # loaded into python with the ASan runtime preloaded, which this script arranges.
 set -u
 BIN=$(realpath "$1")
@@ -36,4 +37,9 @@ if ldd "$LIB" | grep -q libasan; then
   ENVV+=(LD_PRELOAD="$ASAN_RT" ASAN_OPTIONS=detect_leaks=0)
   echo "ASan build: preloading $ASAN_RT"
 fi
-env "${ENVV[@]}" "$PY" "$ROOT/tests/python/test_binding.py" "$BIN" "$MESH" "$WORK" "${EXTRA[@]}"
+rc=0
+env "${ENVV[@]}" "$PY" "$ROOT/tests/python/test_binding.py" "$BIN" "$MESH" "$WORK" "${EXTRA[@]}" || rc=1
+# the package itself: version, docstrings, input validation, library search (no data set needed)
+echo "test_package.py:"
+env "${ENVV[@]}" "$PY" "$ROOT/tests/python/test_package.py" || rc=1
+exit $rc

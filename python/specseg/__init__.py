@@ -1,9 +1,15 @@
 """specseg — coherent spectral segmentation and functional-map matching of triangle meshes.
 
-A thin ctypes binding over the C library (libspecseg.so): NumPy arrays in and out, no copies of the
-inputs, errors raised as SpecsegError carrying the library's message. Meshes are (V, F) pairs:
-V float64 (n, 3), F int32 (m, 3), 0-based. The library is found through $SPECSEG_LIB, else
-<repo>/build/libspecseg.so, else the newest <repo>/build*/libspecseg.so, else the loader's path.
+A thin ctypes binding over the C libraries (libspecseg.so, and libspecseg_render.so for pictures):
+NumPy arrays in and out, errors raised as SpecsegError carrying the library's message. Meshes are
+(V, F) pairs: V float64 (n, 3) vertex coordinates, F int32 (m, 3) 0-based vertex indices of the
+triangles; other array types are converted, and integers that do not fit the library's int32 are
+refused with ValueError rather than wrapped.
+
+Where the C library is found: $SPECSEG_LIB (the library or its folder), beside the package, the
+build folders of a source checkout, the install prefixes (sys.prefix/lib...), then the loader's own
+search path; see specseg._clib for the details. `library_path` says which one was loaded,
+`library_version()` its version.
 
     import specseg
     V, F = specseg.read_mesh("tr_reg_000.off")
@@ -14,18 +20,40 @@ V float64 (n, 3), F int32 (m, 3), 0-based. The library is found through $SPECSEG
 """
 import ctypes as C
 import math
+import os
 from collections import namedtuple
 
 import numpy as np
 
 from . import _clib
-from ._clib import SpecsegError, check, lib
+from ._clib import LibraryVersionWarning, SpecsegError, lib
+from ._clib import check as _check
+from ._validate import as_float as _as_float, as_float64_array as _as_float64_array, as_int32 as _as_int32
+from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_uint8_array
+from ._version import __version__
 
-__all__ = ["SpecsegError", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth", "remesh", "segment",
-           "Segmentation", "geodesic", "match", "Match", "error", "render", "write_png", "label_colors", "align_labels",
-           "library_path"]
+__all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
+           "remesh", "segment", "Segmentation", "geodesic", "match", "Match", "error", "render", "write_png",
+           "label_colors", "align_labels", "library_version", "library_path", "render_library_path"]
 
+#: Path of the loaded core library (libspecseg.so...).
 library_path = _clib.lib_path
+#: Path of the loaded render library, or None when it could not be loaded (then render, write_png,
+#: label_colors and align_labels raise ImportError).
+render_library_path = _clib.render_lib_path
+
+
+def library_version():
+    """The version of the loaded C library.
+
+    Returns
+    -------
+    str or None
+        ``ss_version()`` of the library at `library_path`, "MAJOR.MINOR.PATCH" (equal to
+        ``__version__`` for a package and library built from the same source); None for a library
+        older than 0.2, which has no ``ss_version``.
+    """
+    return _clib.library_version()
 
 
 def _err():
@@ -33,35 +61,108 @@ def _err():
 
 
 def read_mesh(path):
-    """Read an OFF / OBJ / PLY mesh. Returns (V, F)."""
+    """Read a triangle mesh from an OFF, OBJ or PLY file.
+
+    The format is chosen by the extension (case-insensitive), else by the content. Polygons are
+    fan-triangulated; PLY may be ASCII or binary.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to read.
+
+    Returns
+    -------
+    V : numpy.ndarray of float64, shape (n, 3)
+        Vertex coordinates (NaN / inf literals are read as such).
+    F : numpy.ndarray of int32, shape (m, 3)
+        Triangles as 0-based vertex indices.
+
+    Raises
+    ------
+    SpecsegError
+        The file cannot be read ("i/o error") or is malformed ("parse error": the message gives
+        the file and line or byte offset).
+    """
     m, e = _clib.ss_mesh(), _err()
-    check(lib.ss_read_mesh(str(path).encode(), C.byref(m), C.byref(e)), e)
+    _check(lib.ss_read_mesh(os.fsencode(path), C.byref(m), C.byref(e)), e)
     return _clib.take_mesh(m)
 
 
 def write_mesh(path, V, F, rgb=None):
-    """Write .off or .ply (by extension); rgb: optional (n, 3) uint8 per-vertex colours."""
+    """Write a triangle mesh as .off (text) or .ply (binary little-endian), chosen by the extension.
+
+    Coordinates are written losslessly: reading the file back gives the same arrays.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write; its extension (.off or .ply) selects the format.
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices, each in 0..n-1.
+    rgb : array_like of int, shape (n, 3), optional
+        Per-vertex colours, 0..255 (OFF becomes COFF, PLY gets red / green / blue properties).
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    ValueError
+        Wrong shapes, a face index outside 0..n-1 or a colour outside 0..255.
+    SpecsegError
+        The file cannot be written, or its extension is neither .off nor .ply.
+    """
     m, V, F = _clib.as_mesh(V, F)
     if rgb is not None:
-        rgb = np.ascontiguousarray(rgb, dtype=np.uint8)
+        rgb = _as_uint8_array(rgb, "rgb")
         if rgb.shape != (V.shape[0], 3):
-            raise ValueError("rgb must be (n, 3) uint8")
+            raise ValueError("rgb must be an (n, 3) array of colours, n = %d (got shape %s)" % (V.shape[0], rgb.shape))
     e = _err()
-    check(lib.ss_write_mesh(str(path).encode(), C.byref(m), _clib.ptr(rgb, C.c_ubyte), C.byref(e)), e)
+    _check(lib.ss_write_mesh(os.fsencode(path), C.byref(m), _clib.ptr(rgb, C.c_ubyte), C.byref(e)), e)
 
 
 def laplacian(V, F, mass="barycentric"):
-    """Cotangent stiffness W (symmetric, positive semi-definite) and lumped masses M.
+    """Cotangent stiffness matrix and lumped masses: the discrete Laplace-Beltrami operator.
 
-    Returns (W, M): W a scipy.sparse.csc_matrix when SciPy is importable, else the CSC triple
-    (indptr, indices, data); M a float64 vector."""
+    W_ij = -(cot a_ij + cot b_ij) / 2 for each edge, W_ii = -sum_j W_ij, so that W phi = lambda M phi
+    approximates the Laplace-Beltrami eigenproblem (lambda >= 0).
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    mass : {"barycentric", "voronoi"}, optional
+        The lumped mass: a third of each incident triangle's area (default) or the mixed Voronoi
+        areas of Meyer et al. 2003. Both sum to the surface area.
+
+    Returns
+    -------
+    W : scipy.sparse.csc_matrix of float64, shape (n, n), or tuple
+        Symmetric positive semi-definite, rows summing to zero. Without SciPy the CSC triple
+        (indptr int32 (n+1,), indices int32 (nnz,), data float64 (nnz,)).
+    M : numpy.ndarray of float64, shape (n,)
+        The lumped masses.
+
+    Raises
+    ------
+    ValueError
+        An unknown `mass`, wrong shapes or a face index outside 0..n-1.
+    SpecsegError
+        The library refused the mesh.
+    """
     kinds = {"barycentric": 0, "voronoi": 1}
     if mass not in kinds:
-        raise ValueError("mass must be 'barycentric' or 'voronoi'")
+        raise ValueError("mass must be 'barycentric' or 'voronoi' (got %r)" % (mass,))
     m, V, F = _clib.as_mesh(V, F)
     n = V.shape[0]
     W, e = _clib.ss_sparse(), _err()
-    check(lib.ss_cotan_stiffness(C.byref(m), C.byref(W), C.byref(e)), e)
+    _check(lib.ss_cotan_stiffness(C.byref(m), C.byref(W), C.byref(e)), e)
     try:
         nnz = W.colptr[W.ncols]
         indptr = _clib.copy_array(W.colptr, W.ncols + 1, np.int32)
@@ -70,7 +171,7 @@ def laplacian(V, F, mass="barycentric"):
     finally:
         lib.ss_sparse_free(C.byref(W))
     M = np.zeros(n)
-    check(lib.ss_mass_lumped(C.byref(m), kinds[mass], _clib.ptr(M, C.c_double), C.byref(e)), e)
+    _check(lib.ss_mass_lumped(C.byref(m), kinds[mass], _clib.ptr(M, C.c_double), C.byref(e)), e)
     try:
         import scipy.sparse as sp
         return sp.csc_matrix((data, indices, indptr), shape=(n, n)), M
@@ -79,68 +180,206 @@ def laplacian(V, F, mass="barycentric"):
 
 
 def eigs(V, F, k):
-    """The k smallest Laplace-Beltrami eigenpairs (cotangent W, barycentric M; W φ = λ M φ).
-    Returns (evals (k,), evecs (n, k)), evecs M-orthonormal."""
+    """The k smallest Laplace-Beltrami eigenpairs: W phi = lambda M phi with the cotangent stiffness W
+    and barycentric masses M (ARPACK shift-invert on a CHOLMOD factorisation; deterministic).
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    k : int
+        Number of eigenpairs, 1 <= k < n.
+
+    Returns
+    -------
+    evals : numpy.ndarray of float64, shape (k,)
+        Eigenvalues, ascending (exact zeros for the constant function of each component).
+    evecs : numpy.ndarray of float64, shape (n, k)
+        M-orthonormal eigenvectors, column j for evals[j].
+
+    Raises
+    ------
+    ValueError
+        k outside 1..n-1, wrong shapes or a face index outside 0..n-1.
+    SpecsegError
+        The mesh cannot be processed ("invalid input", e.g. zero masses) or the eigensolver failed
+        ("numerical failure").
+    """
     m, V, F = _clib.as_mesh(V, F)
     n = V.shape[0]
-    if not 1 <= k < n:
-        raise ValueError("k must be between 1 and %d" % (n - 1))
+    if n < 2:
+        raise ValueError("eigs needs a mesh with at least 2 vertices (got %d)" % n)
+    k = _as_int32(k, "k", 1, n - 1)
     evals, evecs = np.zeros(k), np.zeros((k, n))  # column-major n x k == row-major k x n
     e = _err()
-    check(lib.ss_mesh_eigs(C.byref(m), int(k), _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
+    _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
                            C.byref(e)), e)
     return evals, np.ascontiguousarray(evecs.T)
 
 
 def smooth(V, F, steps=None, dt=None):
-    """Conformalized mean curvature flow (paper §4.1). Returns the smoothed vertex array (same F)."""
+    """Conformalized mean curvature flow (paper §4.1): fingers, toes and ears collapse, the limbs stay.
+
+    The result keeps the input's connectivity and vertex order and is returned at the input's scale
+    and position (same total area, same area-weighted centroid).
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    steps : int, optional
+        Number of implicit flow steps, >= 0 (library default 12).
+    dt : float, optional
+        Time step, measured at unit area; positive and finite (library default 2.2e-5).
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (n, 3)
+        The smoothed vertex coordinates (the faces are F).
+
+    Raises
+    ------
+    ValueError
+        steps outside the int32 range, dt not a positive finite number, wrong shapes or a face
+        index outside 0..n-1.
+    SpecsegError
+        An empty or zero-area mesh, a negative step count, non-finite coordinates ("invalid
+        input") or a failed factorisation ("numerical failure").
+    """
     m, V, F = _clib.as_mesh(V, F)
     o = _clib.ss_cmcf_options()
     lib.ss_cmcf_default_options(C.byref(o))
     if steps is not None:
-        o.steps = int(steps)
+        o.steps = _as_int32(steps, "steps")
     if dt is not None:
-        o.dt = float(dt)
+        o.dt = _as_float(dt, "dt", positive=True)
     out, e = _clib.ss_mesh(), _err()
-    check(lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
+    _check(lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
     V2, _ = _clib.take_mesh(out)
     return V2
 
 
 def remesh(V, F, target_faces=15000):
-    """Isotropic remeshing to about target_faces triangles. Returns (V2, F2)."""
+    """Isotropic remeshing (Botsch & Kobbelt 2004) to about `target_faces` triangles.
+
+    The output has the input's components and genus and all its vertices lie on the input surface.
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles of a closed (no boundary edges), edge-manifold mesh, 0-based vertex indices.
+    target_faces : int, optional
+        The wanted triangle count, >= 4 (default 15000); the result is within about 2 of it.
+
+    Returns
+    -------
+    V2 : numpy.ndarray of float64, shape (n2, 3)
+        Vertex coordinates of the new mesh.
+    F2 : numpy.ndarray of int32, shape (m2, 3)
+        Its triangles.
+
+    Raises
+    ------
+    ValueError
+        target_faces outside the int32 range, wrong shapes or a face index outside 0..n-1.
+    SpecsegError
+        An open mesh ("unsupported"), a target below 4 or non-finite coordinates ("invalid input").
+    """
     m, V, F = _clib.as_mesh(V, F)
     o = _clib.ss_remesh_options()
     lib.ss_remesh_default_options(C.byref(o))
-    o.target_faces = int(target_faces)
+    o.target_faces = _as_int32(target_faces, "target_faces")
     out, e = _clib.ss_mesh(), _err()
-    check(lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
+    _check(lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
     return _clib.take_mesh(out)
 
 
 Segmentation = namedtuple("Segmentation", "labels centers m phi lambda2 work_V work_F psi crit work_labels "
                                           "ncrit_raw empty_segments")
-Segmentation.__doc__ = """ss_segment's result: labels (n,) segment of each input vertex, centers (m,) input
-vertex at each segment's centre, phi the Fiedler vector on the work mesh (work_V, work_F: smoothed and
-remeshed shape), psi input -> work vertex, crit (m,) work vertex of each critical point."""
+Segmentation.__doc__ = """The result of `segment`.
+
+Attributes
+----------
+labels : numpy.ndarray of int32, shape (n,)
+    Segment 0..m-1 of each input vertex.
+centers : numpy.ndarray of int32, shape (m,)
+    The input vertex at the centre of each segment.
+m : int
+    Number of segments (critical points of the Fiedler vector after the clean-up).
+phi : numpy.ndarray of float64, shape (nw,)
+    The Fiedler vector on the work mesh (M-normalised, largest-magnitude entry positive).
+lambda2 : float
+    Its eigenvalue.
+work_V : numpy.ndarray of float64, shape (nw, 3)
+    The work mesh: the input smoothed and remeshed (a copy of the input with no_streamline).
+work_F : numpy.ndarray of int32, shape (mw, 3)
+    Its triangles.
+psi : numpy.ndarray of int32, shape (n,)
+    Input vertex -> closest work vertex to its smoothed twin; -1 for a vertex no face uses.
+crit : numpy.ndarray of int32, shape (m,)
+    The work vertex of each segment's critical point.
+work_labels : numpy.ndarray of int32, shape (nw,)
+    Segment of each work vertex (its intrinsic Voronoi cell).
+ncrit_raw : int
+    Critical points before the clean-up.
+empty_segments : int
+    Segments that no input vertex fell in.
+"""
 
 
 def segment(V, F, target_faces=None, no_streamline=False, cleanup_rings=None, sanitize=None):
-    """Coherent segmentation (paper §4). Returns a Segmentation."""
+    """Coherent segmentation (paper §4): smoothing, remeshing, the Fiedler vector's critical points
+    and their intrinsic Voronoi diagram, mapped back to the input vertices.
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices (boundary loops are closed internally).
+    target_faces : int, optional
+        Triangle count of the remeshed work mesh, >= 4 (library default 15000).
+    no_streamline : bool, optional
+        Work on the input itself: no smoothing and remeshing (default False).
+    cleanup_rings : int, optional
+        Critical-point clean-up radius in rings, >= 0; 0 turns it off (library default 5).
+    sanitize : bool, optional
+        Repair pinched vertices and degenerate faces first (library default True).
+
+    Returns
+    -------
+    Segmentation
+        labels, centers, m, phi, lambda2, work_V, work_F, psi, crit, work_labels, ncrit_raw,
+        empty_segments (see `Segmentation`).
+
+    Raises
+    ------
+    ValueError
+        An integer option outside the int32 range, wrong shapes or a face index outside 0..n-1.
+    SpecsegError
+        The library refused the options (e.g. target_faces < 4, cleanup_rings < 0) or the mesh, or a
+        stage failed numerically.
+    """
     m, V, F = _clib.as_mesh(V, F)
     o = _clib.ss_segment_options()
     lib.ss_segment_default_options(C.byref(o))
     if target_faces is not None:
-        o.target_faces = int(target_faces)
+        o.target_faces = _as_int32(target_faces, "target_faces")
     o.no_streamline = 1 if no_streamline else 0
     if cleanup_rings is not None:
-        o.cleanup_rings = int(cleanup_rings)
+        o.cleanup_rings = _as_int32(cleanup_rings, "cleanup_rings")
     if sanitize is not None:
         o.sanitize = 1 if sanitize else 0
     s, e = _clib.ss_segmentation(), _err()
     st = lib.ss_segment(C.byref(m), C.byref(o), C.byref(s), C.byref(e))
     try:
-        check(st, e)
+        _check(st, e)
         cp = _clib.copy_array
         nw = s.work.nv
         wV = np.ctypeslib.as_array(s.work.V, shape=(nw, 3)).copy() if nw else np.zeros((0, 3))
@@ -158,70 +397,148 @@ _METHODS = {"exact": 0, "graph": 1, "edge": 2}
 
 
 def geodesic(V, F, sources, method="exact", max_dist=None):
-    """Distance from every vertex to the nearest source vertex: exact polyhedral geodesics (VTP) or
-    the NPP22 / edge graph. Unreached vertices (or beyond max_dist) get inf."""
+    """Geodesic distance from every vertex to the nearest of the source vertices.
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    sources : int or array_like of int, shape (s,)
+        Source vertices, each in 0..n-1 (at least one).
+    method : {"exact", "graph", "edge"}, optional
+        Exact polyhedral geodesics (VTP, the default), Dijkstra on the NPP22 graph, or Dijkstra on
+        the mesh edges.
+    max_dist : float, optional
+        Stop the propagation past this distance; farther vertices get inf. None (default), inf or
+        a value <= 0: no limit (as in the C library). NaN is refused.
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (n,)
+        The distances; 0 at the sources, inf where unreached.
+
+    Raises
+    ------
+    ValueError
+        An unknown method, no sources, a source outside 0..n-1 (in particular one that does not
+        fit an int32), max_dist NaN, wrong shapes or a face index outside 0..n-1.
+    SpecsegError
+        The library refused the mesh (e.g. non-finite coordinates).
+    """
     if method not in _METHODS:
-        raise ValueError("method must be one of %s" % ", ".join(_METHODS))
+        raise ValueError("method must be one of %s (got %r)" % (", ".join(_METHODS), method))
     m, V, F = _clib.as_mesh(V, F)
-    src = np.ascontiguousarray(np.atleast_1d(sources), dtype=np.int32)
-    if src.size == 0 or src.min() < 0 or src.max() >= V.shape[0]:
-        raise ValueError("sources must be vertex indices in 0..%d" % (V.shape[0] - 1))
+    src = _as_int32_array(np.atleast_1d(sources), "sources", 0, V.shape[0] - 1).ravel()
+    if src.size == 0:
+        raise ValueError("sources is empty: give at least one vertex index")
     d, e = np.zeros(V.shape[0]), _err()
-    md = math.inf if max_dist is None else float(max_dist)
-    check(lib.ss_geodesic_distances(C.byref(m), _METHODS[method], _clib.ptr(src, C.c_int), src.size, md,
+    md = math.inf if max_dist is None else _as_float(max_dist, "max_dist", allow_inf=True)
+    _check(lib.ss_geodesic_distances(C.byref(m), _METHODS[method], _clib.ptr(src, C.c_int), src.size, md,
                                     _clib.ptr(d, C.c_double), C.byref(e)), e)
     return d
 
 
-def _ints(a, n, what, hi):
-    a = np.ascontiguousarray(a, dtype=np.int32)
-    if a.shape != (n,):
-        raise ValueError("%s must have %d entries" % (what, n))
-    if n and (a.min() < 0 or a.max() >= hi):
-        raise ValueError("%s has entries outside 0..%d" % (what, hi - 1))
+def _indices(a, n, what, hi):
+    """A 1-D int32 array of n entries, each in 0..hi-1."""
+    a = _as_int32_array(np.atleast_1d(a), what, 0, hi - 1)
+    if a.ndim != 1 or a.shape[0] != n:
+        raise ValueError("%s must be a vector of %d entries (got shape %s)" % (what, n, a.shape))
     return a
 
 
 Match = namedtuple("Match", "map C pairs_x pairs_y centers_x centers_y")
-Match.__doc__ = """ss_match's result: map (nX,) vertex of Y for each vertex of X; C the functional map
-(functions on Y -> functions on X); the paired segments and their centre vertices."""
+Match.__doc__ = """The result of `match`.
+
+Attributes
+----------
+map : numpy.ndarray of int32, shape (nX,)
+    The point map: vertex of Y for each vertex of X.
+C : numpy.ndarray of float64, shape (kc, kc)
+    The functional map from functions on Y to functions on X (kc = k, or the ZoomOut size).
+pairs_x, pairs_y : numpy.ndarray of int32, shape (p,)
+    The paired segments: segment pairs_x[i] of X with segment pairs_y[i] of Y.
+centers_x, centers_y : numpy.ndarray of int32, shape (p,)
+    The input vertices at the centres of the paired segments.
+"""
 
 _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
 def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zoomout=None, segment_profile=None):
-    """Map X -> Y by the paper's pipeline (§6: segmentation of both shapes, segment pairing through
-    the landmarks, functional map with STD / ASA / DIFF probes, optional ZoomOut). landmarks: vertex
-    indices on X (and on Y unless landmarks_y is given). segment_profile: "indicator", "tent"
-    (default) or "soft", the segments' probe functions (as `specseg match --segment-profile`).
-    Returns a Match."""
+    """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
+    segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
+
+    Parameters
+    ----------
+    VX : array_like of float, shape (nX, 3)
+        Vertex coordinates of X.
+    FX : array_like of int, shape (mX, 3)
+        Triangles of X, 0-based vertex indices.
+    VY : array_like of float, shape (nY, 3)
+        Vertex coordinates of Y.
+    FY : array_like of int, shape (mY, 3)
+        Triangles of Y.
+    landmarks : array_like of int, shape (l,)
+        Landmark vertices on X, each in 0..nX-1 (and on Y too unless landmarks_y is given).
+    landmarks_y : array_like of int, shape (l,), optional
+        The corresponding vertices on Y, each in 0..nY-1.
+    probes : {"diff", "asa", "std"}, optional
+        The probe functions: WKS + landmark maps (std), plus the paired segments as they are (asa)
+        or filtered by the wave kernel (diff, the default).
+    k : int, optional
+        Basis size on both shapes, >= 3 (library default 50).
+    zoomout : int, optional
+        Refine the map with ZoomOut up to this basis size (>= k); 0 or None: no ZoomOut.
+    segment_profile : {"indicator", "tent", "soft"}, optional
+        The paired segments' probe functions, as ``specseg match --segment-profile`` (library default
+        "tent").
+
+    Returns
+    -------
+    Match
+        map, C, pairs_x, pairs_y, centers_x, centers_y (see `Match`).
+
+    Raises
+    ------
+    ValueError
+        Unknown probes / segment_profile, landmarks out of range or of different lengths, k or
+        zoomout outside the int32 range, wrong shapes or face indices out of range.
+    SpecsegError
+        The library refused the options (e.g. k < 3, zoomout < k) or a mesh (e.g. one its sanitizer
+        would change), or a stage failed.
+    NotImplementedError
+        The loaded library has no ss_match.
+    """
     if not _clib.has("ss_match"):
-        raise NotImplementedError("this libspecseg has no ss_match")
+        raise NotImplementedError("this libspecseg (%s) has no ss_match" % library_path)
     if probes not in _PROBES:
-        raise ValueError("probes must be std, asa or diff")
+        raise ValueError("probes must be std, asa or diff (got %r)" % (probes,))
     profiles = {"indicator": 0, "tent": 1, "soft": 2}
     if segment_profile is not None and segment_profile not in profiles:
-        raise ValueError("segment_profile must be indicator, tent or soft")
+        raise ValueError("segment_profile must be indicator, tent or soft (got %r)" % (segment_profile,))
     mx, VX, FX = _clib.as_mesh(VX, FX)
     my, VY, FY = _clib.as_mesh(VY, FY)
-    lx = np.ascontiguousarray(np.atleast_1d(landmarks), dtype=np.int32)
-    ly = lx if landmarks_y is None else np.ascontiguousarray(np.atleast_1d(landmarks_y), dtype=np.int32)
-    lx = _ints(lx, lx.size, "landmarks", VX.shape[0])
-    ly = _ints(ly, lx.size, "landmarks_y", VY.shape[0])
+    lx = np.atleast_1d(landmarks)
+    lx = _indices(lx, lx.size, "landmarks", VX.shape[0])
+    ly = _indices(lx if landmarks_y is None else landmarks_y, lx.size, "landmarks_y", VY.shape[0])
+    if lx.size == 0:
+        raise ValueError("landmarks is empty: give at least one landmark vertex")
     o = _clib.ss_match_options()
     lib.ss_match_default_options(C.byref(o))
     o.probes = _PROBES[probes]
     if k is not None:
-        o.fmap.k = int(k)
+        o.fmap.k = _as_int32(k, "k")
     if zoomout is not None:
-        o.fmap.zoomout_kmax = int(zoomout)
+        o.fmap.zoomout_kmax = _as_int32(zoomout, "zoomout")
     if segment_profile is not None:
         o.segment_profile = profiles[segment_profile]
     r, e = _clib.ss_match_result(), _err()
     st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
                       C.byref(o), C.byref(r), C.byref(e))
     try:
-        check(st, e)
+        _check(st, e)
         cp = _clib.copy_array
         Cm = cp(r.C, r.kc * r.kc, np.float64).reshape(r.kc, r.kc).T.copy() if r.kc else np.zeros((0, 0))
         return Match(map=cp(r.map, r.nX, np.int32), C=Cm, pairs_x=cp(r.pairs.sx, r.pairs.n, np.int32),
@@ -232,50 +549,123 @@ def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zo
 
 
 def error(map, VY, FY, gt=None, sym=None):
-    """Geodesic error of a map X -> Y (paper §6): e_x = d_Y(map[x], gt[x]) / sqrt(area(Y)), exact
-    geodesics, gt = identity when None; with sym (a symmetry map of X) the smaller of the errors to
-    gt[x] and gt[sym[x]]. Returns (errors (nX,), mean)."""
+    """Geodesic error of a point map X -> Y (paper §6).
+
+    e_x = d_Y(map[x], gt[x]) / sqrt(area(Y)) with exact geodesics; with `sym` (a symmetry map of X)
+    the smaller of the errors to gt[x] and gt[sym[x]].
+
+    Parameters
+    ----------
+    map : array_like of int, shape (nX,)
+        The map: vertex of Y (0..nY-1) for each vertex of X.
+    VY : array_like of float, shape (nY, 3)
+        Vertex coordinates of Y.
+    FY : array_like of int, shape (mY, 3)
+        Triangles of Y, 0-based vertex indices.
+    gt : array_like of int, shape (nX,), optional
+        The ground-truth map, entries in 0..nY-1; None: the identity (then nX <= nY).
+    sym : array_like of int, shape (nX,), optional
+        A symmetry map of X (entries in 0..nX-1), for the symmetric error.
+
+    Returns
+    -------
+    errors : numpy.ndarray of float64, shape (nX,)
+        The per-vertex errors.
+    mean : float
+        Their mean.
+
+    Raises
+    ------
+    ValueError
+        An entry of map or gt outside 0..nY-1 or of sym outside 0..nX-1 (in particular one that
+        does not fit an int32), mismatched lengths, nX > nY with the identity ground truth, wrong
+        shapes or face indices out of range.
+    SpecsegError
+        The library refused the mesh.
+    NotImplementedError
+        The loaded library has no ss_map_geodesic_error.
+    """
     if not _clib.has("ss_map_geodesic_error"):
-        raise NotImplementedError("this libspecseg has no ss_map_geodesic_error")
+        raise NotImplementedError("this libspecseg (%s) has no ss_map_geodesic_error" % library_path)
     my, VY, FY = _clib.as_mesh(VY, FY)
-    mp = np.ascontiguousarray(map, dtype=np.int32).ravel()
+    mp = _as_int32_array(map, "map", 0, VY.shape[0] - 1).ravel()
     n = mp.size
-    mp = _ints(mp, n, "map", VY.shape[0])
     if gt is None and n > VY.shape[0]:
-        raise ValueError("identity ground truth needs a map with at most %d entries" % VY.shape[0])
-    g = None if gt is None else _ints(gt, n, "gt", VY.shape[0])
-    s = None if sym is None else _ints(sym, n, "sym", n)
+        raise ValueError("identity ground truth needs a map with at most %d entries (got %d)" % (VY.shape[0], n))
+    g = None if gt is None else _indices(gt, n, "gt", VY.shape[0])
+    s = None if sym is None else _indices(sym, n, "sym", n)
     errs, mean, e = np.zeros(n), C.c_double(0), _err()
-    check(lib.ss_map_geodesic_error(C.byref(my), n, _clib.ptr(mp, C.c_int), _clib.ptr(g, C.c_int),
+    _check(lib.ss_map_geodesic_error(C.byref(my), n, _clib.ptr(mp, C.c_int), _clib.ptr(g, C.c_int),
                                     _clib.ptr(s, C.c_int), _clib.ptr(errs, C.c_double), C.byref(mean),
                                     C.byref(e)), e)
     return errs, mean.value
 
 
 def align_labels(labels, ref):
-    """Renumber segment ids of `labels` to agree with `ref` (same vertices) where they overlap most,
-    as `specseg render --match-colors` does. Returns a new array."""
-    lab = np.array(labels, dtype=np.int32).ravel()
-    r = np.ascontiguousarray(ref, dtype=np.int32).ravel()
+    """Renumber the segment ids of `labels` to agree with `ref` where they overlap most, as
+    ``specseg render --match-colors`` does (so corresponding segments get the same colour).
+
+    Greedy on the overlap counts, each reference id used once; segments left without a partner get
+    ids after the reference's largest.
+
+    Parameters
+    ----------
+    labels : array_like of int, shape (n,)
+        Segment id of each vertex, >= -1 (-1: none).
+    ref : array_like of int, shape (n,)
+        Reference segment ids of the same vertices, >= -1.
+
+    Returns
+    -------
+    numpy.ndarray of int32, shape (n,)
+        The renumbered labels (a new array).
+
+    Raises
+    ------
+    ValueError
+        Different lengths, or ids below -1 or beyond the int32 range.
+    ImportError
+        The render library (libspecseg_render) could not be loaded.
+    """
+    rl = _clib.need_render("align_labels")
+    lab = np.array(_as_int32_array(labels, "labels", -1), dtype=np.int32).ravel()  # a copy: renumbered in place
+    r = _as_int32_array(ref, "ref", -1).ravel()
     if r.size != lab.size:
-        raise ValueError("labels and ref must have the same length")
+        raise ValueError("labels and ref must have the same length (got %d and %d)" % (lab.size, r.size))
     e = _err()
-    check(lib.ss_labels_align(_clib.ptr(lab, C.c_int), _clib.ptr(r, C.c_int), lab.size, C.byref(e)), e)
+    _check(rl.ss_labels_align(_clib.ptr(lab, C.c_int), _clib.ptr(r, C.c_int), lab.size, C.byref(e)), e)
     return lab
 
 
 def label_colors(labels):
-    """(n, 3) uint8 colours of segment labels, as `specseg render --labels` draws them."""
-    labels = np.asarray(labels, dtype=np.int64).ravel()
-    table = {}
-    out = np.zeros((labels.size, 3), np.uint8)
-    for i, l in enumerate(labels):
-        if l not in table:
-            c = (C.c_ubyte * 3)()
-            lib.ss_label_color(int(l), c)
-            table[l] = tuple(c)
-        out[i] = table[l]
-    return out
+    """The colours ``specseg render --labels`` draws segment labels with.
+
+    Parameters
+    ----------
+    labels : array_like of int, shape (n,)
+        Segment labels (any int32; negative ones are grey).
+
+    Returns
+    -------
+    numpy.ndarray of uint8, shape (n, 3)
+        One RGB colour per label.
+
+    Raises
+    ------
+    ValueError
+        A label outside the int32 range.
+    ImportError
+        The render library (libspecseg_render) could not be loaded.
+    """
+    rl = _clib.need_render("label_colors")
+    labels = _as_int32_array(labels, "labels").ravel()
+    uniq, inv = np.unique(labels, return_inverse=True)
+    table = np.zeros((uniq.size, 3), np.uint8)
+    for i, l in enumerate(uniq):
+        c = (C.c_ubyte * 3)()
+        rl.ss_label_color(int(l), c)
+        table[i] = tuple(c)
+    return table[inv.ravel()] if labels.size else np.zeros((0, 3), np.uint8)
 
 
 _VIEWS = {"front": (0, 0), "back": (180, 0), "left": (90, 0), "right": (-90, 0), "top": (0, 90), "bottom": (0, -90)}
@@ -283,60 +673,140 @@ _VIEWS = {"front": (0, 0), "back": (180, 0), "left": (90, 0), "right": (-90, 0),
 
 def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isolines=0, markers=None,
            size=(800, 800), view="front", supersample=2, background=(255, 255, 255)):
-    """Software-rendered picture as an (H, W, 3) uint8 array.
+    """A software-rendered picture of the mesh (orthographic, z-buffer, Blinn-Phong headlight).
 
-    labels: segment per vertex (faces whose corners disagree drawn neutral, as `specseg render`);
-    vertex_rgb / face_rgb: (n, 3) / (m, 3) uint8 colours; scalar: per-vertex field drawn with isolines
-    (isolines levels; colour it yourself through vertex_rgb); markers: (k, 3) sphere centres;
-    view: a name (front, back, left, right, top, bottom) or (azimuth, elevation) in degrees."""
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    labels : array_like of int, shape (n,), optional
+        Segment of each vertex (-1: none); faces coloured as ``specseg render --labels`` (faces
+        whose corners disagree drawn neutral grey). Wins over vertex_rgb and face_rgb.
+    vertex_rgb : array_like of int, shape (n, 3), optional
+        Per-vertex colours 0..255, interpolated over the faces.
+    face_rgb : array_like of int, shape (m, 3), optional
+        Per-face colours 0..255; wins over vertex_rgb. Grey when neither is given.
+    scalar : array_like of float, shape (n,), optional
+        A per-vertex field whose isolines are drawn (colour the surface yourself through
+        vertex_rgb); non-finite values are left out of its range.
+    isolines : int, optional
+        Number of isoline levels of `scalar`, evenly spaced inside its range (default 0).
+    markers : array_like of float, shape (p, 3), optional
+        Centres of small black spheres (finite coordinates).
+    size : (int, int), optional
+        (width, height) of the image in pixels (default (800, 800)).
+    view : str or (float, float), optional
+        "front" (default), "back", "left", "right", "top", "bottom", or (azimuth, elevation) in
+        degrees (finite).
+    supersample : int, optional
+        Anti-aliasing: s x s samples per pixel, 1..4 (default 2).
+    background : (int, int, int), optional
+        Background colour, each 0..255 (default white).
+
+    Returns
+    -------
+    numpy.ndarray of uint8, shape (height, width, 3)
+        The image, top row first.
+
+    Raises
+    ------
+    ValueError
+        Wrong shapes, an unknown view, colours outside 0..255, labels or integer options outside
+        the int32 range, non-finite view angles or markers, face indices out of range.
+    SpecsegError
+        The library refused the options (e.g. a non-positive size, supersample outside 1..4).
+    ImportError
+        The render library (libspecseg_render) could not be loaded.
+    """
+    rl = _clib.need_render("render")
     m, V, F = _clib.as_mesh(V, F)
     n, nf = V.shape[0], F.shape[0]
+    if isinstance(view, str):
+        if view not in _VIEWS:
+            raise ValueError("view must be one of %s or (azimuth, elevation) (got %r)" % (", ".join(_VIEWS), view))
+        az, el = _VIEWS[view]
+    else:
+        if len(view) != 2:
+            raise ValueError("view must be a name or (azimuth, elevation) in degrees (got %r)" % (view,))
+        az, el = _as_float(view[0], "view azimuth"), _as_float(view[1], "view elevation")
+    if len(size) != 2:
+        raise ValueError("size must be (width, height) (got %r)" % (size,))
+    width, height = _as_int32(size[0], "size width", 1), _as_int32(size[1], "size height", 1)
+    if len(background) != 3:
+        raise ValueError("background must be an (r, g, b) colour (got %r)" % (background,))
+    bg = _as_uint8_array(background, "background").ravel()
     if labels is not None:
-        lab = np.asarray(labels).ravel()
+        lab = _as_int32_array(labels, "labels", -1).ravel()
         if lab.size != n:
-            raise ValueError("labels must have one entry per vertex")
-        lab = np.ascontiguousarray(lab, dtype=np.int32)
+            raise ValueError("labels must have one entry per vertex (%d, got %d)" % (n, lab.size))
         face_rgb = np.zeros((nf, 3), np.uint8)
         e = _err()
-        check(lib.ss_segmentation_face_colors(C.byref(m), _clib.ptr(lab, C.c_int), None,
-                                              _clib.ptr(face_rgb, C.c_ubyte), C.byref(e)), e)
-    fr = None if face_rgb is None else np.ascontiguousarray(face_rgb, dtype=np.uint8)
-    vr = None if vertex_rgb is None else np.ascontiguousarray(vertex_rgb, dtype=np.uint8)
+        _check(rl.ss_segmentation_face_colors(C.byref(m), _clib.ptr(lab, C.c_int), None,
+                                             _clib.ptr(face_rgb, C.c_ubyte), C.byref(e)), e)
+    fr = None if face_rgb is None else _as_uint8_array(face_rgb, "face_rgb")
+    vr = None if vertex_rgb is None else _as_uint8_array(vertex_rgb, "vertex_rgb")
     if fr is not None and fr.shape != (nf, 3):
-        raise ValueError("face_rgb must be (m, 3)")
+        raise ValueError("face_rgb must be (m, 3), m = %d (got shape %s)" % (nf, fr.shape))
     if vr is not None and vr.shape != (n, 3):
-        raise ValueError("vertex_rgb must be (n, 3)")
+        raise ValueError("vertex_rgb must be (n, 3), n = %d (got shape %s)" % (n, vr.shape))
     sc = _clib.ss_render_scene()
-    lib.ss_render_scene_init(C.byref(sc), C.byref(m))
+    rl.ss_render_scene_init(C.byref(sc), C.byref(m))
     sc.vertex_rgb, sc.face_rgb = _clib.ptr(vr, C.c_ubyte), _clib.ptr(fr, C.c_ubyte)
     sv = None
     if scalar is not None:
-        sv = np.ascontiguousarray(scalar, dtype=np.float64).ravel()
+        sv = _as_float64_array(scalar, "scalar").ravel()
         if sv.size != n:
-            raise ValueError("scalar must have one entry per vertex")
-        sc.scalar, sc.isolines = _clib.ptr(sv, C.c_double), int(isolines)
+            raise ValueError("scalar must have one entry per vertex (%d, got %d)" % (n, sv.size))
+        sc.scalar, sc.isolines = _clib.ptr(sv, C.c_double), _as_int32(isolines, "isolines", 0)
     mk = None
     if markers is not None:
-        mk = np.ascontiguousarray(markers, dtype=np.float64).reshape(-1, 3)
+        mk = _as_float64_array(markers, "markers", finite=True)
+        if mk.size % 3:
+            raise ValueError("markers must be a (p, 3) array of points (got shape %s)" % (mk.shape,))
+        mk = mk.reshape(-1, 3)
         sc.nmarkers, sc.markers = mk.shape[0], _clib.ptr(mk, C.c_double)
     o = _clib.ss_render_options()
-    lib.ss_render_default_options(C.byref(o))
-    o.width, o.height = int(size[0]), int(size[1])
-    if isinstance(view, str) and view not in _VIEWS:
-        raise ValueError("view must be one of %s or (azimuth, elevation)" % ", ".join(_VIEWS))
-    o.azimuth, o.elevation = _VIEWS[view] if isinstance(view, str) else (float(view[0]), float(view[1]))
-    o.supersample = int(supersample)
+    rl.ss_render_default_options(C.byref(o))
+    o.width, o.height = width, height
+    o.azimuth, o.elevation = az, el
+    o.supersample = _as_int32(supersample, "supersample")
     for c in range(3):
-        o.background[c] = int(background[c])
-    img, e = np.zeros((o.height, o.width, 3), np.uint8), _err()
-    check(lib.ss_render(C.byref(sc), C.byref(o), _clib.ptr(img, C.c_ubyte), C.byref(e)), e)
+        o.background[c] = int(bg[c])
+    img, e = np.zeros((height, width, 3), np.uint8), _err()
+    _check(rl.ss_render(C.byref(sc), C.byref(o), _clib.ptr(img, C.c_ubyte), C.byref(e)), e)
     return img
 
 
 def write_png(path, img):
-    """Write an (H, W, 3) uint8 image as PNG."""
-    img = np.ascontiguousarray(img, dtype=np.uint8)
+    """Write an RGB image as an 8-bit PNG file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    img : array_like of int, shape (height, width, 3)
+        The image, top row first, values 0..255 (e.g. what `render` returns).
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    ValueError
+        Not an (H, W, 3) array, or values outside 0..255.
+    SpecsegError
+        The file cannot be written, or the library was built without PNG support.
+    ImportError
+        The render library (libspecseg_render) could not be loaded.
+    """
+    rl = _clib.need_render("write_png")
+    img = _as_uint8_array(img, "img")
     if img.ndim != 3 or img.shape[2] != 3:
-        raise ValueError("img must be (H, W, 3) uint8")
+        raise ValueError("img must be an (H, W, 3) uint8 array (got shape %s)" % (img.shape,))
+    if img.shape[0] > _clib.INT32_MAX or img.shape[1] > _clib.INT32_MAX:
+        raise ValueError("img is too large for PNG (%d x %d)" % (img.shape[1], img.shape[0]))
     e = _err()
-    check(lib.ss_write_png(str(path).encode(), _clib.ptr(img, C.c_ubyte), img.shape[1], img.shape[0], C.byref(e)), e)
+    _check(rl.ss_write_png(os.fsencode(path), _clib.ptr(img, C.c_ubyte), img.shape[1], img.shape[0], C.byref(e)), e)

@@ -1,21 +1,63 @@
-"""Loading libspecseg.so and mirroring the C structs the binding passes (ctypes).
+"""Finding and loading the C libraries, and mirroring the C structs the binding passes (ctypes).
 
-The mirrors below follow include/specseg/*.h field by field; at load time their sizes are compared
-with the library's own (ss_struct_size), so a header change raises instead of corrupting memory.
+Where the libraries are looked for (the first core library that loads wins; the ImportError otherwise
+lists every place tried):
+
+1. ``$SPECSEG_LIB``: the core library itself (``.../libspecseg.so``) or a folder holding it. When set,
+   nothing else is tried, so a wrong value is reported instead of silently using another copy.
+2. Beside the package: ``specseg/lib/``, then the ``specseg/`` folder itself.
+3. The build folders of the source tree, when the package is imported from a checkout
+   (``python/specseg`` of the repository): ``build/``, then the other ``build*/`` folders, newest
+   first. This comes before the prefixes so that a developer gets the library just built, not an
+   older installed copy.
+4. The install prefixes: ``sys.prefix`` and the prefix this package is installed under (e.g.
+   ``~/.local`` for ``pip install --user``), each in ``lib/``, ``lib/<multiarch>`` and ``lib64/``,
+   which is where ``cmake --install build --prefix PREFIX`` puts them.
+5. The dynamic loader's own search (``LD_LIBRARY_PATH``, ``ld.so.cache``, the system folders).
+
+In each folder ``libspecseg.so.<SOVERSION>`` (``0.2`` for the 0.2 series) is preferred to
+``libspecseg.so``. The render library (``libspecseg_render``) is loaded from the same folder as the
+core; when it is absent or cannot be loaded, everything else works and the render functions raise
+ImportError saying why.
+
+The struct mirrors below follow include/specseg/*.h field by field; at load time their sizes are
+compared with the libraries' own (ss_struct_size, ss_render_struct_size), so a header change raises
+ImportError instead of corrupting memory.
 """
 import ctypes as C
 import glob
 import os
+import platform
+import sys
+import sysconfig
+import warnings
 
 import numpy as np
 
+from ._validate import as_float64_array, as_int32_array, INT32_MAX
+from ._version import __version__
+
 
 class SpecsegError(RuntimeError):
-    """A library call failed: `status` is the ss_status name, the message is the library's ss_error."""
+    """A call into the C library failed.
+
+    The message is the library's own (``ss_error``), e.g. ``"mesh.off:12: face 7 has vertex index
+    40 >= 38"``.
+
+    Attributes
+    ----------
+    status : str
+        The failure's ``ss_status_name``: ``"i/o error"``, ``"parse error"``, ``"invalid input"``,
+        ``"out of memory"``, ``"numerical failure"`` or ``"unsupported"``.
+    """
 
     def __init__(self, status, message):
         super().__init__(message)
         self.status = status
+
+
+class LibraryVersionWarning(UserWarning):
+    """The loaded C library's major.minor version differs from the package's ``__version__``."""
 
 
 # ---- struct mirrors ---------------------------------------------------------------------------
@@ -97,58 +139,221 @@ class ss_render_scene(C.Structure):
                 ("marker_radius", C.c_double)]
 
 
-MIRRORS = [ss_error, ss_mesh, ss_sparse, ss_cmcf_options, ss_remesh_options, ss_segment_options, ss_segmentation,
-           ss_fmap_match_options, ss_match_options, ss_segment_pairs, ss_match_result, ss_render_options,
-           ss_render_scene]
 
-# ---- finding and loading the library ----------------------------------------------------------
+# checked against ss_struct_size (core) and ss_render_struct_size (render library) at load time
+CORE_MIRRORS = [ss_error, ss_mesh, ss_sparse, ss_cmcf_options, ss_remesh_options, ss_segment_options,
+                ss_segmentation, ss_fmap_match_options, ss_match_options, ss_segment_pairs, ss_match_result]
+RENDER_MIRRORS = [ss_render_options, ss_render_scene]
 
 
-def _candidates():
-    env = os.environ.get("SPECSEG_LIB")
+# ---- finding and loading the libraries ----------------------------------------------------------
+
+CORE = "libspecseg"
+RENDER = "libspecseg_render"
+PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+
+
+def _soversion(version):
+    """The shared libraries' SOVERSION for a package version: MAJOR.MINOR in the 0.x series, else MAJOR."""
+    major, minor = version.split(".")[:2]
+    return "%s.%s" % (major, minor) if major == "0" else major
+
+
+SOVERSION = _soversion(__version__)
+
+
+def _file_names(stem):
+    return ["%s.so.%s" % (stem, SOVERSION), "%s.so" % stem]
+
+
+def _unique(items):
+    seen, out = set(), []
+    for x in items:
+        if x and x not in seen:
+            seen.add(x)
+            out.append(x)
+    return out
+
+
+def _multiarch():
+    """Debian-style multiarch folder names (x86_64-linux-gnu) for PREFIX/lib/<multiarch>."""
+    names = [sysconfig.get_config_var("MULTIARCH")]
+    if sys.platform.startswith("linux") and platform.machine():
+        names.append("%s-linux-gnu" % platform.machine())
+    return _unique(names)
+
+
+def _package_prefix():
+    """PREFIX when this package lives in PREFIX/lib*/python*/{site,dist}-packages/specseg, else None."""
+    site = os.path.dirname(PACKAGE_DIR)
+    if os.path.basename(site) not in ("site-packages", "dist-packages"):
+        return None
+    pydir = os.path.dirname(site)
+    if not os.path.basename(pydir).startswith("python"):
+        return None
+    return os.path.dirname(os.path.dirname(pydir))
+
+
+def _source_root():
+    """The repository root when the package is imported from a checkout (ROOT/python/specseg), else None."""
+    parent = os.path.dirname(PACKAGE_DIR)
+    root = os.path.dirname(parent)
+    if os.path.basename(parent) == "python" and os.path.isfile(os.path.join(root, "CMakeLists.txt")) \
+            and os.path.isfile(os.path.join(root, "include", "specseg", "version.h")):
+        return root
+    return None
+
+
+def _build_dirs(root):
+    """ROOT/build, then the other ROOT/build*/ folders holding a core library, newest library first."""
+    found = {}
+    for p in glob.glob(os.path.join(root, "build*", CORE + ".so*")):
+        d = os.path.dirname(p)
+        found[d] = max(found.get(d, 0), os.path.getmtime(p))
+    main = os.path.join(root, "build")
+    rest = sorted((d for d in found if d != main), key=lambda d: found[d], reverse=True)
+    return [main] + rest
+
+
+def _prefix_lib_dirs(prefix):
+    return [os.path.join(prefix, "lib")] + [os.path.join(prefix, "lib", m) for m in _multiarch()] + \
+        [os.path.join(prefix, "lib64")]
+
+
+def search_locations(env=None):
+    """Where the core library is looked for, in order: a list of (origin, kind, value).
+
+    kind is "file" (a path), "dir" (a folder to look into) or "name" (for the loader's own search).
+    With `env` (the value of $SPECSEG_LIB) only that location.
+    """
     if env:
-        yield env
-        return
-    here = os.path.dirname(os.path.abspath(__file__))
-    root = os.path.normpath(os.path.join(here, "..", ".."))  # python/specseg -> repository root
-    yield os.path.join(root, "build", "libspecseg.so")
-    # other build folders (build-asan, build-<name>), newest first
-    for p in sorted(glob.glob(os.path.join(root, "build*", "libspecseg.so")), key=os.path.getmtime, reverse=True):
-        yield p
-    yield "libspecseg.so"  # the loader's search path (installed library, LD_LIBRARY_PATH)
+        if os.path.isdir(env):
+            return [("SPECSEG_LIB", "dir", os.path.abspath(env))]
+        return [("SPECSEG_LIB", "file", os.path.abspath(env))]
+    locs = [("package", "dir", os.path.join(PACKAGE_DIR, "lib")), ("package", "dir", PACKAGE_DIR)]
+    root = _source_root()
+    if root:
+        locs += [("source tree", "dir", d) for d in _build_dirs(root)]
+    for prefix in _unique([sys.prefix, _package_prefix()]):
+        locs += [("prefix", "dir", d) for d in _prefix_lib_dirs(prefix)]
+    locs += [("loader", "name", n) for n in _file_names(CORE)]
+    seen, out = set(), []
+    for origin, kind, value in locs:
+        key = os.path.realpath(value) if kind != "name" else value
+        if key not in seen:
+            seen.add(key)
+            out.append((origin, kind, value))
+    return out
 
 
-def _load():
-    errors = []
-    for path in _candidates():
-        if os.sep in path and not os.path.exists(path):
-            errors.append("%s: not found" % path)
-            continue
+def _asan_hint(e):
+    s = str(e)
+    if "asan" in s.lower():
+        return " (an AddressSanitizer build: run python with LD_PRELOAD=$(gcc -print-file-name=libasan.so))"
+    return ""
+
+
+def _open(path, tried, origin):
+    try:
+        return C.CDLL(path)
+    except OSError as e:
+        tried.append("[%s] %s: %s%s" % (origin, path, e, _asan_hint(e)))
+        return None
+
+
+class _DlInfo(C.Structure):
+    _fields_ = [("dli_fname", C.c_char_p), ("dli_fbase", C.c_void_p), ("dli_sname", C.c_char_p),
+                ("dli_saddr", C.c_void_p)]
+
+
+def _loaded_file(handle, symbol):
+    """The file a loaded library came from (dladdr on one of its symbols), or None."""
+    try:
+        dladdr = C.CDLL(None).dladdr  # glibc >= 2.34 has it in libc, older ones in libdl
+    except (OSError, AttributeError):
         try:
-            core = C.CDLL(path)
-            # the render library sits beside the core; its handle also resolves the core's symbols
-            rpath = os.path.join(os.path.dirname(path), os.path.basename(path).replace("libspecseg", "libspecseg_render", 1))
-            try:
-                return C.CDLL(rpath), path
-            except OSError:
-                return core, path
-        except OSError as e:
-            hint = ""
-            if "asan" in str(e).lower() or "ASan runtime" in str(e):
-                hint = " (an AddressSanitizer build: run python with LD_PRELOAD=$(gcc -print-file-name=libasan.so))"
-            errors.append("%s: %s%s" % (path, e, hint))
-    raise ImportError("specseg: cannot load libspecseg.so (set SPECSEG_LIB to its path):\n  " + "\n  ".join(errors))
+            import ctypes.util
+            dladdr = C.CDLL(ctypes.util.find_library("dl") or "libdl.so.2").dladdr
+        except (OSError, AttributeError):
+            return None
+    dladdr.argtypes = [C.c_void_p, C.POINTER(_DlInfo)]
+    dladdr.restype = C.c_int
+    fn = getattr(handle, symbol, None)
+    if fn is None:
+        return None
+    info = _DlInfo()
+    if dladdr(C.cast(fn, C.c_void_p), C.byref(info)) and info.dli_fname:
+        path = os.fsdecode(info.dli_fname)
+        return path if os.path.isabs(path) else None
+    return None
 
 
-lib, lib_path = _load()
+def _load_core():
+    """(handle, path) of the first core library that loads; ImportError listing every attempt."""
+    env = os.environ.get("SPECSEG_LIB")
+    tried = []
+    for origin, kind, value in search_locations(env):
+        if kind == "name":
+            h = _open(value, tried, origin)
+            if h is not None:
+                return h, _loaded_file(h, "ss_status_name") or value
+        elif kind == "file":
+            if not os.path.exists(value):
+                tried.append("[%s] %s: not found" % (origin, value))
+                continue
+            h = _open(value, tried, origin)
+            if h is not None:
+                return h, value
+        else:
+            names = [os.path.join(value, n) for n in _file_names(CORE)]
+            present = [p for p in names if os.path.exists(p)]
+            if not present:
+                tried.append("[%s] %s: no %s" % (origin, value, " or ".join(_file_names(CORE))))
+            for p in present:
+                h = _open(p, tried, origin)
+                if h is not None:
+                    return h, p
+    head = "specseg: cannot load the C library %s (%s)" % (CORE, " or ".join(_file_names(CORE)))
+    if env:
+        head += "; SPECSEG_LIB is set, so only it was tried"
+    raise ImportError("%s:\n  %s\nBuild and install the C library (cmake --install build --prefix %s), or set "
+                      "SPECSEG_LIB to libspecseg.so or the folder holding it."
+                      % (head, "\n  ".join(tried), sys.prefix))
+
+
+def _load_render(core_path):
+    """(handle, path, None) of the render library beside the core, or (None, None, why not)."""
+    folder = os.path.dirname(core_path) if os.path.isabs(core_path) else None
+    base = os.path.basename(core_path)
+    suffix = base[len(CORE):] if base.startswith(CORE + ".so") else None
+    names = _unique(([RENDER + suffix] if suffix else []) + _file_names(RENDER))
+    tried = []
+    if folder is None:  # the core came from the loader's search and dladdr could not say from where
+        for n in names:
+            h = _open(n, tried, "loader")
+            if h is not None:
+                return h, n, None
+        return None, None, "; ".join(tried)
+    present = [os.path.join(folder, n) for n in names if os.path.exists(os.path.join(folder, n))]
+    if not present:
+        return None, None, "no %s in %s (beside %s)" % (" or ".join(names), folder, base)
+    for p in present:
+        h = _open(p, tried, "beside the core")
+        if h is not None:
+            return h, p, None
+    return None, None, "; ".join(tried)
+
+
+lib, lib_path = _load_core()
+render_lib, render_lib_path, render_error = _load_render(lib_path)
 
 _i, _d, _p = C.c_int, C.c_double, C.c_void_p
 _PM, _PE = C.POINTER(ss_mesh), C.POINTER(ss_error)
 _PI, _PD = C.POINTER(C.c_int), C.POINTER(C.c_double)
 
 
-def _sig(name, restype, *argtypes):
-    f = getattr(lib, name, None)
+def _sig(handle, name, restype, *argtypes):
+    f = getattr(handle, name, None) if handle is not None else None
     if f is None:
         return None
     f.restype = restype
@@ -156,51 +361,97 @@ def _sig(name, restype, *argtypes):
     return f
 
 
-# ss_struct_size may be missing in an older library: then the check is skipped
-_struct_size = _sig("ss_struct_size", C.c_size_t, C.c_char_p)
-_render_struct_size = _sig("ss_render_struct_size", C.c_size_t, C.c_char_p)
-if _struct_size is not None:
-    for _s in MIRRORS:
-        _want = _struct_size(_s.__name__.encode())
-        if not _want and _render_struct_size is not None:
-            _want = _render_struct_size(_s.__name__.encode())
-        if _want and _want != C.sizeof(_s):
-            raise ImportError("specseg: struct %s is %d bytes in %s but %d in the Python mirror; update "
-                              "python/specseg/_clib.py" % (_s.__name__, _want, lib_path, C.sizeof(_s)))
+# ---- versions -----------------------------------------------------------------------------------
 
-_sig("ss_status_name", C.c_char_p, _i)
-_sig("ss_mesh_free", None, _PM)
-_sig("ss_read_mesh", _i, C.c_char_p, _PM, _PE)
-_sig("ss_write_mesh", _i, C.c_char_p, _PM, C.POINTER(C.c_ubyte), _PE)
-_sig("ss_cotan_stiffness", _i, _PM, C.POINTER(ss_sparse), _PE)
-_sig("ss_mass_lumped", _i, _PM, _i, _PD, _PE)
-_sig("ss_sparse_free", None, C.POINTER(ss_sparse))
-_sig("ss_mesh_eigs", _i, _PM, _i, _PD, _PD, _PE)
-_sig("ss_cmcf_default_options", None, C.POINTER(ss_cmcf_options))
-_sig("ss_cmcf_smooth", _i, _PM, C.POINTER(ss_cmcf_options), _PM, _PE)
-_sig("ss_remesh_default_options", None, C.POINTER(ss_remesh_options))
-_sig("ss_remesh", _i, _PM, C.POINTER(ss_remesh_options), _PM, _PE)
-_sig("ss_segment_default_options", None, C.POINTER(ss_segment_options))
-_sig("ss_segment", _i, _PM, C.POINTER(ss_segment_options), C.POINTER(ss_segmentation), _PE)
-_sig("ss_segmentation_free", None, C.POINTER(ss_segmentation))
-_sig("ss_geodesic_distances", _i, _PM, _i, _PI, _i, _d, _PD, _PE)
-_sig("ss_map_geodesic_error", _i, _PM, _i, _PI, _PI, _PI, _PD, _PD, _PE)
-_sig("ss_match_default_options", None, C.POINTER(ss_match_options))
-_sig("ss_match", _i, _PM, _PM, _i, _PI, _PI, C.POINTER(ss_match_options), C.POINTER(ss_match_result), _PE)
-_sig("ss_match_result_free", None, C.POINTER(ss_match_result))
-_sig("ss_render_default_options", None, C.POINTER(ss_render_options))
-_sig("ss_render_scene_init", None, C.POINTER(ss_render_scene), _PM)
-_sig("ss_render", _i, C.POINTER(ss_render_scene), C.POINTER(ss_render_options), C.POINTER(C.c_ubyte), _PE)
-_sig("ss_render_fit_scale", _d, _PM, C.POINTER(ss_render_options))
-_sig("ss_write_png", _i, C.c_char_p, C.POINTER(C.c_ubyte), _i, _i, _PE)
-_sig("ss_label_color", None, _i, C.c_ubyte * 3)
-_sig("ss_segmentation_face_colors", _i, _PM, _PI, C.POINTER(C.c_ubyte), C.POINTER(C.c_ubyte), _PE)
-_sig("ss_labels_align", _i, _PI, _PI, _i, _PE)
+_ss_version = _sig(lib, "ss_version", C.c_char_p)
+
+
+def library_version():
+    """The loaded C library's version, as its ss_version() reports it ("MAJOR.MINOR.PATCH"); None for a
+    library older than 0.2 (no ss_version)."""
+    if _ss_version is None:
+        return None
+    return _ss_version().decode()
+
+
+def _check_version():
+    lv = library_version()
+    if lv is None:
+        warnings.warn("specseg: %s reports no version (no ss_version: older than 0.2) while the package is %s; "
+                      "rebuild the C library from the same source" % (lib_path, __version__),
+                      LibraryVersionWarning, stacklevel=2)
+    elif lv.split(".")[:2] != __version__.split(".")[:2]:
+        warnings.warn("specseg: the C library %s is version %s but the package is %s; major.minor differ, so "
+                      "their interfaces may not match: install both from the same source"
+                      % (lib_path, lv, __version__), LibraryVersionWarning, stacklevel=2)
+
+
+_check_version()
+
+# ---- the struct mirrors against the libraries' own sizes (skipped when a library cannot tell) ----
+
+
+def _check_structs(handle, path, size_fn_name, mirrors):
+    size_fn = _sig(handle, size_fn_name, C.c_size_t, C.c_char_p)
+    if size_fn is None:
+        return
+    for s in mirrors:
+        want = size_fn(s.__name__.encode())
+        if want and want != C.sizeof(s):
+            raise ImportError("specseg: struct %s is %d bytes in %s but %d in the Python mirror (specseg/_clib.py); "
+                              "the package and the library do not match" % (s.__name__, want, path, C.sizeof(s)))
+
+
+_check_structs(lib, lib_path, "ss_struct_size", CORE_MIRRORS)
+if render_lib is not None:
+    try:
+        _check_structs(render_lib, render_lib_path, "ss_render_struct_size", RENDER_MIRRORS)
+    except ImportError as e:  # the core still works: only the render functions are refused
+        render_lib, render_error = None, str(e)
+
+# ---- signatures ---------------------------------------------------------------------------------
+
+_sig(lib, "ss_status_name", C.c_char_p, _i)
+_sig(lib, "ss_mesh_free", None, _PM)
+_sig(lib, "ss_read_mesh", _i, C.c_char_p, _PM, _PE)
+_sig(lib, "ss_write_mesh", _i, C.c_char_p, _PM, C.POINTER(C.c_ubyte), _PE)
+_sig(lib, "ss_cotan_stiffness", _i, _PM, C.POINTER(ss_sparse), _PE)
+_sig(lib, "ss_mass_lumped", _i, _PM, _i, _PD, _PE)
+_sig(lib, "ss_sparse_free", None, C.POINTER(ss_sparse))
+_sig(lib, "ss_mesh_eigs", _i, _PM, _i, _PD, _PD, _PE)
+_sig(lib, "ss_cmcf_default_options", None, C.POINTER(ss_cmcf_options))
+_sig(lib, "ss_cmcf_smooth", _i, _PM, C.POINTER(ss_cmcf_options), _PM, _PE)
+_sig(lib, "ss_remesh_default_options", None, C.POINTER(ss_remesh_options))
+_sig(lib, "ss_remesh", _i, _PM, C.POINTER(ss_remesh_options), _PM, _PE)
+_sig(lib, "ss_segment_default_options", None, C.POINTER(ss_segment_options))
+_sig(lib, "ss_segment", _i, _PM, C.POINTER(ss_segment_options), C.POINTER(ss_segmentation), _PE)
+_sig(lib, "ss_segmentation_free", None, C.POINTER(ss_segmentation))
+_sig(lib, "ss_geodesic_distances", _i, _PM, _i, _PI, _i, _d, _PD, _PE)
+_sig(lib, "ss_map_geodesic_error", _i, _PM, _i, _PI, _PI, _PI, _PD, _PD, _PE)
+_sig(lib, "ss_match_default_options", None, C.POINTER(ss_match_options))
+_sig(lib, "ss_match", _i, _PM, _PM, _i, _PI, _PI, C.POINTER(ss_match_options), C.POINTER(ss_match_result), _PE)
+_sig(lib, "ss_match_result_free", None, C.POINTER(ss_match_result))
+_sig(render_lib, "ss_render_default_options", None, C.POINTER(ss_render_options))
+_sig(render_lib, "ss_render_scene_init", None, C.POINTER(ss_render_scene), _PM)
+_sig(render_lib, "ss_render", _i, C.POINTER(ss_render_scene), C.POINTER(ss_render_options), C.POINTER(C.c_ubyte), _PE)
+_sig(render_lib, "ss_render_fit_scale", _d, _PM, C.POINTER(ss_render_options))
+_sig(render_lib, "ss_write_png", _i, C.c_char_p, C.POINTER(C.c_ubyte), _i, _i, _PE)
+_sig(render_lib, "ss_label_color", None, _i, C.c_ubyte * 3)
+_sig(render_lib, "ss_segmentation_face_colors", _i, _PM, _PI, C.POINTER(C.c_ubyte), C.POINTER(C.c_ubyte), _PE)
+_sig(render_lib, "ss_labels_align", _i, _PI, _PI, _i, _PE)
 
 
 def has(name):
-    """True when the loaded library exports `name`."""
-    return getattr(lib, name, None) is not None
+    """True when the loaded core or render library exports `name`."""
+    return getattr(lib, name, None) is not None or (render_lib is not None and getattr(render_lib, name, None) is not None)
+
+
+def need_render(what):
+    """The render library's handle; ImportError naming `what` needed it when it was not loaded."""
+    if render_lib is None:
+        raise ImportError("specseg.%s needs the render library %s, which could not be loaded: %s"
+                          % (what, RENDER, render_error))
+    return render_lib
 
 
 def check(status, err):
@@ -210,7 +461,7 @@ def check(status, err):
         raise SpecsegError(name.decode() if name else str(status), err.msg.decode(errors="replace"))
 
 
-# ---- NumPy <-> C ------------------------------------------------------------------------------
+# ---- NumPy <-> C --------------------------------------------------------------------------------
 
 
 def ptr(a, ctype):
@@ -218,15 +469,20 @@ def ptr(a, ctype):
 
 
 def as_mesh(V, F):
-    """A borrowed ss_mesh over NumPy arrays; returns (mesh, V, F) — keep V and F alive while it is used."""
-    V = np.ascontiguousarray(V, dtype=np.float64)
-    F = np.ascontiguousarray(F, dtype=np.int32)
+    """A borrowed ss_mesh over NumPy arrays; returns (mesh, V, F) — keep V and F alive while it is used.
+
+    V becomes C-contiguous float64 (n, 3), F C-contiguous int32 (m, 3) with every index in 0..n-1."""
+    V = as_float64_array(V, "V")
     if V.ndim != 2 or V.shape[1] != 3:
-        raise ValueError("V must be an (n, 3) array of vertex coordinates")
-    if F.ndim != 2 or F.shape[1] != 3:
-        raise ValueError("F must be an (m, 3) array of triangle vertex indices")
-    if F.size and (F.min() < 0 or F.max() >= V.shape[0]):
-        raise ValueError("F has vertex indices outside 0..%d" % (V.shape[0] - 1))
+        raise ValueError("V must be an (n, 3) array of vertex coordinates (got shape %s)" % (V.shape,))
+    if V.shape[0] > INT32_MAX:
+        raise ValueError("V has %d vertices; the library takes at most %d" % (V.shape[0], INT32_MAX))
+    Fa = np.asarray(F)
+    if Fa.ndim != 2 or Fa.shape[1] != 3:
+        raise ValueError("F must be an (m, 3) array of triangle vertex indices (got shape %s)" % (Fa.shape,))
+    if Fa.shape[0] > INT32_MAX:
+        raise ValueError("F has %d faces; the library takes at most %d" % (Fa.shape[0], INT32_MAX))
+    F = as_int32_array(Fa, "F", 0, V.shape[0] - 1)
     m = ss_mesh(V.shape[0], F.shape[0], ptr(V, C.c_double), ptr(F, C.c_int))
     return m, V, F
 
