@@ -15,7 +15,18 @@
 #include "specseg/match.h"
 #include "specseg/synth.h"
 
-static const char *usage = "specseg demo [-o DIR]   (default DIR: specseg-demo)";
+static const char USAGE[] =
+    "usage: specseg demo [-o DIR]\n"
+    "\n"
+    "Builds a synthetic humanoid in two poses (same connectivity: ground truth = identity), a sphere and\n"
+    "a torus, writes them as OFF and PLY into DIR, and prints their mesh facts and first Laplace-Beltrami\n"
+    "eigenvalues, segments the poses (humanoid_segments.png) and matches them with STD, ASA and DIFF\n"
+    "probes (the DIFF map as text; humanoid_matching.png: colour transfer and error heat maps, like the\n"
+    "paper's Figure 9). No data or download needed.\n"
+    "\n"
+    "  -o DIR              output folder, created if missing (default specseg-demo)\n";
+
+static const char *const OPTS[] = {"-o=", NULL};
 
 #define DEMO_MAX_SHAPES 8
 #define DEMO_MAX_FILES 64
@@ -317,24 +328,14 @@ static const demo_stage stages[] = {stage_shapes, stage_spectrum, stage_pictures
 
 int cmd_demo(int argc, char **argv) {
   const char *dir = "specseg-demo";
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-      printf("usage: %s\nBuilds a synthetic humanoid in two poses (same connectivity: ground truth = identity),\n"
-             "a sphere and a torus, writes them as OFF and PLY into DIR (created if missing), and prints\n"
-             "their mesh facts and first Laplace-Beltrami eigenvalues, segments the poses\n"
-             "(humanoid_segments.png) and matches them with STD, ASA and DIFF probes (the DIFF map as text;\n"
-             "humanoid_matching.png: colour transfer and error heat maps, like the paper's Figure 9).\n"
-             "No data or download needed.\n",
-             usage);
-      return SS_EXIT_OK;
-    }
-    if (!strcmp(argv[i], "-o")) {
-      if (i + 1 >= argc || !argv[i + 1][0]) return cli_usage("%s: -o needs a directory", usage);
-      dir = argv[++i];
-      continue;
-    }
-    return cli_usage("%s: unexpected argument '%s'", usage, argv[i]);
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    if (A.pos) return cli_bad(&A, "unexpected argument '%s'", A.pos);
+    if (cli_is_std(A.val)) return cli_bad(&A, "-o takes a folder, not standard output ('-')");
+    dir = A.val;
   }
+  if (A.rc >= 0) return A.rc;
   if (make_dir(dir)) return cli_error("demo: cannot create directory '%s': %s", dir, strerror(errno));
 
   demo_ctx *c = calloc(1, sizeof *c);

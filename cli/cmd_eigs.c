@@ -7,7 +7,20 @@
 
 #include "cli.h"
 
-#define EIGS_USAGE "specseg eigs MESH -k K [--evecs FILE.npy] [--mass barycentric|voronoi] [--sigma S]"
+static const char USAGE[] =
+    "usage: specseg eigs MESH -k K [--evecs FILE.npy] [--mass barycentric|voronoi] [--sigma S]\n"
+    "\n"
+    "The K smallest eigenvalues of the Laplace-Beltrami problem W phi = lambda M phi (cotangent\n"
+    "stiffness W, lumped mass M), one a line (%.17g) on standard output. Vertices without area get 0\n"
+    "in every eigenvector (with a warning).\n"
+    "\n"
+    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  -k K                number of eigenpairs, 1 <= K < vertices (required)\n"
+    "  --evecs FILE.npy    also write the eigenvectors, a vertices x K float64 .npy\n"
+    "  --mass KIND         barycentric (default) or voronoi (mixed Voronoi areas)\n"
+    "  --sigma S           shift: the K eigenvalues nearest S (default -1e-8)\n";
+
+static const char *const OPTS[] = {"-k=", "--evecs=", "--mass=", "--sigma=", NULL};
 
 /* Rows/columns of W for the vertices with keep[i] >= 0 (keep[i] = new index). */
 static int restrict_matrix(const ss_sparse *W, const int *keep, int nkeep, ss_sparse *out) {
@@ -37,46 +50,39 @@ int cmd_eigs(int argc, char **argv) {
   ss_mass_kind mass = SS_MASS_BARYCENTRIC;
   ss_eigs_options opt;
   ss_eigs_default_options(&opt);
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      printf("usage: %s\n", EIGS_USAGE);
-      return SS_EXIT_OK;
-    } else if (!strcmp(a, "-k")) {
-      if (i + 1 >= argc || cli_parse_int(argv[i + 1], 1, INT_MAX, &k))
-        return cli_usage("eigs: -k needs a positive integer\n  " EIGS_USAGE);
-      i++;
-    } else if (!strcmp(a, "--evecs")) {
-      if (i + 1 >= argc) return cli_usage("eigs: --evecs needs a file name\n  " EIGS_USAGE);
-      evecs_path = argv[++i];
-    } else if (!strcmp(a, "--mass")) {
-      if (i + 1 >= argc) return cli_usage("eigs: --mass needs barycentric or voronoi\n  " EIGS_USAGE);
-      const char *v = argv[++i];
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    const char *v = A.val;
+    if (A.pos) {
+      if (mesh_path) return cli_bad(&A, "more than one mesh given ('%s', '%s')", mesh_path, A.pos);
+      mesh_path = A.pos;
+    } else if (cli_is(&A, "-k")) {
+      if (cli_parse_int(v, 1, INT_MAX, &k)) return cli_bad(&A, "-k needs a positive integer, not '%s'", v);
+    } else if (cli_is(&A, "--evecs")) {
+      evecs_path = v;
+    } else if (cli_is(&A, "--mass")) {
       if (!strcmp(v, "barycentric")) mass = SS_MASS_BARYCENTRIC;
       else if (!strcmp(v, "voronoi")) mass = SS_MASS_VORONOI;
-      else return cli_usage("eigs: --mass must be barycentric or voronoi, not '%s'", v);
-    } else if (!strcmp(a, "--sigma")) {
-      if (i + 1 >= argc || cli_parse_double(argv[i + 1], &opt.sigma) || !(opt.sigma > -1e308 && opt.sigma < 1e308))
-        return cli_usage("eigs: --sigma needs a finite number\n  " EIGS_USAGE);
-      i++;
-    } else if (a[0] == '-' && a[1] != 0) {
-      return cli_usage("eigs: unknown option '%s'\n  " EIGS_USAGE, a);
-    } else if (!mesh_path) {
-      mesh_path = a;
-    } else {
-      return cli_usage("eigs: more than one mesh given ('%s', '%s')\n  " EIGS_USAGE, mesh_path, a);
+      else return cli_bad(&A, "--mass must be barycentric or voronoi, not '%s'", v);
+    } else if (cli_is(&A, "--sigma")) {
+      if (cli_parse_double(v, &opt.sigma) || !(opt.sigma > -1e308 && opt.sigma < 1e308))
+        return cli_bad(&A, "--sigma needs a finite number, not '%s'", v);
     }
   }
-  if (!mesh_path) return cli_usage("eigs: no mesh given\n  " EIGS_USAGE);
-  if (k < 0) return cli_usage("eigs: -k K is required\n  " EIGS_USAGE);
+  if (A.rc >= 0) return A.rc;
+  if (!mesh_path) return cli_bad(&A, "no mesh given");
+  if (k < 0) return cli_bad(&A, "-k K is required");
+  if (cli_is_std(evecs_path))
+    return cli_bad(&A, "--evecs -: standard output carries the eigenvalues; give a file name");
 
   ss_error err;
   ss_mesh m = {0};
-  if (ss_read_mesh(mesh_path, &m, &err) != SS_OK) return cli_error("%s", err.msg);
+  if (cli_read_mesh(mesh_path, &m, &err) != SS_OK) return cli_error("%s", err.msg);
   if (k >= m.nv) {
     int nv = m.nv;
     ss_mesh_free(&m);
-    return cli_usage("eigs: -k %d must be smaller than the number of vertices (%d)", k, nv);
+    return cli_bad(&A, "-k %d must be smaller than the number of vertices (%d)", k, nv);
   }
 
   int rc = SS_EXIT_FAIL;
@@ -85,7 +91,7 @@ int cmd_eigs(int argc, char **argv) {
   int *keep = malloc(sizeof(int) * (size_t)m.nv);
   if (!M || !keep) { cli_error("out of memory"); goto out; }
   if (ss_cotan_stiffness(&m, &W, &err) || ss_mass_lumped(&m, mass, M, &err)) {
-    cli_error("%s: %s", mesh_path, err.msg);
+    cli_error("%s: %s", cli_in_name(mesh_path), err.msg);
     goto out;
   }
   /* Vertices with no area (unreferenced, or only in degenerate faces) have no W entries either:
@@ -99,16 +105,16 @@ int cmd_eigs(int argc, char **argv) {
       if (keep[j] < 0)
         for (int p = W.colptr[j]; p < W.colptr[j + 1]; p++)
           if (W.val[p] != 0 && W.val[p] == W.val[p]) {
-            cli_error("%s: vertex %d has zero area but non-zero stiffness", mesh_path, j);
+            cli_error("%s: vertex %d has zero area but non-zero stiffness", cli_in_name(mesh_path), j);
             goto out;
           }
     if (k >= nkeep) {
-      cli_error("%s: only %d vertices have positive area; -k %d is too large", mesh_path, nkeep, k);
+      cli_error("%s: only %d vertices have positive area; -k %d is too large", cli_in_name(mesh_path), nkeep, k);
       goto out;
     }
     cli_warn("%s: %d vertices have zero area (unreferenced or only in degenerate faces); their eigenvector "
              "entries are 0",
-             mesh_path, m.nv - nkeep);
+             cli_in_name(mesh_path), m.nv - nkeep);
     Mk = malloc(sizeof(double) * (size_t)nkeep);
     if (!Mk || restrict_matrix(&W, keep, nkeep, &Wk)) { cli_error("out of memory"); goto out; }
     for (int i = 0; i < m.nv; i++)
@@ -120,7 +126,7 @@ int cmd_eigs(int argc, char **argv) {
   Xk = malloc(sizeof(double) * (size_t)nkeep * (size_t)k);
   if (!evals || !Xk) { cli_error("out of memory for %d eigenvectors", k); goto out; }
   if (ss_eigs(Wuse, Muse, k, &opt, evals, Xk, &err) != SS_OK) {
-    cli_error("%s: %s", mesh_path, err.msg);
+    cli_error("%s: %s", cli_in_name(mesh_path), err.msg);
     goto out;
   }
   if (evecs_path) {
@@ -133,7 +139,7 @@ int cmd_eigs(int argc, char **argv) {
           if (keep[i] >= 0) X[(size_t)i + (size_t)m.nv * j] = Xk[(size_t)keep[i] + (size_t)nkeep * j];
       out = X;
     }
-    if (ss_write_npy(evecs_path, out, m.nv, k, &err) != SS_OK) {
+    if (cli_write_npy(evecs_path, out, m.nv, k, &err) != SS_OK) {
       cli_error("%s", err.msg);
       goto out;
     }

@@ -18,15 +18,51 @@
 #include <time.h>
 #include <unistd.h>
 
-static const char *USAGE =
-    "eval --data DIR --table1 [--pairs N] [--seed S] [--out RESULTS.csv] [--jobs N] [--cache DIR]\n"
-    "                   [--shard I/N] [--error-samples N] [--k K] [--policies random,subj,pose]\n"
-    "                   [--landmarks best,gt,fps] [--methods std,asa,diff] [--quiet]\n"
+static const char USAGE[] =
+    "usage: specseg eval --table1 --data DIR [--pairs N] [--seed S] [--out RESULTS.csv] [--jobs N]\n"
+    "                    [--cache DIR] [--shard I/N] [--error-samples N] [--k K]\n"
+    "                    [--policies random,subj,pose] [--landmarks best,gt,fps] [--methods std,asa,diff]\n"
+    "                    [--quiet]\n"
     "       specseg eval merge CSV... [--out ALL.csv]\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
     "       specseg eval --timings --data DIR [--shapes N]\n"
     "       specseg eval --figures OUTDIR --data DIR [--landmarks best,gt,fps] [--pair X,Y] [--size WxH]\n"
-    "                   [--gallery-count N | --gallery-only] [--seed S] [--k K] [--cache DIR]";
+    "                    [--gallery-count N | --gallery-only] [--seed S] [--k K] [--cache DIR]\n"
+    "\n"
+    "The paper's evaluation on the FAUST / TOSCA data under DIR: Table 1 (mean geodesic errors of STD,\n"
+    "ASA and DIFF maps, one CSV row per map, resumable and shardable), the section 5 coherency and\n"
+    "timings, Figures 3 and 9-11 as PNGs. One mode per run:\n"
+    "  --table1            Table 1: rows appended to the CSV (rows already there are kept), then the table\n"
+    "  --coherency         section 5 coherency of the segmentations, with and without streamlining\n"
+    "  --timings           section 5 per-stage timings (medians over FAUST shapes)\n"
+    "  --figures OUTDIR    Figure 3 (segment gallery) and Figures 9-11 (maps, BEST / GT / FPS landmarks)\n"
+    "  merge CSV...        merge (shard) CSVs into one table\n"
+    "Options:\n"
+    "  --data DIR          the data folder, with faust/ (and tosca/) (required)\n"
+    "  --out, -o FILE      --table1: the CSV, also the resume state (default specseg_table1.csv);\n"
+    "                      merge: the merged CSV (default: none written; - writes it to standard output)\n"
+    "  --pairs N           shape pairs per pairing policy, 1..900 (default 100)\n"
+    "  --seed S            seed of the pair and FPS draws, >= 0 (default 1)\n"
+    "  --jobs N            parallel work units, 1..1024 (default: the OpenMP default)\n"
+    "  --cache DIR         cache per-shape preparations in DIR (default: in memory only)\n"
+    "  --shard I/N         compute only the I-th of N interleaved parts, 1 <= I <= N (default 1/1)\n"
+    "  --error-samples N   mean errors over N sampled vertices, 0..3000 (default 0: every vertex)\n"
+    "  --k K               functional map basis size, 3..1000 (default 50)\n"
+    "  --policies LIST     pairing policies, comma list of random,subj,pose (default all)\n"
+    "  --landmarks LIST    landmark sets, comma list of best,gt,fps (default all; --figures: best)\n"
+    "  --methods LIST      probe sets, comma list of std,asa,diff (default all)\n"
+    "  --quiet             no progress bar or stage messages\n"
+    "  --shapes N          --timings: FAUST shapes to time, 1..100 (default 100)\n"
+    "  --pair X,Y          --figures: this FAUST pair (shape numbers 0..99) instead of the policy's first\n"
+    "  --size WxH          --figures: panel size, 16..4096 each (default 360x720 gallery, 300x600 maps)\n"
+    "  --gallery-count N   --figures: shapes in the gallery, 0..100 (default 10)\n"
+    "  --gallery-only      --figures: the gallery only, no map figures\n";
+
+static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--quiet", "--gallery-only", "--figures=",
+                                   "--gallery-count=", "--pair=", "--size=", "--data=", "--out=", "-o=", "--cache=",
+                                   "--pairs=", "--jobs=", "--k=", "--shapes=", "--error-samples=", "--seed=",
+                                   "--shard=", "--policies=", "--landmarks=", "--methods=", NULL};
+static const char *const MERGE_OPTS[] = {"--out=", "-o=", NULL};
 
 /* "a,b,c" of names → bit set; -1 on an unknown name */
 static int parse_set(const char *s, int (*parse)(const char *)) {
@@ -85,16 +121,18 @@ static int cmd_merge(int argc, char **argv) {
   ss_eval_row *all = NULL;
   int n = 0, nin = 0;
   ss_error e;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--out") || !strcmp(argv[i], "-o")) {
-      if (++i >= argc) { free(all); return cli_usage("%s needs a value\n       specseg %s", argv[i - 1], USAGE); }
-      out = argv[i];
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, MERGE_OPTS);
+  A.cmd = "eval merge";
+  while (cli_next(&A)) {
+    if (A.opt) {
+      out = A.val;
       continue;
     }
-    if (argv[i][0] == '-') { free(all); return cli_usage("unknown option '%s'\n       specseg %s", argv[i], USAGE); }
+    if (cli_is_std(A.pos)) { free(all); return cli_bad(&A, "merge reads CSV files, not standard input ('-')"); }
     ss_eval_row *r;
     int m;
-    if (ss_eval_csv_read(argv[i], &r, &m, &e)) { free(all); return cli_error("%s", e.msg); }
+    if (ss_eval_csv_read(A.pos, &r, &m, &e)) { free(all); return cli_error("%s", e.msg); }
     ss_eval_row *g = realloc(all, sizeof *all * (size_t)(n + m + 1));
     if (!g) { free(all); free(r); return cli_error("out of memory"); }
     all = g;
@@ -103,10 +141,12 @@ static int cmd_merge(int argc, char **argv) {
     nin++;
     free(r);
   }
-  if (!nin) { free(all); return cli_usage("merge needs at least one CSV\n       specseg %s", USAGE); }
+  if (A.rc >= 0) { free(all); return A.rc; }
+  if (!nin) { free(all); return cli_bad(&A, "merge needs at least one CSV"); }
   if (ss_eval_rows_canonical(all, &n, &e)) { free(all); return cli_error("%s", e.msg); }
+  FILE *report = cli_is_std(out) ? stderr : stdout; /* the table beside a CSV on stdout goes to stderr */
   if (out) {
-    FILE *f = fopen(out, "wb");
+    FILE *f = cli_open_out(out);
     if (!f) { free(all); return cli_error("%s: cannot write: %s", out, strerror(errno)); }
     fprintf(f, "%s\n", ss_eval_csv_header());
     char line[512];
@@ -114,14 +154,14 @@ static int cmd_merge(int argc, char **argv) {
       ss_eval_csv_format_row(&all[i], line, sizeof line);
       fprintf(f, "%s\n", line);
     }
-    if (fclose(f)) { free(all); return cli_error("%s: write failed", out); }
+    if (cli_close_out(f)) { free(all); return cli_error("%s: write failed", cli_out_name(out)); }
   }
   ss_table1 t;
   ss_status st = ss_table1_aggregate(all, n, &t, &e);
   free(all);
   if (st) return cli_error("%s", e.msg);
-  printf("merged %d rows from %d files%s%s\n", n, nin, out ? " into " : "", out ? out : "");
-  print_table(&t, stdout);
+  fprintf(report, "merged %d rows from %d files%s%s\n", n, nin, out ? " into " : "", out ? cli_out_name(out) : "");
+  print_table(&t, report);
   return SS_EXIT_OK;
 }
 
@@ -371,63 +411,63 @@ int cmd_eval(int argc, char **argv) {
   int table1 = 0, coherency = 0, timings = 0, quiet = 0, nshapes = 100;
   const char *figures = NULL;
   int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-#define NEEDV() do { if (!v) return cli_usage("%s needs a value\n       specseg %s", a, USAGE); i++; } while (0)
-    if (!strcmp(a, "--table1")) table1 = 1;
-    else if (!strcmp(a, "--coherency")) coherency = 1;
-    else if (!strcmp(a, "--timings")) timings = 1;
-    else if (!strcmp(a, "--quiet")) quiet = 1;
-    else if (!strcmp(a, "--figures")) { NEEDV(); figures = v; }
-    else if (!strcmp(a, "--gallery-only")) gallery_only = 1;
-    else if (!strcmp(a, "--gallery-count")) { NEEDV(); if (cli_parse_int(v, 0, 100, &gallery)) return cli_usage("--gallery-count: integer in [0,100]"); }
-    else if (!strcmp(a, "--pair")) {
-      NEEDV();
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    const char *v = A.val;
+    if (A.pos) return cli_bad(&A, "unexpected argument '%s'", A.pos);
+    if (cli_is(&A, "--table1")) table1 = 1;
+    else if (cli_is(&A, "--coherency")) coherency = 1;
+    else if (cli_is(&A, "--timings")) timings = 1;
+    else if (cli_is(&A, "--quiet")) quiet = 1;
+    else if (cli_is(&A, "--figures")) figures = v;
+    else if (cli_is(&A, "--gallery-only")) gallery_only = 1;
+    else if (cli_is(&A, "--gallery-count")) { if (cli_parse_int(v, 0, 100, &gallery)) return cli_bad(&A, "--gallery-count: integer in [0,100]"); }
+    else if (cli_is(&A, "--pair")) {
       char buf[64], *c;
       snprintf(buf, sizeof buf, "%s", v);
-      if (!(c = strchr(buf, ','))) return cli_usage("--pair: X,Y (FAUST shape numbers 0..99)");
+      if (!(c = strchr(buf, ','))) return cli_bad(&A, "--pair: X,Y (FAUST shape numbers 0..99)");
       *c = 0;
       if (cli_parse_int(buf, 0, 99, &pair_x) || cli_parse_int(c + 1, 0, 99, &pair_y) || pair_x == pair_y)
-        return cli_usage("--pair: X,Y (two different FAUST shape numbers 0..99)");
-    } else if (!strcmp(a, "--size")) {
-      NEEDV();
+        return cli_bad(&A, "--pair: X,Y (two different FAUST shape numbers 0..99)");
+    } else if (cli_is(&A, "--size")) {
       char buf[64], *c;
       snprintf(buf, sizeof buf, "%s", v);
       if (!(c = strchr(buf, 'x')) || (*c = 0, cli_parse_int(buf, 16, 4096, &fig_w)) || cli_parse_int(c + 1, 16, 4096, &fig_h))
-        return cli_usage("--size: WxH per panel, each between 16 and 4096");
+        return cli_bad(&A, "--size: WxH per panel, each between 16 and 4096");
     }
-    else if (!strcmp(a, "--data")) { NEEDV(); o.data_dir = v; }
-    else if (!strcmp(a, "--out") || !strcmp(a, "-o")) { NEEDV(); o.out_csv = v; }
-    else if (!strcmp(a, "--cache")) { NEEDV(); o.cache_dir = v; }
-    else if (!strcmp(a, "--pairs")) { NEEDV(); if (cli_parse_int(v, 1, 900, &o.npairs)) return cli_usage("--pairs: integer in [1,900]"); }
-    else if (!strcmp(a, "--jobs")) { NEEDV(); if (cli_parse_int(v, 1, 1024, &o.jobs)) return cli_usage("--jobs: positive integer"); }
-    else if (!strcmp(a, "--k")) { NEEDV(); if (cli_parse_int(v, 3, 1000, &o.k)) return cli_usage("--k: integer in [3,1000]"); }
-    else if (!strcmp(a, "--shapes")) { NEEDV(); if (cli_parse_int(v, 1, 100, &nshapes)) return cli_usage("--shapes: integer in [1,100]"); }
-    else if (!strcmp(a, "--error-samples")) { NEEDV(); if (cli_parse_int(v, 0, 3000, &o.error_samples)) return cli_usage("--error-samples: integer in [0,3000] (0 = every vertex)"); }
-    else if (!strcmp(a, "--seed")) {
-      NEEDV();
+    else if (cli_is(&A, "--data")) o.data_dir = v;
+    else if (cli_is(&A, "--out") || cli_is(&A, "-o")) o.out_csv = v;
+    else if (cli_is(&A, "--cache")) o.cache_dir = v;
+    else if (cli_is(&A, "--pairs")) { if (cli_parse_int(v, 1, 900, &o.npairs)) return cli_bad(&A, "--pairs: integer in [1,900]"); }
+    else if (cli_is(&A, "--jobs")) { if (cli_parse_int(v, 1, 1024, &o.jobs)) return cli_bad(&A, "--jobs: positive integer"); }
+    else if (cli_is(&A, "--k")) { if (cli_parse_int(v, 3, 1000, &o.k)) return cli_bad(&A, "--k: integer in [3,1000]"); }
+    else if (cli_is(&A, "--shapes")) { if (cli_parse_int(v, 1, 100, &nshapes)) return cli_bad(&A, "--shapes: integer in [1,100]"); }
+    else if (cli_is(&A, "--error-samples")) { if (cli_parse_int(v, 0, 3000, &o.error_samples)) return cli_bad(&A, "--error-samples: integer in [0,3000] (0 = every vertex)"); }
+    else if (cli_is(&A, "--seed")) {
       char *end;
       errno = 0;
       unsigned long long s = strtoull(v, &end, 10);
-      if (errno || *end || !*v || v[0] == '-') return cli_usage("--seed: non-negative integer");
+      if (errno || *end || !*v || v[0] == '-') return cli_bad(&A, "--seed: non-negative integer");
       o.seed = s;
-    } else if (!strcmp(a, "--shard")) {
-      NEEDV();
+    } else if (cli_is(&A, "--shard")) {
       int si, sn;
       char tail;
       if (sscanf(v, "%d/%d%c", &si, &sn, &tail) != 2 || sn < 1 || si < 1 || si > sn)
-        return cli_usage("--shard: I/N with 1 <= I <= N (e.g. 3/8)");
+        return cli_bad(&A, "--shard: I/N with 1 <= I <= N (e.g. 3/8)");
       o.shard_i = si - 1, o.shard_n = sn;
-    } else if (!strcmp(a, "--policies")) { NEEDV(); if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_usage("--policies: comma list of random,subj,pose"); }
-    else if (!strcmp(a, "--landmarks")) { NEEDV(); lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_usage("--landmarks: comma list of best,gt,fps"); }
-    else if (!strcmp(a, "--methods")) { NEEDV(); if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_usage("--methods: comma list of std,asa,diff"); }
-    else return cli_usage("unknown option '%s'\n       specseg %s", a, USAGE);
-#undef NEEDV
+    } else if (cli_is(&A, "--policies")) { if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_bad(&A, "--policies: comma list of random,subj,pose"); }
+    else if (cli_is(&A, "--landmarks")) { lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_bad(&A, "--landmarks: comma list of best,gt,fps"); }
+    else if (cli_is(&A, "--methods")) { if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_bad(&A, "--methods: comma list of std,asa,diff"); }
   }
+  if (A.rc >= 0) return A.rc;
   if (table1 + coherency + timings + !!figures != 1)
-    return cli_usage("choose one of --table1, --coherency, --timings, --figures\n       specseg %s", USAGE);
-  if (!o.data_dir) return cli_usage("--data DIR is required\n       specseg %s", USAGE);
+    return cli_bad(&A, "choose one of --table1, --coherency, --timings, --figures");
+  if (!o.data_dir) return cli_bad(&A, "--data DIR is required");
+  const char *dirs[3] = {o.data_dir, figures, o.cache_dir};
+  if (cli_count_std(dirs, 3)) return cli_bad(&A, "--data, --figures and --cache take folders, not '-'");
+  if (table1 && cli_is_std(o.out_csv))
+    return cli_bad(&A, "--out: the Table 1 CSV is also the resume state and is read back; give a file name");
   if (figures) /* map figures: BEST (Figure 9) unless --landmarks says otherwise */
     return run_figures(o.data_dir, figures, o.cache_dir, lm_given ? o.lm_mask : 1 << SS_LM_BEST, pair_x, pair_y, fig_w,
                        fig_h, gallery_only && gallery == 0 ? 10 : gallery, !gallery_only, o.seed, o.k);

@@ -7,20 +7,30 @@
 
 #include "cli.h"
 
-static const char *usage =
-    "specseg geodesic MESH --source I [--source J ...] [--method exact|graph|edge] [--max-dist D] -o DIST.txt";
+static const char USAGE[] =
+    "usage: specseg geodesic MESH --source I [--source J ...] [--method exact|graph|edge] [--max-dist D]\n"
+    "                        -o DIST.txt\n"
+    "\n"
+    "Distance from every vertex to the nearest source vertex, one value a line (%.17g; unreached or\n"
+    "farther than D: inf).\n"
+    "\n"
+    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  -s, --source I      source vertex (0-based); repeat for several sources (at least one)\n"
+    "  --method M          exact: polyhedral geodesics, VTP window propagation (default); graph:\n"
+    "                      Dijkstra on the NPP22 graph; edge: Dijkstra on the mesh edges\n"
+    "  --max-dist D        stop at distance D > 0 (default: no limit)\n"
+    "  -o, --output FILE   the distances (required); - writes them to standard output\n";
+
+static const char *const OPTS[] = {"-s=", "--source=", "--method=", "--max-dist=", "-o=", "--output=", NULL};
 
 static int write_field(const char *path, const double *d, int n) {
-  FILE *f = strcmp(path, "-") ? fopen(path, "w") : stdout;
+  FILE *f = cli_open_out(path);
   if (!f) return -1;
   for (int i = 0; i < n; i++) {
     if (isinf(d[i])) fputs("inf\n", f);
     else fprintf(f, "%.17g\n", d[i]);
   }
-  int bad = ferror(f);
-  if (f != stdout) bad |= fclose(f);
-  else bad |= fflush(f);
-  return bad ? -1 : 0;
+  return cli_close_out(f);
 }
 
 int cmd_geodesic(int argc, char **argv) {
@@ -31,57 +41,47 @@ int cmd_geodesic(int argc, char **argv) {
   int rc = SS_EXIT_OK;
   src = malloc(sizeof(int) * (size_t)(argc > 0 ? argc : 1));
   if (!src) return cli_error("out of memory");
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      printf("usage: %s\nExact polyhedral geodesic distance (VTP window propagation), or Dijkstra on the NPP22\n"
-             "graph (graph) or on the mesh edges (edge), from every vertex to the nearest source vertex\n"
-             "(0-based indices). With --max-dist, vertices farther than D are written as inf.\n",
-             usage);
-      free(src);
-      return SS_EXIT_OK;
-    }
-    int has_val = i + 1 < argc;
-    if (!strcmp(a, "--source") || !strcmp(a, "-s")) {
-      if (!has_val || cli_parse_int(argv[i + 1], 0, 2147483647L, &src[ns]))
-        { rc = cli_usage("%s: --source needs a vertex index >= 0", usage); goto done; }
-      ns++; i++;
-    } else if (!strcmp(a, "--method")) {
-      if (!has_val) { rc = cli_usage("%s: --method needs a value", usage); goto done; }
-      const char *m = argv[++i];
-      if (!strcmp(m, "exact")) method = SS_GEODESIC_EXACT;
-      else if (!strcmp(m, "graph")) method = SS_GEODESIC_GRAPH;
-      else if (!strcmp(m, "edge")) method = SS_GEODESIC_EDGE;
-      else { rc = cli_usage("%s: unknown method '%s' (exact, graph or edge)", usage, m); goto done; }
-    } else if (!strcmp(a, "--max-dist")) {
-      if (!has_val || cli_parse_double(argv[i + 1], &maxd) || !(maxd > 0))
-        { rc = cli_usage("%s: --max-dist needs a positive number", usage); goto done; }
-      i++;
-    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (!has_val) { rc = cli_usage("%s: -o needs a file name", usage); goto done; }
-      out = argv[++i];
-    } else if (a[0] == '-' && a[1] != '\0') {
-      rc = cli_usage("%s: unknown option '%s'", usage, a); goto done;
-    } else {
-      if (path) { rc = cli_usage("%s: more than one mesh given", usage); goto done; }
-      path = a;
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    const char *v = A.val;
+    if (A.pos) {
+      if (path) { rc = cli_bad(&A, "more than one mesh given ('%s', '%s')", path, A.pos); goto done; }
+      path = A.pos;
+    } else if (cli_is(&A, "--source") || cli_is(&A, "-s")) {
+      if (cli_parse_int(v, 0, 2147483647L, &src[ns]))
+        { rc = cli_bad(&A, "--source needs a vertex index >= 0, not '%s'", v); goto done; }
+      ns++;
+    } else if (cli_is(&A, "--method")) {
+      if (!strcmp(v, "exact")) method = SS_GEODESIC_EXACT;
+      else if (!strcmp(v, "graph")) method = SS_GEODESIC_GRAPH;
+      else if (!strcmp(v, "edge")) method = SS_GEODESIC_EDGE;
+      else { rc = cli_bad(&A, "unknown method '%s' (exact, graph or edge)", v); goto done; }
+    } else if (cli_is(&A, "--max-dist")) {
+      if (cli_parse_double(v, &maxd) || !(maxd > 0))
+        { rc = cli_bad(&A, "--max-dist needs a positive number, not '%s'", v); goto done; }
+    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
+      out = v;
     }
   }
-  if (!path || ns == 0 || !out) { rc = cli_usage("%s", usage); goto done; }
+  if (A.rc >= 0) { rc = A.rc; goto done; }
+  if (!path) { rc = cli_bad(&A, "no mesh given"); goto done; }
+  if (ns == 0) { rc = cli_bad(&A, "no --source given"); goto done; }
+  if (!out) { rc = cli_bad(&A, "missing -o DIST.txt"); goto done; }
 
   ss_error err = {{0}};
   ss_mesh m;
-  if (ss_read_mesh(path, &m, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  if (cli_read_mesh(path, &m, &err)) { rc = cli_error("%s", err.msg); goto done; }
   for (int i = 0; i < ns; i++)
     if (src[i] >= m.nv) {
-      rc = cli_error("%s: source vertex %d out of range (mesh has %d vertices)", path, src[i], m.nv);
+      rc = cli_error("%s: source vertex %d out of range (mesh has %d vertices)", cli_in_name(path), src[i], m.nv);
       ss_mesh_free(&m);
       goto done;
     }
   double *d = malloc(sizeof(double) * (size_t)(m.nv > 0 ? m.nv : 1));
   if (!d) { ss_mesh_free(&m); rc = cli_error("out of memory"); goto done; }
-  if (ss_geodesic_distances(&m, method, src, ns, maxd, d, &err)) rc = cli_error("%s: %s", path, err.msg);
-  else if (write_field(out, d, m.nv)) rc = cli_error("cannot write '%s'", out);
+  if (ss_geodesic_distances(&m, method, src, ns, maxd, d, &err)) rc = cli_error("%s: %s", cli_in_name(path), err.msg);
+  else if (write_field(out, d, m.nv)) rc = cli_error("cannot write '%s'", cli_out_name(out));
   free(d);
   ss_mesh_free(&m);
 done:

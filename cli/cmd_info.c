@@ -4,31 +4,36 @@
 
 #include "cli.h"
 
-static const char *usage = "specseg info MESH   (OFF, OBJ or PLY)";
+static const char USAGE[] =
+    "usage: specseg info MESH\n"
+    "\n"
+    "Mesh statistics and checks, one 'key: value' a line: vertices, faces, area, components, boundary\n"
+    "loops, manifoldness, bounding-box diagonal, the counts of defects (boundary and non-manifold edges,\n"
+    "non-manifold vertices, degenerate and duplicate faces, unreferenced and non-finite vertices), the\n"
+    "Euler characteristic and, for a closed manifold, the genus.\n"
+    "\n"
+    "  MESH                OFF, OBJ or PLY file; - reads standard input (format from the content)\n";
+
+static const char *const OPTS[] = {NULL};
 
 int cmd_info(int argc, char **argv) {
   const char *path = NULL;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-      printf("usage: %s\nPrints vertices, faces, area, components, boundary loops, manifoldness, bounding-box\n"
-             "diagonal and the counts of defects (non-manifold edges/vertices, degenerate, duplicate\n"
-             "faces, unreferenced and non-finite vertices), Euler characteristic and genus.\n",
-             usage);
-      return SS_EXIT_OK;
-    }
-    if (argv[i][0] == '-' && argv[i][1] != '\0') return cli_usage("%s: unknown option '%s'", usage, argv[i]);
-    if (path) return cli_usage("%s: more than one mesh given", usage);
-    path = argv[i];
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    if (path) return cli_bad(&A, "more than one mesh given ('%s', '%s')", path, A.pos);
+    path = A.pos;
   }
-  if (!path) return cli_usage("%s", usage);
+  if (A.rc >= 0) return A.rc;
+  if (!path) return cli_bad(&A, "no mesh given");
 
   ss_error err = {{0}};
   ss_mesh m;
-  if (ss_read_mesh(path, &m, &err)) return cli_error("%s", err.msg);
+  if (cli_read_mesh(path, &m, &err)) return cli_error("%s", err.msg);
   ss_mesh_report r;
   if (ss_mesh_check(&m, &r, &err)) {
     ss_mesh_free(&m);
-    return cli_error("%s: %s", path, err.msg);
+    return cli_error("%s: %s", cli_in_name(path), err.msg);
   }
   ss_mesh_free(&m);
   printf("vertices: %d\n", r.vertices);

@@ -8,8 +8,32 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *USAGE = "specseg match X Y --landmarks LM.txt [--probes std|asa|diff] "
-                           "[--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings]";
+static const char USAGE[] =
+    "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
+    "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
+    "                     [--pairs PAIRS.txt] [--timings]\n"
+    "\n"
+    "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
+    "the paired coherent segments as extra probe functions. Prints a summary line (on stderr when an\n"
+    "output goes to standard output).\n"
+    "\n"
+    "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
+    "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
+    "                      j on Y) (required)\n"
+    "  -o, --output FILE   the map: line i = vertex of Y that is the image of vertex i of X (required)\n"
+    "  --probes P          std: WKS + landmarks (NO17); asa: + segment indicators; diff: + wave-filtered\n"
+    "                      segment indicators (default diff)\n"
+    "  --segment-profile S the segments' probe functions: indicator, tent (1 - d/R from the centre;\n"
+    "                      default) or soft (soft Voronoi membership; better than tent from k = 60 on)\n"
+    "  --k K               basis size, 3..10000 (default 50)\n"
+    "  --zoomout KMAX      ZoomOut refinement up to KMAX >= K eigenfunctions (default: none)\n"
+    "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
+    "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
+    "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
+    "One of the output files may be - (standard output).\n";
+
+static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
+                                   "--segment-profile=", "--k=", "--zoomout=", "--timings", NULL};
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
@@ -17,67 +41,53 @@ int cmd_match(int argc, char **argv) {
   ss_match_options o;
   ss_match_default_options(&o);
   o.probes = SS_PROBES_DIFF;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    int has_next = i + 1 < argc;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      printf("usage: %s\n\n"
-             "Point-to-point map X -> Y by functional maps (paper §6) with corresponding landmarks and the\n"
-             "paired coherent segments as extra probe functions. LM.txt: one landmark a line, 'i' (same\n"
-             "vertex index on both shapes) or 'i j' (i on X, j on Y). --probes: std (WKS + landmarks,\n"
-             "NO17), asa (+ segment indicators), diff (+ wave-filtered segment indicators; default).\n"
-             "--segment-profile: the segments' probe functions, indicator, tent (1 - d/R from the centre;\n"
-             "default) or soft (soft Voronoi membership; better than tent from k = 60 on).\n"
-             "--k: basis size (default 50). --zoomout KMAX: ZoomOut refinement up to KMAX eigenfunctions.\n"
-             "MAP.txt: line i = vertex of Y that is the image of vertex i of X. --fmap: the functional map\n"
-             "(functions on Y -> functions on X, k x k) as .npy. --pairs: the paired segment centres, 'x y'\n"
-             "(input vertices) per line. --timings: 'timing: STAGE SECONDS' lines on stderr.\n",
-             USAGE);
-      return SS_EXIT_OK;
-    }
-    if (!strcmp(a, "--landmarks") || !strcmp(a, "-o") || !strcmp(a, "--output") || !strcmp(a, "--fmap") ||
-        !strcmp(a, "--pairs")) {
-      if (!has_next) return cli_usage("%s: %s needs a file", USAGE, a);
-      const char *v = argv[++i];
-      if (!strcmp(a, "--landmarks")) lmp = v;
-      else if (!strcmp(a, "--fmap")) fmapp = v;
-      else if (!strcmp(a, "--pairs")) pairsp = v;
-      else outp = v;
-    } else if (!strcmp(a, "--probes")) {
-      const char *v = has_next ? argv[++i] : "";
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    const char *v = A.val;
+    if (A.pos) {
+      if (!xp) xp = A.pos;
+      else if (!yp) yp = A.pos;
+      else return cli_bad(&A, "unexpected argument '%s'", A.pos);
+    } else if (cli_is(&A, "--landmarks")) {
+      lmp = v;
+    } else if (cli_is(&A, "--fmap")) {
+      fmapp = v;
+    } else if (cli_is(&A, "--pairs")) {
+      pairsp = v;
+    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
+      outp = v;
+    } else if (cli_is(&A, "--probes")) {
       if (!strcmp(v, "std")) o.probes = SS_PROBES_STD;
       else if (!strcmp(v, "asa")) o.probes = SS_PROBES_ASA;
       else if (!strcmp(v, "diff")) o.probes = SS_PROBES_DIFF;
-      else return cli_usage("%s: --probes takes std, asa or diff", USAGE);
-    } else if (!strcmp(a, "--segment-profile")) {
-      const char *v = has_next ? argv[++i] : "";
+      else return cli_bad(&A, "--probes takes std, asa or diff, not '%s'", v);
+    } else if (cli_is(&A, "--segment-profile")) {
       if (!strcmp(v, "indicator")) o.segment_profile = SS_PROFILE_INDICATOR;
       else if (!strcmp(v, "tent")) o.segment_profile = SS_PROFILE_TENT;
       else if (!strcmp(v, "soft")) o.segment_profile = SS_PROFILE_SOFT;
-      else return cli_usage("%s: --segment-profile takes indicator, tent or soft", USAGE);
-    } else if (!strcmp(a, "--k")) {
-      if (!has_next || cli_parse_int(argv[++i], 3, 10000, &o.fmap.k))
-        return cli_usage("%s: --k needs an integer between 3 and 10000", USAGE);
-    } else if (!strcmp(a, "--zoomout")) {
-      if (!has_next || cli_parse_int(argv[++i], 3, 10000, &o.fmap.zoomout_kmax))
-        return cli_usage("%s: --zoomout needs an integer between 3 and 10000", USAGE);
-    } else if (!strcmp(a, "--timings")) {
+      else return cli_bad(&A, "--segment-profile takes indicator, tent or soft, not '%s'", v);
+    } else if (cli_is(&A, "--k")) {
+      if (cli_parse_int(v, 3, 10000, &o.fmap.k)) return cli_bad(&A, "--k needs an integer between 3 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--zoomout")) {
+      if (cli_parse_int(v, 3, 10000, &o.fmap.zoomout_kmax))
+        return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--timings")) {
       timings = 1;
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage("%s: unknown option '%s'", USAGE, a);
-    } else if (!xp) {
-      xp = a;
-    } else if (!yp) {
-      yp = a;
-    } else {
-      return cli_usage("%s: unexpected argument '%s'", USAGE, a);
     }
   }
-  if (!xp || !yp) return cli_usage("%s: needs two meshes X and Y", USAGE);
-  if (!lmp) return cli_usage("%s: missing --landmarks LM.txt", USAGE);
-  if (!outp) return cli_usage("%s: missing -o MAP.txt", USAGE);
+  if (A.rc >= 0) return A.rc;
+  if (!xp || !yp) return cli_bad(&A, "needs two meshes X and Y");
+  if (!lmp) return cli_bad(&A, "missing --landmarks LM.txt");
+  if (!outp) return cli_bad(&A, "missing -o MAP.txt");
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
-    return cli_usage("%s: --zoomout %d is below --k %d", USAGE, o.fmap.zoomout_kmax, o.fmap.k);
+    return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
+  const char *ins[3] = {xp, yp, lmp}, *outs[3] = {outp, fmapp, pairsp};
+  if (cli_count_std(ins, 3) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  int to_stdout = cli_count_std(outs, 3);
+  if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
+  FILE *report = to_stdout ? stderr : stdout;
+  const char *xn = cli_in_name(xp), *yn = cli_in_name(yp), *lmn = cli_in_name(lmp);
 
   ss_error err = {{0}};
   ss_mesh X = {0}, Y = {0};
@@ -85,19 +95,19 @@ int cmd_match(int argc, char **argv) {
   int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
-  if (ss_read_landmarks_lines(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
-  if (ss_read_mesh(xp, &X, &err) || ss_read_mesh(yp, &Y, &err)) {
+  if (cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
+  if (cli_read_mesh(xp, &X, &err) || cli_read_mesh(yp, &Y, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
   double t_read = ss_time() - t0;
   for (int i = 0; i < nl; i++) { /* clear messages before the expensive part */
     if (lx[i] >= X.nv) {
-      rc = cli_error("%s:%d: landmark vertex %d not on X (%s has %d vertices)", lmp, lline[i], lx[i], xp, X.nv);
+      rc = cli_error("%s:%d: landmark vertex %d not on X (%s has %d vertices)", lmn, lline[i], lx[i], xn, X.nv);
       goto done;
     }
     if (ly[i] >= Y.nv) {
-      rc = cli_error("%s:%d: landmark vertex %d not on Y (%s has %d vertices)", lmp, lline[i], ly[i], yp, Y.nv);
+      rc = cli_error("%s:%d: landmark vertex %d not on Y (%s has %d vertices)", lmn, lline[i], ly[i], yn, Y.nv);
       goto done;
     }
   }
@@ -106,20 +116,20 @@ int cmd_match(int argc, char **argv) {
     goto done;
   }
   double t1 = ss_time();
-  if (ss_write_ints(outp, res.map, res.nX, &err) ||
-      (fmapp && ss_write_npy(fmapp, res.C, res.kc, res.kc, &err))) {
+  if (cli_write_ints(outp, res.map, res.nX, &err) ||
+      (fmapp && cli_write_npy(fmapp, res.C, res.kc, res.kc, &err))) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
   if (pairsp) {
-    FILE *f = fopen(pairsp, "w");
+    FILE *f = cli_open_out(pairsp);
     if (!f) {
       rc = cli_error("%s: %s", pairsp, strerror(errno));
       goto done;
     }
     for (int p = 0; p < res.pairs.n; p++) fprintf(f, "%d %d\n", res.centerX[p], res.centerY[p]);
-    if (fclose(f)) {
-      rc = cli_error("%s: write error", pairsp);
+    if (cli_close_out(f)) {
+      rc = cli_error("%s: write error", cli_out_name(pairsp));
       goto done;
     }
   }
@@ -134,10 +144,10 @@ int cmd_match(int argc, char **argv) {
     fprintf(stderr, "timing: write %.6f\n", t_write);
     fprintf(stderr, "timing: total %.6f\n", ss_time() - t0);
   }
-  printf("%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s -> %s\n", X.nv, Y.nv, nl,
+  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s -> %s\n", X.nv, Y.nv, nl,
          res.pairs.n, res.pairs.nx, res.pairs.ny,
          o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
-         o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", outp);
+         o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", cli_out_name(outp));
 done:
   ss_match_result_free(&res);
   ss_mesh_free(&X);

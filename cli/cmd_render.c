@@ -14,11 +14,48 @@
 #include "cli.h"
 #include "specseg/render.h"
 
-static const char *usage =
-    "specseg render MESH [MESH2 ...] -o OUT.png [--labels L.txt | --scalar F.txt | --map MAP.txt --target Y |\n"
-    "       --error MAP.txt --target Y [--gt GT.txt] [--sym SYM.txt]] [--view front|back|left|right|top|AZ,EL]\n"
-    "       [--size WxH] [--centers C.txt] [--landmarks LM.txt] [--isolines N] [--range LO,HI] [--cols N]\n"
-    "       [--match-colors REF_LABELS.txt] [--no-titles] [--supersample S]";
+static const char USAGE[] =
+    "usage: specseg render MESH [MESH2 ...] -o OUT.png\n"
+    "                      [--labels L.txt | --scalar F.txt | --map MAP.txt --target Y |\n"
+    "                       --error MAP.txt --target Y [--gt GT.txt] [--sym SYM.txt]]\n"
+    "                      [--view front|back|left|right|top|bottom|AZ,EL] [--size WxH] [--centers C.txt]\n"
+    "                      [--landmarks LM.txt] [--isolines N] [--range LO,HI] [--cols N]\n"
+    "                      [--match-colors REF_LABELS.txt] [--no-titles] [--supersample S]\n"
+    "\n"
+    "Software-rendered PNG (z-buffer, Phong, anti-aliased). Several meshes become panels at a common\n"
+    "scale; per-mesh files (--labels, --scalar, --map, --error, --centers, --landmarks) are given once\n"
+    "for all meshes or once per mesh, in mesh order. Prints a summary line (on stderr with -o -).\n"
+    "\n"
+    "  MESH ...            OFF, OBJ or PLY files (at most 64)\n"
+    "  -o, --output FILE   the PNG (required); - writes it to standard output (not to a terminal)\n"
+    "  --labels L.txt      segmentation: one colour per segment, boundary triangles neutral\n"
+    "  --scalar F.txt      per-vertex field: viridis colormap and colour bar\n"
+    "  --map MAP.txt       colour transfer: the --target coloured by its normalised xyz, MESH by the\n"
+    "                      colour of its image (MAP line i = vertex of Y for vertex i of MESH)\n"
+    "  --error MAP.txt     geodesic error d_Y(MAP(x), GT(x)) / sqrt(area Y) on MESH, exact geodesics,\n"
+    "                      as a heat map with its colour scale\n"
+    "  --target Y          the target mesh of --map / --error\n"
+    "  --gt GT.txt         ground truth of --error (default: the identity)\n"
+    "  --sym SYM.txt       symmetry map of MESH for the symmetric --error (see specseg error)\n"
+    "  --view V            front (default), back, left, right, top, bottom or AZ,EL in degrees (|EL| <= 90)\n"
+    "  --size WxH          panel size, 16..8192 each (default 800x800)\n"
+    "  --centers C.txt     vertex indices drawn as black spheres\n"
+    "  --landmarks LM.txt  vertex indices drawn as white spheres (blue on colormaps); 'i j' lines (as\n"
+    "                      specseg match takes) put column 1 on the first mesh and column 2 on the second\n"
+    "                      (or on the --map target)\n"
+    "  --isolines N        N isolines of --scalar, 0..1000 (default 0)\n"
+    "  --range LO,HI       fixes the colour scale of --scalar / --error (default: the data's range; errors\n"
+    "                      from 0)\n"
+    "  --cols N            panels per row, 1..64 (default: all in one row)\n"
+    "  --match-colors REF  permute segment ids to agree with the REF labels (same vertex order)\n"
+    "  --no-titles         no panel titles\n"
+    "  --supersample S     anti-aliasing factor, 1..4 (default 2)\n"
+    "One of the input files may be - (standard input).\n";
+
+static const char *const OPTS[] = {"--labels=", "--scalar=", "--map=", "--error=", "--centers=", "--landmarks=",
+                                   "-o=", "--output=", "--target=", "--gt=", "--sym=", "--match-colors=",
+                                   "--view=", "--size=", "--isolines=", "--cols=", "--supersample=", "--range=",
+                                   "--no-titles", NULL};
 
 #define MAXM 64
 
@@ -91,12 +128,12 @@ static int parse_pair_int(const char *s, int *a, int *b) {
 /* Read a label/index file and check its length. */
 static int read_ints_n(const char *path, int want, int **out, int *n) {
   ss_error err = {{0}};
-  if (ss_read_ints(path, out, n, &err)) return cli_error("%s", err.msg);
+  if (cli_read_ints(path, out, n, &err)) return cli_error("%s", err.msg);
   if (want >= 0 && *n != want) {
     int got = *n;
     free(*out);
     *out = NULL;
-    return cli_error("%s: %d values, the mesh has %d vertices", path, got, want);
+    return cli_error("%s: %d values, the mesh has %d vertices", cli_in_name(path), got, want);
   }
   return 0;
 }
@@ -105,7 +142,7 @@ static int read_ints_n(const char *path, int want, int **out, int *n) {
 static int add_marker_list(panel *p, const char *path, const int *idx, int n, const unsigned char rgb[3]) {
   for (int k = 0; k < n; k++)
     if (idx[k] < 0 || idx[k] >= p->mesh.nv)
-      return cli_error("%s: vertex %d out of range (%s has %d vertices)", path, idx[k], p->path, p->mesh.nv);
+      return cli_error("%s: vertex %d out of range (%s has %d vertices)", cli_in_name(path), idx[k], cli_in_name(p->path), p->mesh.nv);
   double *M = realloc(p->markers, sizeof(double) * 3 * (size_t)(p->nmarkers + n + 1));
   unsigned char *C = M ? realloc(p->mrgb, 3 * (size_t)(p->nmarkers + n + 1)) : NULL;
   if (M) p->markers = M;
@@ -131,7 +168,7 @@ static int add_markers(panel *p, const char *path, const unsigned char rgb[3]) {
 static int add_landmarks(panel *p, const char *path, int column, const unsigned char rgb[3]) {
   int *lx = NULL, *ly = NULL, n = 0;
   ss_error err = {{0}};
-  if (ss_read_landmarks(path, &lx, &ly, &n, NULL, &err)) return cli_error("%s", err.msg);
+  if (cli_read_landmarks(path, &lx, &ly, NULL, &n, NULL, &err)) return cli_error("%s", err.msg);
   int rc = add_marker_list(p, path, column == 2 ? ly : lx, n, rgb);
   free(lx);
   free(ly);
@@ -142,7 +179,7 @@ static int add_landmarks(panel *p, const char *path, int column, const unsigned 
 static int landmark_columns(const char *path) {
   int *lx = NULL, *ly = NULL, n = 0, cols = 0;
   ss_error err = {{0}};
-  if (ss_read_landmarks(path, &lx, &ly, &n, &cols, &err)) {
+  if (cli_read_landmarks(path, &lx, &ly, NULL, &n, &cols, &err)) {
     cli_error("%s", err.msg);
     return 0;
   }
@@ -157,107 +194,85 @@ int cmd_render(int argc, char **argv) {
   enum mode mode = MODE_PLAIN;
   int width = 800, height = 800, isolines = 0, cols = 0, titles = 1, ss = 2, have_range = 0;
   double az = 0, el = 0, rlo = 0, rhi = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    int has = i + 1 < argc;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      printf("usage: %s\n\n"
-             "Software-rendered PNG (z-buffer, Phong, anti-aliased). Modes:\n"
-             "  --labels L.txt   segmentation: one colour per segment, boundary triangles neutral\n"
-             "  --scalar F.txt   per-vertex field, viridis colormap, colour bar, --isolines N levels\n"
-             "  --map MAP.txt --target Y   colour transfer: Y coloured by its normalised xyz, MESH by the\n"
-             "                   colour of its image (MAP line i = vertex of Y for vertex i of MESH)\n"
-             "  --error MAP.txt --target Y  geodesic error d_Y(MAP(x), GT(x)) / sqrt(area Y), exact\n"
-             "                   geodesics, GT = identity unless --gt; heat map with its colour scale\n"
-             "Several meshes become panels (--cols N per row, default all in one row) at a common scale;\n"
-             "per-mesh files are given once for all meshes or once per mesh. --size is per panel\n"
-             "(default 800x800). --centers / --landmarks: vertex indices drawn as black / white (blue on\n"
-             "colormaps) spheres; a landmark file with 'i j' lines (as specseg match takes) puts column 1 on\n"
-             "the first mesh and column 2 on the second (or on the --map target).\n"
-             "--match-colors REF: permute segment ids to agree with REF labels (same vertex order).\n"
-             "--range LO,HI fixes the colour scale of --scalar / --error.\n",
-             usage);
-      return SS_EXIT_OK;
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    const char *v = A.val;
+    if (A.pos) {
+      if (push(&meshes, A.pos)) return cli_bad(&A, "too many meshes (at most %d)", MAXM);
+      continue;
     }
     const char *opt1[] = {"--labels", "--scalar", "--map", "--error", "--centers", "--landmarks"};
     list *lists[] = {&labels, &scalars, &maps, &maps, &centers, &landmarks};
     int matched = 0;
     for (int k = 0; k < 6; k++)
-      if (!strcmp(a, opt1[k])) {
-        if (!has) return cli_usage("%s\n%s needs a file", usage, a);
-        if (push(lists[k], argv[++i])) return cli_usage("too many %s files (at most %d)", a, MAXM);
+      if (cli_is(&A, opt1[k])) {
+        if (push(lists[k], v)) return cli_bad(&A, "too many %s files (at most %d)", opt1[k], MAXM);
         enum mode want = k == 0 ? MODE_LABELS : k == 1 ? MODE_SCALAR : k == 2 ? MODE_MAP : k == 3 ? MODE_ERROR : mode;
         if (k < 4) {
-          if (mode != MODE_PLAIN && mode != want)
-            return cli_usage("%s\n--labels, --scalar, --map and --error exclude each other", usage);
+          if (mode != MODE_PLAIN && mode != want) return cli_bad(&A, "--labels, --scalar, --map and --error exclude each other");
           mode = want;
         }
         matched = 1;
         break;
       }
     if (matched) continue;
-    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (!has) return cli_usage("%s\n-o needs a file", usage);
-      out = argv[++i];
-    } else if (!strcmp(a, "--target")) {
-      if (!has) return cli_usage("%s\n--target needs a mesh", usage);
-      target = argv[++i];
-    } else if (!strcmp(a, "--gt")) {
-      if (!has) return cli_usage("%s\n--gt needs a file", usage);
-      gt_path = argv[++i];
-    } else if (!strcmp(a, "--sym")) {
-      if (!has) return cli_usage("%s\n--sym needs a file", usage);
-      sym_path = argv[++i];
-    } else if (!strcmp(a, "--match-colors")) {
-      if (!has) return cli_usage("%s\n--match-colors needs a labels file", usage);
-      ref_path = argv[++i];
-    } else if (!strcmp(a, "--view")) {
-      if (!has || parse_view(argv[++i], &az, &el))
-        return cli_usage("%s\n--view needs front, back, left, right, top, bottom or AZ,EL (degrees, |EL| <= 90)", usage);
-    } else if (!strcmp(a, "--size")) {
-      if (!has || parse_pair_int(argv[++i], &width, &height))
-        return cli_usage("%s\n--size needs WxH, each between 16 and 8192", usage);
-    } else if (!strcmp(a, "--isolines")) {
-      if (!has || cli_parse_int(argv[++i], 0, 1000, &isolines))
-        return cli_usage("%s\n--isolines needs an integer between 0 and 1000", usage);
-    } else if (!strcmp(a, "--cols")) {
-      if (!has || cli_parse_int(argv[++i], 1, MAXM, &cols))
-        return cli_usage("%s\n--cols needs an integer between 1 and %d", usage, MAXM);
-    } else if (!strcmp(a, "--supersample")) {
-      if (!has || cli_parse_int(argv[++i], 1, 4, &ss)) return cli_usage("%s\n--supersample needs 1..4", usage);
-    } else if (!strcmp(a, "--range")) {
+    if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
+      out = v;
+    } else if (cli_is(&A, "--target")) {
+      target = v;
+    } else if (cli_is(&A, "--gt")) {
+      gt_path = v;
+    } else if (cli_is(&A, "--sym")) {
+      sym_path = v;
+    } else if (cli_is(&A, "--match-colors")) {
+      ref_path = v;
+    } else if (cli_is(&A, "--view")) {
+      if (parse_view(v, &az, &el))
+        return cli_bad(&A, "--view needs front, back, left, right, top, bottom or AZ,EL (degrees, |EL| <= 90), not '%s'", v);
+    } else if (cli_is(&A, "--size")) {
+      if (parse_pair_int(v, &width, &height)) return cli_bad(&A, "--size needs WxH, each between 16 and 8192, not '%s'", v);
+    } else if (cli_is(&A, "--isolines")) {
+      if (cli_parse_int(v, 0, 1000, &isolines)) return cli_bad(&A, "--isolines needs an integer between 0 and 1000, not '%s'", v);
+    } else if (cli_is(&A, "--cols")) {
+      if (cli_parse_int(v, 1, MAXM, &cols)) return cli_bad(&A, "--cols needs an integer between 1 and %d, not '%s'", MAXM, v);
+    } else if (cli_is(&A, "--supersample")) {
+      if (cli_parse_int(v, 1, 4, &ss)) return cli_bad(&A, "--supersample needs 1..4, not '%s'", v);
+    } else if (cli_is(&A, "--range")) {
       char buf[128];
-      if (!has) return cli_usage("%s\n--range needs LO,HI", usage);
-      snprintf(buf, sizeof buf, "%s", argv[++i]);
+      snprintf(buf, sizeof buf, "%s", v);
       char *c = strchr(buf, ',');
-      if (!c) return cli_usage("%s\n--range needs LO,HI", usage);
+      if (!c) return cli_bad(&A, "--range needs LO,HI, not '%s'", v);
       *c = 0;
       if (cli_parse_double(buf, &rlo) || cli_parse_double(c + 1, &rhi) || !isfinite(rlo) || !isfinite(rhi) ||
           !(rlo < rhi))
-        return cli_usage("%s\n--range needs finite LO < HI", usage);
+        return cli_bad(&A, "--range needs finite LO < HI, not '%s'", v);
       have_range = 1;
-    } else if (!strcmp(a, "--no-titles")) {
+    } else if (cli_is(&A, "--no-titles")) {
       titles = 0;
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage("%s\nunknown option '%s'", usage, a);
-    } else if (push(&meshes, a)) {
-      return cli_usage("too many meshes (at most %d)", MAXM);
     }
   }
+  if (A.rc >= 0) return A.rc;
   int nm = meshes.n;
-  if (nm == 0) return cli_usage("%s\nno mesh given", usage);
-  if (!out) return cli_usage("%s\nmissing -o OUT.png", usage);
+  if (nm == 0) return cli_bad(&A, "no mesh given");
+  if (!out) return cli_bad(&A, "missing -o OUT.png");
   if ((mode == MODE_MAP || mode == MODE_ERROR) && !target)
-    return cli_usage("%s\n--map / --error need --target Y", usage);
-  if (target && mode != MODE_MAP && mode != MODE_ERROR) return cli_usage("%s\n--target goes with --map or --error", usage);
-  if ((gt_path || sym_path) && mode != MODE_ERROR) return cli_usage("%s\n--gt / --sym go with --error", usage);
-  if (ref_path && mode != MODE_LABELS) return cli_usage("%s\n--match-colors goes with --labels", usage);
+    return cli_bad(&A, "--map / --error need --target Y");
+  if (target && mode != MODE_MAP && mode != MODE_ERROR) return cli_bad(&A, "--target goes with --map or --error");
+  if ((gt_path || sym_path) && mode != MODE_ERROR) return cli_bad(&A, "--gt / --sym go with --error");
+  if (ref_path && mode != MODE_LABELS) return cli_bad(&A, "--match-colors goes with --labels");
   const list *all[] = {&labels, &scalars, &maps, &centers, &landmarks};
   const char *names[] = {"--labels", "--scalar", "--map/--error", "--centers", "--landmarks"};
   for (int k = 0; k < 5; k++)
     if (all[k]->n > 1 && all[k]->n != nm)
-      return cli_usage("%s\n%s given %d times for %d meshes (give it once or once per mesh)", usage, names[k],
-                       all[k]->n, nm);
+      return cli_bad(&A, "%s given %d times for %d meshes (give it once or once per mesh)", names[k], all[k]->n, nm);
+
+  /* standard input holds one file */
+  int from_stdin = cli_is_std(target) + cli_is_std(gt_path) + cli_is_std(sym_path) + cli_is_std(ref_path);
+  for (int k = 0; k < 5; k++) from_stdin += cli_count_std(all[k]->v, all[k]->n);
+  from_stdin += cli_count_std(meshes.v, meshes.n);
+  if (from_stdin > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  FILE *report = cli_is_std(out) ? stderr : stdout;
 
   /* a two-column landmark file: column 1 on the first mesh, column 2 on the second (or the target) */
   int lm_two = 0;
@@ -266,8 +281,8 @@ int cmd_render(int argc, char **argv) {
     if (c == 0) return SS_EXIT_FAIL;
     lm_two = c == 2;
     if (lm_two && mode != MODE_MAP && mode != MODE_ERROR && nm > 2)
-      return cli_usage("%s\n%s has two columns (first and second shape) but %d meshes are given", usage,
-                       landmarks.v[0], nm);
+      return cli_bad(&A, "%s has two columns (first and second shape) but %d meshes are given",
+                     cli_in_name(landmarks.v[0]), nm);
   }
   const unsigned char *lm_rgb = mode == MODE_LABELS || mode == MODE_PLAIN ? LANDMARK_RGB : LANDMARK_RGB_CMAP;
 
@@ -279,13 +294,13 @@ int cmd_render(int argc, char **argv) {
   unsigned char *canvas = NULL;
   double t0 = ss_time();
   if (!P || !SP) { free(P); free(SP); return cli_error("out of memory"); }
-  if (target && ss_read_mesh(target, &Y, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  if (target && cli_read_mesh(target, &Y, &err)) { rc = cli_error("%s", err.msg); goto done; }
   if (mode == MODE_MAP) { /* the target, coloured by its coordinates, is the first panel */
     P[0].path = target;
     if (ss_mesh_copy(&Y, &P[0].mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
     if (!(P[0].vrgb = malloc(3 * (size_t)Y.nv + 1))) { rc = cli_error("out of memory"); goto done; }
     ss_coordinate_colors(&Y, P[0].vrgb);
-    stem(target, P[0].title, sizeof P[0].title);
+    stem(cli_in_name(target), P[0].title, sizeof P[0].title);
     if (lm_two && add_landmarks(&P[0], landmarks.v[0], 2, LANDMARK_RGB_CMAP)) { rc = SS_EXIT_FAIL; goto done; }
     np = 1;
   }
@@ -303,26 +318,26 @@ int cmd_render(int argc, char **argv) {
   for (int i = 0; i < nm; i++) {
     panel *p = &P[np++];
     p->path = meshes.v[i];
-    if (ss_read_mesh(p->path, &p->mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    if (cli_read_mesh(p->path, &p->mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
     int nv = p->mesh.nv, n = 0;
-    stem(p->path, p->title, sizeof p->title);
+    stem(cli_in_name(p->path), p->title, sizeof p->title);
     if (mode == MODE_LABELS) {
       if (read_ints_n(pick(&labels, i), nv, &ints, &n)) { rc = SS_EXIT_FAIL; goto done; }
       for (int v = 0; v < nv; v++)
-        if (ints[v] < -1) { rc = cli_error("%s: line %d: negative label %d", pick(&labels, i), v + 1, ints[v]); goto done; }
+        if (ints[v] < -1) { rc = cli_error("%s: line %d: negative label %d", cli_in_name(pick(&labels, i)), v + 1, ints[v]); goto done; }
       if (refl) {
         if (nref != nv) {
-          rc = cli_error("%s: %d labels, %s has %d vertices", ref_path, nref, p->path, nv);
+          rc = cli_error("%s: %d labels, %s has %d vertices", cli_in_name(ref_path), nref, cli_in_name(p->path), nv);
           goto done;
         }
-        if (ss_labels_align(ints, refl, nv, &err)) { rc = cli_error("%s: %s", ref_path, err.msg); goto done; }
+        if (ss_labels_align(ints, refl, nv, &err)) { rc = cli_error("%s: %s", cli_in_name(ref_path), err.msg); goto done; }
       }
       int nseg = 0;
       for (int v = 0; v < nv; v++)
         if (ints[v] + 1 > nseg) nseg = ints[v] + 1;
       if (!(p->frgb = malloc(3 * (size_t)p->mesh.nf + 1))) { rc = cli_error("out of memory"); goto done; }
       /* as the paper's figures: a triangle takes its segment's colour only when all three corners agree */
-      if (ss_segmentation_face_colors(&p->mesh, ints, NEUTRAL, p->frgb, &err)) { rc = cli_error("%s: %s", p->path, err.msg); goto done; }
+      if (ss_segmentation_face_colors(&p->mesh, ints, NEUTRAL, p->frgb, &err)) { rc = cli_error("%s: %s", cli_in_name(p->path), err.msg); goto done; }
       if (titles) {
         size_t len = strlen(p->title);
         snprintf(p->title + len, sizeof p->title - len, " (%d)", nseg);
@@ -330,28 +345,28 @@ int cmd_render(int argc, char **argv) {
       free(ints);
       ints = NULL;
     } else if (mode == MODE_SCALAR) {
-      if (ss_read_doubles(pick(&scalars, i), &p->scalar, &n, &err)) { rc = cli_error("%s", err.msg); goto done; }
-      if (n != nv) { rc = cli_error("%s: %d values, %s has %d vertices", pick(&scalars, i), n, p->path, nv); goto done; }
+      if (cli_read_doubles(pick(&scalars, i), &p->scalar, &n, &err)) { rc = cli_error("%s", err.msg); goto done; }
+      if (n != nv) { rc = cli_error("%s: %d values, %s has %d vertices", cli_in_name(pick(&scalars, i)), n, cli_in_name(p->path), nv); goto done; }
     } else if (mode == MODE_MAP || mode == MODE_ERROR) {
       const char *mp = pick(&maps, i);
       if (read_ints_n(mp, nv, &ints, &n)) { rc = SS_EXIT_FAIL; goto done; }
       for (int v = 0; v < nv; v++)
         if (ints[v] < 0 || ints[v] >= Y.nv) {
-          rc = cli_error("%s: line %d: vertex %d out of range (%s has %d vertices)", mp, v + 1, ints[v], target, Y.nv);
+          rc = cli_error("%s: line %d: vertex %d out of range (%s has %d vertices)", cli_in_name(mp), v + 1, ints[v], cli_in_name(target), Y.nv);
           goto done;
         }
       if (mode == MODE_MAP) {
         if (!(p->vrgb = malloc(3 * (size_t)nv + 1))) { rc = cli_error("out of memory"); goto done; }
-        if (ss_map_transfer_colors(nv, ints, Y.nv, P[0].vrgb, p->vrgb, &err)) { rc = cli_error("%s: %s", mp, err.msg); goto done; }
+        if (ss_map_transfer_colors(nv, ints, Y.nv, P[0].vrgb, p->vrgb, &err)) { rc = cli_error("%s: %s", cli_in_name(mp), err.msg); goto done; }
       } else {
         if (!(p->scalar = malloc(sizeof(double) * (size_t)nv + 1))) { rc = cli_error("out of memory"); goto done; }
         double mean = 0;
         if (!gt && nv > Y.nv) {
-          rc = cli_error("identity ground truth: %s has %d vertices, %s only %d", p->path, nv, target, Y.nv);
+          rc = cli_error("identity ground truth: %s has %d vertices, %s only %d", cli_in_name(p->path), nv, cli_in_name(target), Y.nv);
           goto done;
         }
         if (ss_map_geodesic_error(&Y, nv, ints, gt, sym, p->scalar, &mean, &err)) {
-          rc = cli_error("%s: %s", mp, err.msg);
+          rc = cli_error("%s: %s", cli_in_name(mp), err.msg);
           goto done;
         }
         size_t len = strlen(p->title);
@@ -413,10 +428,10 @@ int cmd_render(int argc, char **argv) {
   double t_render = ss_time();
   if (ss_render_panels(SP, np, &o, &L, &canvas, &cw, &ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
   t_render = ss_time() - t_render;
-  if (ss_write_png(out, canvas, (int)cw, (int)ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
-  printf("%d panel%s %dx%d rendered in %.3f s (total %.3f s) -> %s (%dx%d)\n", np, np == 1 ? "" : "s", width,
-         height, t_render, ss_time() - t0, out, cw, ch);
-  if (fflush(stdout) != 0) rc = cli_error("cannot write to standard output");
+  if (cli_write_png(out, canvas, (int)cw, (int)ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  fprintf(report, "%d panel%s %dx%d rendered in %.3f s (total %.3f s) -> %s (%dx%d)\n", np, np == 1 ? "" : "s",
+          width, height, t_render, ss_time() - t0, cli_out_name(out), cw, ch);
+  if (fflush(report) != 0) rc = cli_error("cannot write to standard output");
 done:
   for (int k = 0; k <= nm; k++) {
     ss_mesh_free(&P[k].mesh);

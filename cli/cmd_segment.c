@@ -8,72 +8,78 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *USAGE =
-    "specseg segment MESH -o LABELS.txt [--centers CENTERS.txt] [--ply OUT.ply] [--faces N] "
-    "[--no-streamline] [--timings]";
+static const char USAGE[] =
+    "usage: specseg segment MESH -o LABELS.txt [--centers CENTERS.txt] [--ply OUT.ply] [--faces N]\n"
+    "                       [--no-streamline] [--timings]\n"
+    "\n"
+    "Coherent segmentation (paper section 4): CMCF smoothing, isotropic remeshing, critical points of\n"
+    "the Fiedler function, intrinsic Voronoi cells, labels mapped back to the input's vertices. Prints\n"
+    "a summary line (on stderr when an output goes to standard output).\n"
+    "\n"
+    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  -o, --output FILE   labels: one segment index (0..m-1) per input vertex, a line (required)\n"
+    "  --centers FILE      line s = input vertex at the centre of segment s\n"
+    "  --ply FILE          the input mesh coloured by segment, binary PLY\n"
+    "  --faces N           remeshing target, 4..100000000 triangles (default 15000)\n"
+    "  --no-streamline     everything straight on the input (no smoothing, no remeshing)\n"
+    "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
+    "One of the output files may be - (standard output).\n";
+
+static const char *const OPTS[] = {"-o=", "--output=", "--centers=", "--ply=", "--faces=", "--no-streamline",
+                                   "--timings", NULL};
 
 int cmd_segment(int argc, char **argv) {
   const char *in = NULL, *labels_path = NULL, *centers_path = NULL, *ply_path = NULL;
   int timings = 0;
   ss_segment_options opt;
   ss_segment_default_options(&opt);
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      printf("usage: %s\n\n"
-             "Coherent segmentation (paper §4): CMCF smoothing, isotropic remeshing, critical points of\n"
-             "the Fiedler function, intrinsic Voronoi cells. LABELS: one segment index (0..m-1) per input\n"
-             "vertex. CENTERS: line s = input vertex at the centre of segment s. --ply writes the input\n"
-             "mesh coloured by segment. --faces N: remeshing target (default 15000). --no-streamline:\n"
-             "everything straight on the input. --timings: 'timing: STAGE SECONDS' lines on stderr.\n",
-             USAGE);
-      return SS_EXIT_OK;
-    }
-    int has_next = i + 1 < argc;
-    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (!has_next) return cli_usage("%s: %s needs a file", USAGE, a);
-      labels_path = argv[++i];
-    } else if (!strcmp(a, "--centers")) {
-      if (!has_next) return cli_usage("%s: --centers needs a file", USAGE);
-      centers_path = argv[++i];
-    } else if (!strcmp(a, "--ply")) {
-      if (!has_next) return cli_usage("%s: --ply needs a file", USAGE);
-      ply_path = argv[++i];
-    } else if (!strcmp(a, "--faces")) {
-      if (!has_next || cli_parse_int(argv[++i], 4, 100000000, &opt.target_faces))
-        return cli_usage("%s: --faces needs an integer between 4 and 100000000", USAGE);
-    } else if (!strcmp(a, "--no-streamline")) {
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  while (cli_next(&A)) {
+    const char *v = A.val;
+    if (A.pos) {
+      if (in) return cli_bad(&A, "unexpected argument '%s'", A.pos);
+      in = A.pos;
+    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
+      labels_path = v;
+    } else if (cli_is(&A, "--centers")) {
+      centers_path = v;
+    } else if (cli_is(&A, "--ply")) {
+      ply_path = v;
+    } else if (cli_is(&A, "--faces")) {
+      if (cli_parse_int(v, 4, 100000000, &opt.target_faces))
+        return cli_bad(&A, "--faces needs an integer between 4 and 100000000, not '%s'", v);
+    } else if (cli_is(&A, "--no-streamline")) {
       opt.no_streamline = 1;
-    } else if (!strcmp(a, "--timings")) {
+    } else if (cli_is(&A, "--timings")) {
       timings = 1;
-    } else if (a[0] == '-' && a[1]) {
-      return cli_usage("%s: unknown option '%s'", USAGE, a);
-    } else if (!in) {
-      in = a;
-    } else {
-      return cli_usage("%s: unexpected argument '%s'", USAGE, a);
     }
   }
-  if (!in) return cli_usage("%s: missing MESH", USAGE);
-  if (!labels_path) return cli_usage("%s: missing -o LABELS.txt", USAGE);
+  if (A.rc >= 0) return A.rc;
+  if (!in) return cli_bad(&A, "missing MESH");
+  if (!labels_path) return cli_bad(&A, "missing -o LABELS.txt");
+  const char *outs[3] = {labels_path, centers_path, ply_path};
+  int to_stdout = cli_count_std(outs, 3);
+  if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
+  FILE *report = to_stdout ? stderr : stdout;
 
   ss_error err = {{0}};
   ss_mesh m = {0};
   ss_segmentation seg = {0};
   int rc = SS_EXIT_OK;
   double t0 = ss_time();
-  if (ss_read_mesh(in, &m, &err)) return cli_error("%s", err.msg);
+  if (cli_read_mesh(in, &m, &err)) return cli_error("%s", err.msg);
   double t_read = ss_time() - t0;
   if (ss_segment(&m, &opt, &seg, &err)) {
-    rc = cli_error("%s: %s", in, err.msg);
+    rc = cli_error("%s: %s", cli_in_name(in), err.msg);
     goto done;
   }
   seg.t_read = t_read;
-  if (ss_write_ints(labels_path, seg.labels, seg.nv, &err)) {
+  if (cli_write_ints(labels_path, seg.labels, seg.nv, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
-  if (centers_path && ss_write_ints(centers_path, seg.centers, seg.m, &err)) {
+  if (centers_path && cli_write_ints(centers_path, seg.centers, seg.m, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
@@ -84,7 +90,7 @@ int cmd_segment(int argc, char **argv) {
       goto done;
     }
     for (int i = 0; i < m.nv; i++) ss_label_color(seg.labels[i], rgb + 3 * (size_t)i);
-    ss_status st = ss_write_mesh(ply_path, &m, rgb, &err);
+    ss_status st = cli_write_mesh(ply_path, &m, rgb, "ply", &err);
     free(rgb);
     if (st) {
       rc = cli_error("%s", err.msg);
@@ -102,8 +108,8 @@ int cmd_segment(int argc, char **argv) {
     fprintf(stderr, "timing: ivd %.6f\n", seg.t_ivd);
     fprintf(stderr, "timing: total %.6f\n", seg.t_read + seg.t_total);
   }
-  printf("%d segments (%d critical points before clean-up), %d vertices -> %s\n", seg.m, seg.ncrit_raw, seg.nv,
-         labels_path);
+  fprintf(report, "%d segments (%d critical points before clean-up), %d vertices -> %s\n", seg.m, seg.ncrit_raw,
+          seg.nv, cli_out_name(labels_path));
 done:
   ss_segmentation_free(&seg);
   ss_mesh_free(&m);

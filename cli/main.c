@@ -60,43 +60,76 @@ int cli_parse_double(const char *s, double *out) {
 typedef struct {
   const char *name;
   int (*run)(int, char **);
-  const char *help;
+  const char *what;
 } command;
 
 static const command commands[] = {
-    {"info", cmd_info, "MESH                      mesh statistics and checks"},
-    {"eigs", cmd_eigs, "MESH -k K [--evecs F.npy]  Laplace-Beltrami eigenvalues"},
-    {"demo", cmd_demo, "[-o DIR]                  the pipeline on built-in synthetic shapes"},
-    {"smooth", cmd_smooth, "MESH -o OUT [--steps N] [--dt D]  conformalized mean curvature flow"},
-    {"remesh", cmd_remesh, "MESH -o OUT [--faces N]   isotropic remeshing"},
-    {"geodesic", cmd_geodesic, "MESH --source I [--source J ...] [--method exact|graph|edge] [--max-dist D] -o DIST.txt"},
-    {"segment", cmd_segment, "MESH -o LABELS [--centers F] [--ply F] [--faces N] [--no-streamline] [--timings]"},
-    {"match", cmd_match, "X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] -o MAP.txt [--fmap C.npy] [--pairs P.txt] [--timings]"},
-    {"error", cmd_error, "MAP.txt Y [--gt GT.txt] [--sym SYM.txt] [-o E.txt]  geodesic error of a map"},
-    {"eval", cmd_eval, "--data DIR --table1|--coherency|--timings|--figures OUTDIR [...] | merge CSV...  the paper's evaluation"},
-    {"render", cmd_render, "MESH [MESH2 ...] -o OUT.png [--labels L | --scalar F | --map M --target Y | --error M --target Y]  pictures"},
+    {"info", cmd_info, "mesh statistics and checks"},
+    {"eigs", cmd_eigs, "Laplace-Beltrami eigenvalues (and eigenvectors as .npy)"},
+    {"demo", cmd_demo, "the pipeline on built-in synthetic shapes, no data needed"},
+    {"smooth", cmd_smooth, "conformalized mean curvature flow"},
+    {"remesh", cmd_remesh, "isotropic remeshing"},
+    {"geodesic", cmd_geodesic, "geodesic distances from source vertices"},
+    {"segment", cmd_segment, "coherent spectral segmentation"},
+    {"match", cmd_match, "point-to-point map between two shapes (functional maps)"},
+    {"error", cmd_error, "geodesic error of a map"},
+    {"eval", cmd_eval, "the paper's evaluation (Table 1, coherency, timings, figures); eval merge"},
+    {"render", cmd_render, "pictures of segmentations, fields, maps and map errors (PNG)"},
 };
+enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
 
 static void print_help(FILE *f) {
-  fprintf(f, "specseg — coherent spectral segmentation and functional-map matching\n\nusage: specseg COMMAND [ARGS]\n\n");
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].help);
+  fprintf(f, "specseg %s — coherent spectral segmentation and functional-map matching\n\n"
+             "usage: specseg COMMAND [ARGS]\n\ncommands:\n",
+          ss_version());
+  for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].what);
+  fprintf(f, "  %-9s %s\n  %-9s %s\n\n", "help", "this list; help COMMAND: the command's usage and options", "version",
+          "the version (also --version)");
+  fprintf(f, "specseg COMMAND --help (or -h) prints the command's usage and options. Options that take a\n"
+             "value accept --opt VALUE and --opt=VALUE; '-' as a file name is standard input or output.\n"
+             "Exit codes: 0 ok, 1 input or computation error, 2 usage error.\n");
 }
 
-int main(int argc, char **argv) {
+static const command *find_command(const char *name) {
+  for (int i = 0; i < NCOMMANDS; i++)
+    if (!strcmp(name, commands[i].name)) return &commands[i];
+  return NULL;
+}
+
+static int run(int argc, char **argv) {
   if (argc < 2) {
     print_help(stderr);
     return SS_EXIT_USAGE;
   }
-  if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
-    print_help(stdout);
-    return SS_EXIT_OK;
+  const char *a = argv[1];
+  if (!strcmp(a, "-h") || !strcmp(a, "--help") || !strcmp(a, "help")) {
+    if (argc == 2) {
+      print_help(stdout);
+      return fflush(stdout) ? cli_error("cannot write to standard output") : SS_EXIT_OK;
+    }
+    if (argc > 3) return cli_usage("help takes one command name (try 'specseg help')");
+    const command *c = find_command(argv[2]);
+    if (!c) return cli_usage("unknown command '%s' (try 'specseg help')", argv[2]);
+    char help[] = "--help";
+    char *av[3] = {argv[2], help, NULL};
+    return c->run(2, av); /* the command prints its own usage text */
+  }
+  if (!strcmp(a, "--version") || !strcmp(a, "version")) {
+    if (argc > 2) return cli_usage("%s takes no arguments", a);
+    printf("specseg %s\n", ss_version());
+    return fflush(stdout) ? cli_error("cannot write to standard output") : SS_EXIT_OK;
   }
   /* Our parallelism is OpenMP over shapes, pairs, queries and rows; OpenBLAS's own threads only
    * spin-wait beside it (FAUST match: 0.81 s wall / 1.04 s CPU with one BLAS thread, 0.92 s / 1.8 s
    * with two). OPENBLAS_NUM_THREADS in the environment still wins. */
   if (!getenv("OPENBLAS_NUM_THREADS")) openblas_set_num_threads(1);
-  for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-    if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
-  return cli_usage("unknown command '%s' (try 'specseg --help')", argv[1]);
+  const command *c = find_command(a);
+  if (c) return c->run(argc - 1, argv + 1);
+  return cli_usage("unknown command '%s' (try 'specseg help')", a);
+}
+
+int main(int argc, char **argv) {
+  int rc = run(argc, argv);
+  cli_io_cleanup();
+  return rc;
 }

@@ -361,6 +361,74 @@ static void test_vectors(void) {
   CHECK(ss_read_ints(tmpdir, &ri, &ni, &err) == SS_ERR_IO);
 }
 
+/* The in-memory readers give what the path readers give on the same bytes, sniff the mesh format
+ * (a name without extension), name the input in messages and take no NUL terminator. */
+static void test_memory(void) {
+  ss_error err = {{0}};
+  ss_mesh m, r, q;
+  test_mesh(&m);
+  const char *p[4] = {tmp("mem.off"), tmp("mem.ply"), tmp("mema.ply"), tmp("membe.ply")};
+  CHECK(ss_write_off(p[0], &m, NULL, &err) == SS_OK);
+  CHECK(ss_write_ply(p[1], &m, NULL, SS_PLY_BINARY_LE, &err) == SS_OK);
+  CHECK(ss_write_ply(p[2], &m, NULL, SS_PLY_ASCII, &err) == SS_OK);
+  CHECK(ss_write_ply(p[3], &m, NULL, SS_PLY_BINARY_BE, &err) == SS_OK);
+  for (int k = 0; k < 4; k++) {
+    size_t n;
+    char *b = read_all(p[k], &n);
+    CHECK(b != NULL);
+    if (!b) continue;
+    char *exact = malloc(n + 1); /* exactly n bytes readable, no trailing NUL */
+    memcpy(exact, b, n);
+    CHECK_MSG(ss_read_mesh_memory(exact, n, "<stdin>", &r, &err) == SS_OK, "%s", err.msg);
+    CHECK(ss_read_mesh(p[k], &q, &err) == SS_OK && same_mesh(&r, &q) && same_mesh(&m, &r));
+    ss_mesh_free(&r);
+    ss_mesh_free(&q);
+    free(exact);
+    free(b);
+  }
+  ss_mesh_free(&m);
+  const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  CHECK(ss_read_mesh_memory(obj, sizeof obj - 1, NULL, &r, &err) == SS_OK && r.nv == 3 && r.nf == 1);
+  ss_mesh_free(&r);
+  const char bad[] = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
+  CHECK_MSG(ss_read_mesh_memory(bad, sizeof bad - 1, "<stdin>", &r, &err) == SS_ERR_PARSE &&
+                !strncmp(err.msg, "<stdin>:6:", 10) && r.V == NULL,
+            "%s", err.msg);
+  CHECK(ss_read_mesh_memory("", 0, "<stdin>", &r, &err) == SS_ERR_PARSE && strstr(err.msg, "<stdin>:1: empty"));
+  CHECK(ss_read_mesh_memory("hello\n", 6, NULL, &r, &err) == SS_ERR_UNSUPPORTED && !strncmp(err.msg, "<memory>:1:", 11));
+  CHECK(ss_read_mesh_memory(NULL, 5, "x", &r, &err) == SS_ERR_INVALID);
+  CHECK(ss_read_mesh_memory(obj, 3, "x", NULL, &err) == SS_ERR_INVALID);
+
+  int *ri = NULL, ni = -1;
+  double *rd = NULL;
+  int nd = -1;
+  const char ints[] = "# c\n3\n-4 # x\n"; /* no trailing NUL given: length excludes it */
+  CHECK(ss_read_ints_memory(ints, sizeof ints - 1, "<stdin>", &ri, &ni, &err) == SS_OK && ni == 2 && ri[0] == 3 &&
+        ri[1] == -4);
+  free(ri);
+  CHECK(ss_read_ints_memory("1\n2 3\n", 6, "<stdin>", &ri, &ni, &err) == SS_ERR_PARSE &&
+        !strncmp(err.msg, "<stdin>:2:", 10) && ri == NULL);
+  CHECK(ss_read_doubles_memory("0.5\ninf\n", 8, NULL, &rd, &nd, &err) == SS_OK && nd == 2 && rd[0] == 0.5 &&
+        isinf(rd[1]));
+  free(rd);
+  CHECK(ss_read_doubles_memory(NULL, 0, NULL, &rd, &nd, &err) == SS_OK && nd == 0 && rd != NULL);
+  free(rd);
+  CHECK(ss_read_doubles_memory("1\n", 2, NULL, NULL, &nd, &err) == SS_ERR_INVALID);
+  /* "12" of "12\n" only: a value cut at the buffer's end */
+  CHECK(ss_read_ints_memory("12\n", 1, NULL, &ri, &ni, &err) == SS_OK && ni == 1 && ri[0] == 1);
+  free(ri);
+
+  int *lx, *ly, *ll, nl, cols;
+  CHECK(ss_read_landmarks_memory("5\n# c\n1 2\n", 10, "<stdin>", &lx, &ly, &ll, &nl, &cols, &err) == SS_OK &&
+        nl == 2 && lx[0] == 5 && ly[0] == 5 && lx[1] == 1 && ly[1] == 2 && ll[0] == 1 && ll[1] == 3 && cols == 2);
+  free(lx), free(ly), free(ll);
+  CHECK(ss_read_landmarks_memory("", 0, "<stdin>", &lx, &ly, NULL, &nl, NULL, &err) == SS_ERR_PARSE &&
+        strstr(err.msg, "<stdin>: no landmark") && lx == NULL);
+  CHECK(ss_read_landmarks_memory("1 2 3\n", 6, "<stdin>", &lx, &ly, NULL, &nl, NULL, &err) == SS_ERR_PARSE &&
+        !strncmp(err.msg, "<stdin>:1:", 10));
+  CHECK(ss_read_landmarks_memory("1\n", 2, NULL, NULL, &ly, NULL, &nl, NULL, &err) == SS_ERR_INVALID);
+}
+
 static void test_faust(void) {
   const char *d = tl_data_dir();
   if (!d) { SKIP("FAUST data not found (SS_DATA_DIR)"); return; }
@@ -391,6 +459,7 @@ int main(void) {
   test_ply_variants();
   test_errors();
   test_vectors();
+  test_memory();
   test_faust();
   /* clean up the scratch folder */
   DIR *d = opendir(tmpdir);

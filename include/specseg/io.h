@@ -20,6 +20,10 @@ SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
+/* The same from len bytes in memory (e.g. a program's standard input): the format always comes from
+ * content sniffing (a "ply" first line, an OFF header or counts, OBJ keywords); name (NULL:
+ * "<memory>") stands for the file in messages, "NAME:LINE: what". buf is not modified or kept. */
+SS_API ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err);
 
 /* Write by extension (.off or .ply; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
  * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue).
@@ -42,6 +46,10 @@ SS_API ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err
 SS_API ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err);
 SS_API ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err);
 SS_API ss_status ss_write_doubles(const char *path, const double *v, int n, ss_error *err);
+/* ss_read_ints / ss_read_doubles of len bytes in memory; name (NULL: "<memory>") as PATH in messages. */
+SS_API ss_status ss_read_ints_memory(const void *buf, size_t len, const char *name, int **out, int *n, ss_error *err);
+SS_API ss_status ss_read_doubles_memory(const void *buf, size_t len, const char *name, double **out, int *n,
+                                        ss_error *err);
 /* Landmark file: one landmark a line, "i" (same vertex on both shapes) or "i j" (i on the first shape,
  * j on the second); '#' comments and blank lines skipped. *lx, *ly: n malloc'd vertex indices (ly =
  * lx on one-column lines). columns (may be NULL): 2 when any line has two indices, else 1. Errors
@@ -51,6 +59,9 @@ SS_API ss_status ss_read_landmarks(const char *path, int **lx, int **ly, int *n,
  * caller that checks them against its meshes can say "PATH:LINE: ..." too. */
 SS_API ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
                                          ss_error *err);
+/* ss_read_landmarks_lines of len bytes in memory; name (NULL: "<memory>") as PATH in messages. */
+SS_API ss_status ss_read_landmarks_memory(const void *buf, size_t len, const char *name, int **lx, int **ly,
+                                          int **lines, int *n, int *columns, ss_error *err);
 
 #ifdef __cplusplus
 }

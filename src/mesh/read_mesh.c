@@ -1,6 +1,7 @@
 /* Format dispatch for mesh reading (extension first, then content sniffing) and the shared
  * hand-over of grown arrays into an ss_mesh. */
 #include <ctype.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -59,22 +60,47 @@ static int sniff(const char *buf, size_t len) {
   return 0;
 }
 
+/* The parser for a loaded buffer: by the extension of `path` when given, else by content. */
+static ss_status parse_any(const char *path, const char *name, const char *buf, size_t len, ss_mesh *m,
+                           ss_error *err) {
+  int kind = path && ext_is(path, "off")   ? 'o'
+             : path && ext_is(path, "obj") ? 'j'
+             : path && ext_is(path, "ply") ? 'p'
+                                           : sniff(buf, len);
+  switch (kind) {
+    case 'o': return io_parse_off(name, buf, len, m, err);
+    case 'j': return io_parse_obj(name, buf, len, m, err);
+    case 'p': return io_parse_ply(name, buf, len, m, err);
+    default:
+      return len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", name)
+                      : ss_fail(err, SS_ERR_UNSUPPORTED, "%s:1: unknown mesh format (expected OFF, OBJ or PLY)", name);
+  }
+}
+
 ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
   memset(m, 0, sizeof *m);
   char *buf;
   size_t len;
   ss_status st = io_slurp(path, &buf, &len, err);
   if (st) return st;
-  int kind = ext_is(path, "off") ? 'o' : ext_is(path, "obj") ? 'j' : ext_is(path, "ply") ? 'p' : sniff(buf, len);
-  switch (kind) {
-    case 'o': st = io_parse_off(path, buf, len, m, err); break;
-    case 'j': st = io_parse_obj(path, buf, len, m, err); break;
-    case 'p': st = io_parse_ply(path, buf, len, m, err); break;
-    default:
-      st = len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", path)
-                    : ss_fail(err, SS_ERR_UNSUPPORTED, "%s:1: unknown mesh format (expected OFF, OBJ or PLY)", path);
-  }
+  st = parse_any(path, path, buf, len, m, err);
   free(buf);
+  return st;
+}
+
+ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err) {
+  if (!m) return ss_fail(err, SS_ERR_INVALID, "read mesh: NULL output");
+  memset(m, 0, sizeof *m);
+  if (!name) name = "<memory>";
+  if (!buf && len > 0) return ss_fail(err, SS_ERR_INVALID, "%s: NULL buffer", name);
+  if (len == SIZE_MAX) return ss_fail(err, SS_ERR_NOMEM, "%s: buffer too large", name);
+  /* the parsers get what io_slurp gives them: a private copy with a trailing NUL */
+  char *copy = malloc(len + 1);
+  if (!copy) return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", name);
+  if (len) memcpy(copy, buf, len);
+  copy[len] = '\0';
+  ss_status st = parse_any(NULL, name, copy, len, m, err);
+  free(copy);
   return st;
 }
 

@@ -10,17 +10,10 @@ ss_status ss_read_landmarks(const char *path, int **lx, int **ly, int *n, int *c
   return ss_read_landmarks_lines(path, lx, ly, NULL, n, columns, err);
 }
 
-ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
-                                  ss_error *err) {
-  if (!lx || !ly || !n) return ss_fail(err, SS_ERR_INVALID, "landmarks: NULL output");
-  *lx = *ly = NULL;
-  if (lines) *lines = NULL;
-  *n = 0;
-  if (columns) *columns = 0;
-  char *buf;
-  size_t len;
-  ss_status st = io_slurp(path, &buf, &len, err);
-  if (st) return st;
+/* The landmarks of [buf, buf + len); `path` names the input in messages. Outputs are reset by the callers. */
+static ss_status parse_landmarks(const char *path, const char *buf, size_t len, int **lx, int **ly, int **lines,
+                                 int *n, int *columns, ss_error *err) {
+  ss_status st = SS_OK;
   io_text t;
   io_text_init(&t, buf, len);
   io_ivec a = {0}, b = {0}, ln = {0};
@@ -50,7 +43,6 @@ ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **li
     else if (a.n >= INT_MAX)
       st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "too many landmarks");
   }
-  free(buf);
   if (!st && a.n == 0) st = ss_fail(err, SS_ERR_PARSE, "%s: no landmark", path);
   if (st) {
     free(a.a);
@@ -64,4 +56,34 @@ ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **li
   *n = (int)a.n;
   if (columns) *columns = cols;
   return SS_OK;
+}
+
+/* Resets the outputs; -1 when a required one is NULL. */
+static int reset_outputs(int **lx, int **ly, int **lines, int *n, int *columns) {
+  if (!lx || !ly || !n) return -1;
+  *lx = *ly = NULL;
+  if (lines) *lines = NULL;
+  *n = 0;
+  if (columns) *columns = 0;
+  return 0;
+}
+
+ss_status ss_read_landmarks_lines(const char *path, int **lx, int **ly, int **lines, int *n, int *columns,
+                                  ss_error *err) {
+  if (reset_outputs(lx, ly, lines, n, columns)) return ss_fail(err, SS_ERR_INVALID, "landmarks: NULL output");
+  char *buf;
+  size_t len;
+  ss_status st = io_slurp(path, &buf, &len, err);
+  if (st) return st;
+  st = parse_landmarks(path, buf, len, lx, ly, lines, n, columns, err);
+  free(buf);
+  return st;
+}
+
+ss_status ss_read_landmarks_memory(const void *buf, size_t len, const char *name, int **lx, int **ly, int **lines,
+                                   int *n, int *columns, ss_error *err) {
+  if (reset_outputs(lx, ly, lines, n, columns)) return ss_fail(err, SS_ERR_INVALID, "landmarks: NULL output");
+  if (!name) name = "<memory>";
+  if (!buf && len > 0) return ss_fail(err, SS_ERR_INVALID, "%s: NULL buffer", name);
+  return parse_landmarks(name, buf ? (const char *)buf : "", len, lx, ly, lines, n, columns, err);
 }

@@ -9,14 +9,11 @@
 #include "specseg/io.h"
 #include "util/io_text.h"
 
-/* Shared reader: parses one value per content line into a growing array of doubles or ints. */
-static ss_status read_values(const char *path, int as_int, void **out, int *n, ss_error *err) {
-  *out = NULL;
-  *n = 0;
-  char *buf;
-  size_t len;
-  ss_status st = io_slurp(path, &buf, &len, err);
-  if (st) return st;
+/* Shared parser: one value per content line of [buf, buf + len) into a growing array of doubles or
+ * ints; `path` names the input in messages. */
+static ss_status parse_values(const char *path, const char *buf, size_t len, int as_int, void **out, int *n,
+                              ss_error *err) {
+  ss_status st = SS_OK;
   io_text t;
   io_text_init(&t, buf, len);
   io_dvec dv = {0};
@@ -48,7 +45,6 @@ static ss_status read_values(const char *path, int as_int, void **out, int *n, s
     if (!st && !io_line_blank(p, e, 1))
       st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "more than one value on the line");
   }
-  free(buf);
   if (st) {
     free(dv.a);
     free(iv.a);
@@ -61,6 +57,45 @@ static ss_status read_values(const char *path, int as_int, void **out, int *n, s
   *out = a;
   *n = (int)cnt;
   return SS_OK;
+}
+
+static ss_status read_values(const char *path, int as_int, void **out, int *n, ss_error *err) {
+  *out = NULL;
+  *n = 0;
+  char *buf;
+  size_t len;
+  ss_status st = io_slurp(path, &buf, &len, err);
+  if (st) return st;
+  st = parse_values(path, buf, len, as_int, out, n, err);
+  free(buf);
+  return st;
+}
+
+/* out and n are checked by the callers; name NULL: "<memory>" */
+static ss_status read_values_memory(const void *buf, size_t len, const char *name, int as_int, void **out, int *n,
+                                    ss_error *err) {
+  *out = NULL;
+  *n = 0;
+  if (!buf && len > 0) return ss_fail(err, SS_ERR_INVALID, "%s: NULL buffer", name);
+  return parse_values(name, buf ? (const char *)buf : "", len, as_int, out, n, err);
+}
+
+ss_status ss_read_ints_memory(const void *buf, size_t len, const char *name, int **out, int *n, ss_error *err) {
+  if (!name) name = "<memory>";
+  if (!out || !n) return ss_fail(err, SS_ERR_INVALID, "%s: NULL output", name);
+  void *a;
+  ss_status st = read_values_memory(buf, len, name, 1, &a, n, err);
+  *out = st ? NULL : (int *)a;
+  return st;
+}
+
+ss_status ss_read_doubles_memory(const void *buf, size_t len, const char *name, double **out, int *n, ss_error *err) {
+  if (!name) name = "<memory>";
+  if (!out || !n) return ss_fail(err, SS_ERR_INVALID, "%s: NULL output", name);
+  void *a;
+  ss_status st = read_values_memory(buf, len, name, 0, &a, n, err);
+  *out = st ? NULL : (double *)a;
+  return st;
 }
 
 ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err) {

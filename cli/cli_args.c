@@ -1,0 +1,115 @@
+/* The option scanner shared by every subcommand (see cli.h): OPTION VALUE and OPTION=VALUE, flags,
+ * -h / --help, and the usage errors, in one place. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+
+void cli_print_usage(const char *usage, FILE *f) {
+  fputs(usage, f);
+  size_t n = strlen(usage);
+  if (n && usage[n - 1] != '\n') fputc('\n', f);
+  fputs("  -h, --help          this text\n"
+        "An option that takes a value accepts it as the next argument or after '=': --opt VALUE or --opt=VALUE.\n",
+        f);
+}
+
+void cli_args_init(cli_args *a, int argc, char **argv, const char *usage, const char *const *opts) {
+  memset(a, 0, sizeof *a);
+  a->argc = argc;
+  a->argv = argv;
+  a->next = 1;
+  a->cmd = argc > 0 && argv[0] ? argv[0] : "specseg";
+  a->usage = usage;
+  a->opts = opts;
+  a->rc = -1;
+}
+
+/* The declared option `name` (length n, without '='): 0 unknown, 1 flag, 2 takes a value. */
+static int lookup(const cli_args *a, const char *name, size_t n) {
+  for (const char *const *o = a->opts; o && *o; o++) {
+    size_t L = strlen(*o);
+    int valued = L > 0 && (*o)[L - 1] == '=';
+    if ((valued ? L - 1 : L) == n && !strncmp(*o, name, n)) return valued ? 2 : 1;
+  }
+  return 0;
+}
+
+static int is_option(const char *s) { return s[0] == '-' && s[1] != '\0'; }
+static int is_help(const char *s) { return !strcmp(s, "-h") || !strcmp(s, "--help"); }
+
+/* -h / --help anywhere, values of valued options excepted ("-o --help" writes a file "--help"). */
+static int help_requested(const cli_args *a) {
+  for (int i = 1; i < a->argc; i++) {
+    const char *s = a->argv[i];
+    if (!is_option(s)) continue;
+    if (is_help(s)) return 1;
+    if (!strchr(s, '=') && lookup(a, s, strlen(s)) == 2) i++;
+  }
+  return 0;
+}
+
+static void print_synopsis(const char *usage, FILE *f) {
+  const char *end = strstr(usage, "\n\n");
+  size_t n = end ? (size_t)(end - usage) : strlen(usage);
+  fprintf(f, "%.*s\n", (int)n, usage);
+}
+
+int cli_bad(cli_args *a, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "specseg: usage: %s: ", a->cmd);
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  print_synopsis(a->usage, stderr);
+  fprintf(stderr, "Run 'specseg %s --help' for all options.\n", a->cmd);
+  return a->rc = SS_EXIT_USAGE;
+}
+
+int cli_next(cli_args *a) {
+  a->pos = a->opt = a->val = NULL;
+  if (a->rc >= 0) return 0; /* a usage error reported by the caller between two calls */
+  if (a->next == 1 && help_requested(a)) {
+    cli_print_usage(a->usage, stdout);
+    a->rc = fflush(stdout) ? cli_error("cannot write to standard output") : SS_EXIT_OK;
+    return 0;
+  }
+  if (a->next >= a->argc) return 0;
+  const char *s = a->argv[a->next++];
+  if (!is_option(s)) {
+    a->pos = s;
+    return 1;
+  }
+  const char *eq = strchr(s, '=');
+  size_t n = eq ? (size_t)(eq - s) : strlen(s);
+  int kind = lookup(a, s, n);
+  if (kind == 0) {
+    cli_bad(a, "unknown option '%.*s'", (int)n, s);
+    return 0;
+  }
+  if (n >= sizeof a->name) { /* cannot happen for a declared name; keeps the copy bounded */
+    cli_bad(a, "option '%.40s...' too long", s);
+    return 0;
+  }
+  memcpy(a->name, s, n);
+  a->name[n] = '\0';
+  a->opt = a->name;
+  if (kind == 1) {
+    if (eq) {
+      cli_bad(a, "%s takes no value (got '%s')", a->name, s);
+      return 0;
+    }
+    return 1;
+  }
+  if (eq) a->val = eq + 1;
+  else if (a->next < a->argc) a->val = a->argv[a->next++];
+  if (!a->val || !*a->val) {
+    cli_bad(a, "%s needs a value", a->name);
+    return 0;
+  }
+  return 1;
+}
+
+int cli_is(const cli_args *a, const char *name) { return a->opt && !strcmp(a->opt, name); }

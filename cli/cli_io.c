@@ -1,0 +1,280 @@
+/* "-" as a file name: standard input for the readers, standard output for the writers (see cli.h). */
+#include <errno.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "specseg/render.h"
+
+#define STDIN_NAME "<stdin>"
+#define STDOUT_NAME "<stdout>"
+
+int cli_is_std(const char *path) { return path && path[0] == '-' && path[1] == '\0'; }
+const char *cli_in_name(const char *path) { return cli_is_std(path) ? STDIN_NAME : path; }
+const char *cli_out_name(const char *path) { return cli_is_std(path) ? STDOUT_NAME : path; }
+
+int cli_count_std(const char *const *paths, int n) {
+  int c = 0;
+  for (int i = 0; i < n; i++) c += cli_is_std(paths[i]);
+  return c;
+}
+
+/* ---- inputs that cannot be read twice ------------------------------------------------------------
+ * Standard input and named pipes (process substitution, `<(...)`) are read whole once, growing the
+ * buffer as bytes arrive (a pipe has no size), and kept: a later read of the same name (render reads
+ * a file given once for every mesh, and a landmark file twice) parses the same bytes. Regular files
+ * are read by path by the library, as before. */
+
+typedef struct stream {
+  char *path, *buf;
+  size_t len;
+} stream;
+
+static stream *streams;
+static int nstreams;
+
+static ss_status slurp_stream(FILE *f, const char *name, char **buf, size_t *len, ss_error *err) {
+  size_t cap = 65536, n = 0;
+  char *b = malloc(cap);
+  if (!b) return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", name);
+  for (;;) {
+    if (n == cap) {
+      char *nb = cap <= SIZE_MAX / 2 ? realloc(b, cap * 2) : NULL;
+      if (!nb) {
+        free(b);
+        return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory reading the input", name);
+      }
+      b = nb;
+      cap *= 2;
+    }
+    size_t got = fread(b + n, 1, cap - n, f);
+    n += got;
+    if (got == 0) break;
+  }
+  if (ferror(f)) {
+    int e = errno;
+    free(b);
+    return ss_fail(err, SS_ERR_IO, "%s: read error: %s", name, strerror(e));
+  }
+  *buf = b;
+  *len = n;
+  return SS_OK;
+}
+
+/* *is_stream 1: the bytes of a stream input in *buf, *len; 0: a regular (or missing) file, for the
+ * library's path readers. */
+static ss_status stream_input(const char *path, int *is_stream, const char **buf, size_t *len, ss_error *err) {
+  *is_stream = 0;
+  int std = cli_is_std(path);
+  struct stat st;
+  if (std) {
+    /* a terminal is read until end of input; other devices (/dev/zero) may never end */
+    if (fstat(STDIN_FILENO, &st) == 0 && S_ISCHR(st.st_mode) && !isatty(STDIN_FILENO)) {
+      return ss_fail(err, SS_ERR_IO, STDIN_NAME ": not a file, pipe or terminal");
+    }
+  } else if (stat(path, &st) != 0 || !(S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode))) {
+    return SS_OK;
+  }
+  *is_stream = 1;
+  for (int i = 0; i < nstreams; i++)
+    if (!strcmp(streams[i].path, path)) {
+      *buf = streams[i].buf;
+      *len = streams[i].len;
+      return SS_OK;
+    }
+  stream *g = realloc(streams, sizeof *streams * (size_t)(nstreams + 1));
+  if (!g) return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", cli_in_name(path));
+  streams = g;
+  stream *s = &streams[nstreams];
+  FILE *f = std ? stdin : fopen(path, "rb");
+  if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+  ss_status rc = slurp_stream(f, cli_in_name(path), &s->buf, &s->len, err);
+  if (!std) fclose(f);
+  if (rc) return rc;
+  if (!(s->path = strdup(path))) {
+    free(s->buf);
+    return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", cli_in_name(path));
+  }
+  nstreams++;
+  *buf = s->buf;
+  *len = s->len;
+  return SS_OK;
+}
+
+void cli_io_cleanup(void) {
+  for (int i = 0; i < nstreams; i++) free(streams[i].path), free(streams[i].buf);
+  free(streams);
+  streams = NULL;
+  nstreams = 0;
+}
+
+ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
+  const char *b;
+  size_t n;
+  memset(m, 0, sizeof *m);
+  int is;
+  ss_status st = stream_input(path, &is, &b, &n, err);
+  if (st || !is) return st ? st : ss_read_mesh(path, m, err);
+  return ss_read_mesh_memory(b, n, cli_in_name(path), m, err);
+}
+
+ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err) {
+  const char *b;
+  size_t len;
+  *out = NULL;
+  *n = 0;
+  int is;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st || !is) return st ? st : ss_read_ints(path, out, n, err);
+  return ss_read_ints_memory(b, len, cli_in_name(path), out, n, err);
+}
+
+ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err) {
+  const char *b;
+  size_t len;
+  *out = NULL;
+  *n = 0;
+  int is;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st || !is) return st ? st : ss_read_doubles(path, out, n, err);
+  return ss_read_doubles_memory(b, len, cli_in_name(path), out, n, err);
+}
+
+ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err) {
+  const char *b;
+  size_t len;
+  *lx = *ly = NULL;
+  if (lines) *lines = NULL;
+  *n = 0;
+  if (columns) *columns = 0;
+  int is;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st || !is) return st ? st : ss_read_landmarks_lines(path, lx, ly, lines, n, columns, err);
+  return ss_read_landmarks_memory(b, len, cli_in_name(path), lx, ly, lines, n, columns, err);
+}
+
+/* ---- standard output ------------------------------------------------------------------------------ */
+
+FILE *cli_open_out(const char *path) { return cli_is_std(path) ? stdout : fopen(path, "wb"); }
+
+int cli_close_out(FILE *f) {
+  int bad = ferror(f);
+  if (f == stdout) bad |= fflush(f);
+  else bad |= fclose(f);
+  return bad ? -1 : 0;
+}
+
+/* Text vectors on stdout, in the format of ss_write_ints / ss_write_doubles. */
+static ss_status write_values_stdout(const int *iv, const double *dv, int n, ss_error *err) {
+  if (n < 0 || (n > 0 && !iv && !dv)) return ss_fail(err, SS_ERR_INVALID, STDOUT_NAME ": invalid vector (n = %d)", n);
+  for (int i = 0; i < n && !ferror(stdout); i++) {
+    if (iv) printf("%d\n", iv[i]);
+    else printf("%.17g\n", dv[i]);
+  }
+  if (cli_close_out(stdout)) return ss_fail(err, SS_ERR_IO, STDOUT_NAME ": write error: %s", strerror(errno));
+  return SS_OK;
+}
+
+ss_status cli_write_ints(const char *path, const int *v, int n, ss_error *err) {
+  return cli_is_std(path) ? write_values_stdout(v, NULL, n, err) : ss_write_ints(path, v, n, err);
+}
+
+ss_status cli_write_doubles(const char *path, const double *v, int n, ss_error *err) {
+  return cli_is_std(path) ? write_values_stdout(NULL, v, n, err) : ss_write_doubles(path, v, n, err);
+}
+
+/* The library's writers take a path: for "-" they write a file in a fresh temporary folder, whose
+ * bytes are then copied to stdout; messages name <stdout> instead of the temporary file. */
+typedef struct out_job {
+  enum { JOB_MESH, JOB_NPY, JOB_PNG } what;
+  const char *kind; /* "PNG", ... for messages */
+  int binary;       /* refused on a terminal */
+  const char *ext;  /* of the temporary file: chooses the format */
+  const ss_mesh *m;
+  const unsigned char *rgb;
+  const double *a;
+  int w, h;
+} out_job;
+
+static ss_status run_job(const out_job *j, const char *path, ss_error *err) {
+  switch (j->what) {
+    case JOB_MESH: return ss_write_mesh(path, j->m, j->rgb, err);
+    case JOB_NPY: return ss_write_npy(path, j->a, j->w, j->h, err);
+    default: return ss_write_png(path, j->rgb, j->w, j->h, err);
+  }
+}
+
+/* Replaces every occurrence of `from` in msg by `to`. */
+static void rename_in_message(char *msg, size_t cap, const char *from, const char *to) {
+  char out[sizeof ((ss_error *)0)->msg];
+  size_t fl = strlen(from), k = 0;
+  if (!fl) return;
+  for (const char *p = msg; *p && k + 1 < sizeof out;) {
+    if (!strncmp(p, from, fl)) {
+      k += (size_t)snprintf(out + k, sizeof out - k, "%s", to);
+      if (k >= sizeof out) k = sizeof out - 1;
+      p += fl;
+    } else {
+      out[k++] = *p++;
+    }
+  }
+  out[k] = '\0';
+  snprintf(msg, cap, "%s", out);
+}
+
+static ss_status write_via_temp(const out_job *j, ss_error *err) {
+  if (j->binary && isatty(STDOUT_FILENO))
+    return ss_fail(err, SS_ERR_INVALID, STDOUT_NAME ": not writing binary %s data to a terminal (redirect it)", j->kind);
+  const char *tmp = getenv("TMPDIR");
+  char dir[4096], file[4200];
+  if (!tmp || !*tmp) tmp = "/tmp";
+  if (snprintf(dir, sizeof dir, "%s/specseg-XXXXXX", tmp) >= (int)sizeof dir)
+    return ss_fail(err, SS_ERR_IO, STDOUT_NAME ": temporary folder name too long");
+  if (!mkdtemp(dir)) return ss_fail(err, SS_ERR_IO, STDOUT_NAME ": cannot create a temporary folder in %s: %s", tmp, strerror(errno));
+  snprintf(file, sizeof file, "%s/stdout.%s", dir, j->ext);
+  ss_status st = run_job(j, file, err);
+  if (st) {
+    if (err) rename_in_message(err->msg, sizeof err->msg, file, STDOUT_NAME);
+  } else {
+    FILE *f = fopen(file, "rb");
+    if (!f) {
+      st = ss_fail(err, SS_ERR_IO, STDOUT_NAME ": cannot read back the temporary file: %s", strerror(errno));
+    } else {
+      char buf[65536];
+      size_t n;
+      while ((n = fread(buf, 1, sizeof buf, f)) > 0)
+        if (fwrite(buf, 1, n, stdout) != n) break;
+      int bad_in = ferror(f);
+      fclose(f);
+      if (bad_in) st = ss_fail(err, SS_ERR_IO, STDOUT_NAME ": cannot read back the temporary file");
+      else if (cli_close_out(stdout)) st = ss_fail(err, SS_ERR_IO, STDOUT_NAME ": write error: %s", strerror(errno));
+    }
+  }
+  remove(file);
+  rmdir(dir);
+  return st;
+}
+
+ss_status cli_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, const char *std_ext,
+                         ss_error *err) {
+  if (!cli_is_std(path)) return ss_write_mesh(path, m, rgb, err);
+  int ply = !strcmp(std_ext, "ply");
+  out_job j = {JOB_MESH, ply ? "PLY" : "OFF", ply, std_ext, m, rgb, NULL, 0, 0};
+  return write_via_temp(&j, err);
+}
+
+ss_status cli_write_png(const char *path, const unsigned char *rgb, int w, int h, ss_error *err) {
+  if (!cli_is_std(path)) return ss_write_png(path, rgb, w, h, err);
+  out_job j = {JOB_PNG, "PNG", 1, "png", NULL, rgb, NULL, w, h};
+  return write_via_temp(&j, err);
+}
+
+ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err) {
+  if (!cli_is_std(path)) return ss_write_npy(path, a, rows, cols, err);
+  out_job j = {JOB_NPY, ".npy", 1, "npy", NULL, NULL, a, rows, cols};
+  return write_via_temp(&j, err);
+}
