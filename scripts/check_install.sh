@@ -36,8 +36,10 @@ if ldd "$LIBDIR/libspecseg.so" | grep -Eq 'libpng|libspecseg_(render|eval|synth)
 fi
 echo "check_install: $(ls "$LIBDIR"/libspecseg*.so | wc -l) shared libraries export only ss_ symbols; core links no png/render/eval"
 
-"$PREFIX/bin/specseg" --version > "$WORK/version" 2>&1 || "$PREFIX/bin/specseg" help > /dev/null 2>&1 ||
-  fail "installed specseg does not run"
+"$PREFIX/bin/specseg" --version > "$WORK/version" 2>&1 || fail "installed specseg --version: $(cat "$WORK/version")"
+vpart() { sed -n "s/^#define SPECSEG_VERSION_$1 \\([0-9]*\\)\$/\\1/p" include/specseg/version.h; }
+want="specseg $(vpart MAJOR).$(vpart MINOR).$(vpart PATCH)"
+[ "$(cat "$WORK/version")" = "$want" ] || fail "installed specseg --version says '$(cat "$WORK/version")', want '$want'"
 "$PREFIX/bin/specseg" demo -o "$WORK/demo" > /dev/null || fail "installed specseg demo"
 MESH="$WORK/demo/humanoid_pose0.off"
 
