@@ -11,8 +11,10 @@ int cmd_info(int argc, char **argv) {
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
       printf("usage: %s\nPrints vertices, faces, area, components, boundary loops, manifoldness, bounding-box\n"
-             "diagonal and the counts of defects (non-manifold edges/vertices, degenerate, duplicate\n"
-             "faces, unreferenced and non-finite vertices), Euler characteristic and genus.\n",
+             "diagonal, whether the faces are consistently oriented (and orientable), the counts of\n"
+             "defects (non-manifold edges/vertices, degenerate, duplicate faces, unreferenced and\n"
+             "non-finite vertices, misoriented edges, faces the pipeline would re-orient), Euler\n"
+             "characteristic and genus.\n",
              usage);
       return SS_EXIT_OK;
     }
@@ -37,6 +39,8 @@ int cmd_info(int argc, char **argv) {
   printf("components: %d\n", r.components);
   printf("boundary_loops: %d\n", r.boundary_loops);
   printf("manifold: %s\n", r.manifold ? "yes" : "no");
+  printf("oriented: %s\n", r.oriented ? "yes" : "no");
+  printf("orientable: %s\n", r.orientable ? "yes" : "no");
   printf("bbox_diagonal: %.10g\n", r.bbox_diagonal);
   printf("boundary_edges: %d\n", r.boundary_edges);
   printf("nonmanifold_edges: %d\n", r.nonmanifold_edges);
@@ -45,6 +49,8 @@ int cmd_info(int argc, char **argv) {
   printf("duplicate_faces: %d\n", r.duplicate_faces);
   printf("unreferenced_vertices: %d\n", r.unreferenced_vertices);
   printf("nonfinite_vertices: %d\n", r.nonfinite_vertices);
+  printf("misoriented_edges: %d\n", r.misoriented_edges);
+  printf("reorient_faces: %d\n", r.reorient_faces);
   printf("euler_characteristic: %d\n", r.euler_characteristic);
   /* genus is only defined for a closed manifold: chi = sum over components of (2 - 2 g_i) */
   if (r.manifold && r.boundary_edges == 0 && r.degenerate_faces == 0 && r.duplicate_faces == 0)

@@ -53,7 +53,94 @@ static void test_duplicated_vertices_sphere(void) {
   ss_mesh_free(&s);
 }
 
+/* icosphere(3) with every third face reversed. */
+static void reversed_sphere(ss_mesh *clean, ss_mesh *rev) {
+  CHECK(ss_synth_icosphere(3, clean, NULL) == SS_OK);
+  CHECK(ss_mesh_copy(clean, rev, NULL) == SS_OK);
+  for (int f = 0; f < rev->nf; f += 3) {
+    int s = rev->F[3 * f + 1];
+    rev->F[3 * f + 1] = rev->F[3 * f + 2];
+    rev->F[3 * f + 2] = s;
+  }
+}
+
+/* D6: orientation is reported; sanitize and the exact geodesics re-orient; a Moebius band is refused. */
+static void test_orientation(void) {
+  ss_mesh clean = {0}, rev = {0};
+  ss_error e = {{0}};
+  reversed_sphere(&clean, &rev);
+  ss_mesh_report r;
+  CHECK(ss_mesh_check(&clean, &r, &e) == SS_OK);
+  CHECK(r.oriented == 1 && r.orientable == 1 && r.misoriented_edges == 0 && r.reorient_faces == 0);
+  CHECK(ss_mesh_check(&rev, &r, &e) == SS_OK);
+  CHECK_MSG(r.oriented == 0 && r.orientable == 1 && r.misoriented_edges > 0, "oriented %d orientable %d", r.oriented,
+            r.orientable);
+  CHECK_MSG(r.reorient_faces == (clean.nf + 2) / 3, "reorient %d", r.reorient_faces); /* the minority */
+
+  /* exact geodesic distances equal those on the clean sphere */
+  double *d0 = malloc(sizeof(double) * (size_t)clean.nv), *d1 = malloc(sizeof(double) * (size_t)clean.nv);
+  int src = 0;
+  CHECK(ss_geodesic_distances(&clean, SS_GEODESIC_EXACT, &src, 1, 0, d0, &e) == SS_OK);
+  CHECK_MSG(ss_geodesic_distances(&rev, SS_GEODESIC_EXACT, &src, 1, 0, d1, &e) == SS_OK, "%s", e.msg);
+  int nbad = 0;
+  double worst = 0;
+  for (int i = 0; i < clean.nv; i++) {
+    double dd = fabs(d0[i] - d1[i]);
+    if (!(dd <= 1e-12 * (1 + d0[i]))) nbad++;
+    if (dd > worst || dd != dd) worst = dd;
+  }
+  CHECK_MSG(nbad == 0, "%d of %d distances differ (worst %g)", nbad, clean.nv, worst);
+  free(d0);
+  free(d1);
+
+  /* sanitize: the same faces as the clean mesh, with a warning */
+  ss_mesh out = {0};
+  int *ti = NULL;
+  char warn[512];
+  CHECK(ss_mesh_sanitize(&rev, &out, &ti, warn, sizeof warn, &e) == SS_OK);
+  CHECK(out.nf == clean.nf && !memcmp(out.F, clean.F, sizeof(int) * 3 * (size_t)clean.nf));
+  CHECK_MSG(strstr(warn, "re-oriented") != NULL, "warnings: '%s'", warn);
+  printf("D6 sanitize: %s\n", warn);
+  ss_mesh_free(&out);
+  free(ti);
+  CHECK(ss_mesh_sanitize(&clean, &out, &ti, warn, sizeof warn, &e) == SS_OK && warn[0] == '\0');
+  ss_mesh_free(&out);
+  free(ti);
+
+  /* a Moebius band (strip of 12 quads, ends glued with a half twist) is not orientable */
+  enum { N = 12 };
+  ss_mesh mb = {0};
+  CHECK(ss_mesh_alloc(&mb, 2 * N, 2 * N, &e) == SS_OK);
+  for (int i = 0; i < N; i++) {
+    double u = 2 * M_PI * i / N;
+    for (int s = 0; s < 2; s++) {
+      double w = s ? 0.3 : -0.3, c = cos(u / 2) * w;
+      double *p = mb.V + 3 * (2 * i + s);
+      p[0] = (1 + c) * cos(u), p[1] = (1 + c) * sin(u), p[2] = sin(u / 2) * w;
+    }
+  }
+  for (int i = 0; i < N; i++) {
+    int a = 2 * i, b = 2 * i + 1, c, d;
+    if (i + 1 < N) c = 2 * (i + 1), d = 2 * (i + 1) + 1;
+    else c = 1, d = 0; /* the half twist */
+    int t[6] = {a, c, b, b, c, d};
+    memcpy(mb.F + 6 * i, t, sizeof t);
+  }
+  CHECK(ss_mesh_check(&mb, &r, &e) == SS_OK);
+  CHECK(r.orientable == 0 && r.oriented == 0);
+  ss_status st = ss_mesh_sanitize(&mb, &out, &ti, NULL, 0, &e);
+  CHECK(st == SS_ERR_INVALID && strstr(e.msg, "not orientable"));
+  printf("D6 Moebius: %s\n", e.msg);
+  double dm[2 * N];
+  st = ss_geodesic_distances(&mb, SS_GEODESIC_EXACT, &src, 1, 0, dm, &e);
+  CHECK(st == SS_ERR_INVALID && strstr(e.msg, "not orientable"));
+  ss_mesh_free(&mb);
+  ss_mesh_free(&clean);
+  ss_mesh_free(&rev);
+}
+
 int main(void) {
+  test_orientation();
   test_cmcf_factorisation_failure();
   test_duplicated_vertices_sphere();
   TEST_MAIN_END();
