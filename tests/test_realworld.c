@@ -139,7 +139,41 @@ static void test_orientation(void) {
   ss_mesh_free(&rev);
 }
 
+/* D5: the spectrum of a unit sphere scaled by s is the unit sphere's divided by s^2, for s over
+ * 1e-8 ... 1e12, and the multiplicity-3 triple stays together. */
+static void test_eigs_scale(void) {
+  ss_mesh s = {0}, m = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_icosphere(3, &s, &e) == SS_OK);
+  enum { K = 10 };
+  double ref[K], ev[K];
+  CHECK_MSG(ss_mesh_eigs(&s, K, ref, NULL, &e) == SS_OK, "%s", e.msg);
+  const double scales[] = {1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 0.37, 3, 1e2, 1e4, 1e6, 1e8, 1e10, 1e12, 1e16, 1e20};
+  double worst_all = 0;
+  for (size_t q = 0; q < sizeof scales / sizeof scales[0]; q++) {
+    double sc = scales[q];
+    CHECK(ss_mesh_copy(&s, &m, &e) == SS_OK);
+    for (int i = 0; i < 3 * m.nv; i++) m.V[i] *= sc;
+    ss_status st = ss_mesh_eigs(&m, K, ev, NULL, &e);
+    CHECK_MSG(st == SS_OK, "scale %g: %s", sc, e.msg);
+    double worst = fabs(ev[0]) * sc * sc; /* lambda_0 = 0 exactly */
+    for (int j = 1; j < K && st == SS_OK; j++) {
+      double rel = fabs(ev[j] * sc * sc - ref[j]) / ref[j];
+      if (!(rel <= worst)) worst = rel;
+    }
+    /* the l = 1 triple: relative spread */
+    double spread = (ev[3] - ev[1]) / ev[1];
+    CHECK_MSG(worst <= 1e-9, "scale %g: eigenvalues x s^2 differ from the unit sphere's by %g relative", sc, worst);
+    CHECK_MSG(spread <= 1e-9, "scale %g: the triple splits (relative spread %g)", sc, spread);
+    printf("D5 scale %-6g: max relative error of lambda s^2 %.2e, triple spread %.2e\n", sc, worst, spread);
+    if (worst > worst_all) worst_all = worst;
+    ss_mesh_free(&m);
+  }
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_eigs_scale();
   test_orientation();
   test_cmcf_factorisation_failure();
   test_duplicated_vertices_sphere();
