@@ -172,7 +172,98 @@ static void test_eigs_scale(void) {
   ss_mesh_free(&s);
 }
 
+/* Two disjoint copies of m, the second shifted by dx in x. */
+static void two_copies(const ss_mesh *m, double dx, ss_mesh *out) {
+  CHECK(ss_mesh_alloc(out, 2 * m->nv, 2 * m->nf, NULL) == SS_OK);
+  memcpy(out->V, m->V, sizeof(double) * 3 * (size_t)m->nv);
+  for (int i = 0; i < m->nv; i++) {
+    double *p = out->V + 3 * (size_t)(m->nv + i);
+    p[0] = m->V[3 * i] + dx, p[1] = m->V[3 * i + 1], p[2] = m->V[3 * i + 2];
+  }
+  memcpy(out->F, m->F, sizeof(int) * 3 * (size_t)m->nf);
+  for (int i = 0; i < 3 * m->nf; i++) out->F[3 * (size_t)m->nf + (size_t)i] = m->F[i] + m->nv;
+}
+
+/* D7: each component of significant area is segmented on its own, labels unique across components;
+ * a crumb gets no segment of its own and is named in the warnings. */
+static void check_two_copies(const ss_mesh *one, double dx, const char *what) {
+  ss_error e = {{0}};
+  ss_segmentation s1 = {0}, s2 = {0};
+  ss_mesh two = {0};
+  two_copies(one, dx, &two);
+  char warn[1024];
+  CHECK_MSG(ss_segment(one, NULL, &s1, &e) == SS_OK, "%s: %s", what, e.msg);
+  CHECK_MSG(ss_segment_warn(&two, NULL, &s2, warn, sizeof warn, &e) == SS_OK, "%s: %s", what, e.msg);
+  CHECK_MSG(s2.m == 2 * s1.m, "%s: %d segments on two copies, %d on one", what, s2.m, s1.m);
+  CHECK_MSG(strstr(warn, "2 components") != NULL, "%s: warnings '%s'", what, warn);
+  printf("D7 %s: one copy %d segments, two copies %d (%s)\n", what, s1.m, s2.m, warn);
+  /* the first copy is the same shape with the same coordinates: the same labels and centres */
+  int same = s2.nv == 2 * s1.nv, other = 1;
+  for (int i = 0; same && i < s1.nv; i++) same = s2.labels[i] == s1.labels[i];
+  for (int i = 0; same && i < s1.nv; i++) other &= s2.labels[s1.nv + i] >= s1.m && s2.labels[s1.nv + i] < 2 * s1.m;
+  CHECK_MSG(same, "%s: the first copy's labels differ from the single shape's", what);
+  CHECK_MSG(other, "%s: the second copy's labels are not its own", what);
+  for (int k = 0; same && k < s1.m; k++) CHECK(s2.centers[k] == s1.centers[k]);
+  for (int k = s1.m; k < s2.m; k++) CHECK(s2.centers[k] >= s1.nv && s2.labels[s2.centers[k]] == k);
+  ss_segmentation_free(&s1);
+  ss_segmentation_free(&s2);
+  ss_mesh_free(&two);
+}
+
+static void test_components(void) {
+  ss_mesh h = {0}, hc = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_humanoid(0, &h, &e) == SS_OK);
+  check_two_copies(&h, 3.0, "humanoid");
+
+  /* the humanoid plus a crumb (one small triangle beside it): the humanoid's segmentation, the crumb
+   * labelled like its nearest humanoid vertex, and a warning naming it */
+  CHECK(ss_mesh_alloc(&hc, h.nv + 3, h.nf + 1, &e) == SS_OK);
+  memcpy(hc.V, h.V, sizeof(double) * 3 * (size_t)h.nv);
+  memcpy(hc.F, h.F, sizeof(int) * 3 * (size_t)h.nf);
+  double lo = INFINITY;
+  int ilo = 0;
+  for (int i = 0; i < h.nv; i++)
+    if (h.V[3 * i] < lo) lo = h.V[3 * i], ilo = i;
+  const double *p = h.V + 3 * ilo;
+  double crumb[9] = {p[0] - 0.05, p[1], p[2], p[0] - 0.06, p[1] + 0.01, p[2], p[0] - 0.06, p[1], p[2] + 0.01};
+  memcpy(hc.V + 3 * (size_t)h.nv, crumb, sizeof crumb);
+  int t[3] = {h.nv, h.nv + 1, h.nv + 2};
+  memcpy(hc.F + 3 * (size_t)h.nf, t, sizeof t);
+  ss_segmentation s1 = {0}, s2 = {0};
+  char warn[1024];
+  CHECK(ss_segment(&h, NULL, &s1, &e) == SS_OK);
+  CHECK_MSG(ss_segment_warn(&hc, NULL, &s2, warn, sizeof warn, &e) == SS_OK, "%s", e.msg);
+  CHECK_MSG(s2.m == s1.m, "crumb: %d segments, %d without it", s2.m, s1.m);
+  int same = 1;
+  for (int i = 0; i < h.nv; i++) same &= s2.labels[i] == s1.labels[i];
+  CHECK(same);
+  for (int k = 0; k < 3; k++) CHECK(s2.labels[h.nv + k] == s1.labels[ilo] && s2.psi[h.nv + k] == -1);
+  char name[64];
+  snprintf(name, sizeof name, "first input vertex %d", h.nv);
+  CHECK_MSG(strstr(warn, "1 small component") && strstr(warn, name), "warnings: '%s'", warn);
+  printf("D7 crumb: %s\n", warn);
+  ss_segmentation_free(&s1);
+  ss_segmentation_free(&s2);
+  ss_mesh_free(&hc);
+  ss_mesh_free(&h);
+
+  /* two copies of FAUST tr_reg_000 (the case: 61 segments before) */
+  const char *dir = tl_data_dir();
+  if (!dir) {
+    SKIP("no data folder: two copies of FAUST tr_reg_000");
+    return;
+  }
+  char path[4096];
+  snprintf(path, sizeof path, "%s/faust/tr_reg_000.off", dir);
+  ss_mesh f = {0};
+  CHECK_MSG(ss_read_mesh(path, &f, &e) == SS_OK, "%s", e.msg);
+  check_two_copies(&f, 2.0, "tr_reg_000");
+  ss_mesh_free(&f);
+}
+
 int main(void) {
+  test_components();
   test_eigs_scale();
   test_orientation();
   test_cmcf_factorisation_failure();
