@@ -74,8 +74,22 @@ static ss_status build_oriented(const ss_mesh *m, ss_geodesic_mesh **out, ss_err
   }
   memcpy(gm->F, m->F, sizeof(int) * nh);
   memcpy(gm->V, m->V, sizeof(double) * 3 * (size_t)nv);
-  gm->scale = ss_mesh_bbox_diagonal(m);
-  if (!(gm->scale > 0)) gm->scale = 1;
+  /* the size of the surface: bounding box of the vertices faces use (an unreferenced vertex far
+   * away must not set the tolerances: at 1e20 they swallowed every comparison) */
+  {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t c = 0; c < nh; c++) {
+      const double *p = m->V + 3 * (size_t)m->F[c];
+      for (int k = 0; k < 3; k++) {
+        if (p[k] < lo[k]) lo[k] = p[k];
+        if (p[k] > hi[k]) hi[k] = p[k];
+      }
+    }
+    double d2 = 0;
+    for (int k = 0; k < 3 && nh > 0; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    gm->scale = sqrt(d2);
+  }
+  if (!(gm->scale > 0) || !isfinite(gm->scale)) gm->scale = 1;
   /* frames and angles; faces of (near) zero area, or with a repeated vertex, are cut out */
   for (int f = 0; f < nf; f++) {
     const int *t = m->F + 3 * (size_t)f;
