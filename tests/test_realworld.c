@@ -262,7 +262,41 @@ static void test_components(void) {
   ss_mesh_free(&f);
 }
 
+/* D2 / D3: exact geodesics in time bounded by the mesh's size. */
+static void test_geodesic_bounded(void) {
+  ss_error e = {{0}};
+  /* a tetrahedron plus one unreferenced vertex at (0, 1e20, 0): > 150 s before */
+  double V[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 1e20, 0};
+  int F[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+  ss_mesh t = {5, 4, V, F};
+  double d[6];
+  int src = 0;
+  double t0 = ss_time();
+  CHECK_MSG(ss_geodesic_distances(&t, SS_GEODESIC_EXACT, &src, 1, 0, d, &e) == SS_OK, "%s", e.msg);
+  double dt = ss_time() - t0;
+  CHECK_MSG(dt < 2, "tetrahedron + far vertex: %.2f s", dt);
+  CHECK_NEAR(d[1], 1, 1e-15);
+  CHECK_NEAR(d[3], 1, 1e-15);
+  CHECK(isinf(d[4]));
+  printf("D2 tetrahedron + vertex at 1e20: %.4f s\n", dt);
+
+  /* an octahedron with one vertex at x = 1e9 (slivers): 79 s before; now a bounded failure with a
+   * message (or distances), never a hang */
+  double W[18] = {1e9, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+  int G[24] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+  ss_mesh o = {6, 8, W, G};
+  src = 1;
+  t0 = ss_time();
+  ss_status st = ss_geodesic_distances(&o, SS_GEODESIC_EXACT, &src, 1, 0, d, &e);
+  dt = ss_time() - t0;
+  CHECK_MSG(dt < 2, "octahedron with a vertex at 1e9: %.2f s", dt);
+  if (st) CHECK(strstr(e.msg, "sliver") != NULL);
+  else CHECK(d[0] > 1e9 && d[0] < 1e9 + 2);
+  printf("D3 octahedron with a vertex at 1e9: %.4f s, %s\n", dt, st ? e.msg : "ok");
+}
+
 int main(void) {
+  test_geodesic_bounded();
   test_components();
   test_eigs_scale();
   test_orientation();
