@@ -19,7 +19,7 @@ typedef struct topo_tri {
   int v[3];
   int f;
 } topo_tri;
-/* Sorts by (v[0], v[1], v[2], f) in O(n + nv) plus small per-vertex insertion sorts; equal vertex sets
+/* Sorts by (v[0], v[1], v[2], f) in O(n + nv) plus per-vertex sorts (O(n log n)); equal vertex sets
  * end up adjacent with the lowest face index first. 0 ok, -1 out of memory. */
 int topo_sort_tris(topo_tri *t, size_t n, int nv);
 /* Fills t[] (sorted vertex sets) for the faces with three distinct indices where use is NULL or set. */
