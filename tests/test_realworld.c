@@ -295,7 +295,61 @@ static void test_geodesic_bounded(void) {
   printf("D3 octahedron with a vertex at 1e9: %.4f s, %s\n", dt, st ? e.msg : "ok");
 }
 
+/* D4: duplicate-face detection and graphs around a vertex in 10^5 faces are O(n log n). */
+static void test_big_fans(void) {
+  ss_error e = {{0}};
+  enum { NDUP = 200000, NPOLY = 300000 };
+  ss_mesh m = {0};
+  /* 3 vertices + 200,000 copies of one face: 16 s (info) / 48 s (edge graph) before */
+  CHECK(ss_mesh_alloc(&m, 3, NDUP, &e) == SS_OK);
+  double V[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  memcpy(m.V, V, sizeof V);
+  for (int f = 0; f < NDUP; f++) m.F[3 * f] = 0, m.F[3 * f + 1] = 1, m.F[3 * f + 2] = 2;
+  ss_mesh_report r;
+  double t0 = ss_time();
+  CHECK(ss_mesh_check(&m, &r, &e) == SS_OK);
+  double dt = ss_time() - t0;
+  CHECK(r.duplicate_faces == NDUP - 1);
+  CHECK_MSG(dt < 2, "check of 200,000 copies of a face: %.2f s", dt);
+  printf("D4 200,000 copies of a face: check %.3f s", dt);
+  double d[3];
+  int src = 0;
+  t0 = ss_time();
+  CHECK(ss_geodesic_distances(&m, SS_GEODESIC_EDGE, &src, 1, 0, d, &e) == SS_OK);
+  dt = ss_time() - t0;
+  CHECK_MSG(dt < 2, "edge graph of 200,000 copies of a face: %.2f s", dt);
+  CHECK(d[1] == 1 && d[2] == 1);
+  printf(", edge geodesics %.3f s\n", dt);
+  ss_mesh_free(&m);
+
+  /* a 300,000-corner polygon fan-triangulated (as the readers do), corners in descending order */
+  CHECK(ss_mesh_alloc(&m, NPOLY, NPOLY - 2, &e) == SS_OK);
+  for (int i = 0; i < NPOLY; i++) {
+    double a = 2 * M_PI * i / NPOLY;
+    m.V[3 * i] = cos(a), m.V[3 * i + 1] = -sin(a), m.V[3 * i + 2] = 0;
+  }
+  for (int f = 0; f < NPOLY - 2; f++) {
+    m.F[3 * f] = NPOLY - 1;
+    m.F[3 * f + 1] = NPOLY - 2 - f;
+    m.F[3 * f + 2] = NPOLY - 3 - f;
+  }
+  t0 = ss_time();
+  CHECK(ss_mesh_check(&m, &r, &e) == SS_OK);
+  double dc = ss_time() - t0;
+  CHECK(r.boundary_loops == 1 && r.duplicate_faces == 0 && r.components == 1);
+  double *dd = malloc(sizeof(double) * NPOLY);
+  src = NPOLY - 1;
+  t0 = ss_time();
+  CHECK(ss_geodesic_distances(&m, SS_GEODESIC_EDGE, &src, 1, 0, dd, &e) == SS_OK);
+  double dg = ss_time() - t0;
+  CHECK_MSG(dc < 3 && dg < 3, "300,000-corner fan: check %.2f s, edge geodesics %.2f s", dc, dg);
+  printf("D4 300,000-corner fan: check %.3f s, edge geodesics %.3f s\n", dc, dg);
+  free(dd);
+  ss_mesh_free(&m);
+}
+
 int main(void) {
+  test_big_fans();
   test_geodesic_bounded();
   test_components();
   test_eigs_scale();
