@@ -348,7 +348,58 @@ static void test_big_fans(void) {
   ss_mesh_free(&m);
 }
 
+/* D11: a humanoid whose only defect is one pinched vertex (a small closed tetrahedron glued to it at
+ * one vertex) is prepared for matching (was "repair it first"), and the segmentation says what it
+ * repaired. */
+static void test_pinched_match(void) {
+  ss_mesh h = {0}, m = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_humanoid(0, &h, &e) == SS_OK);
+  CHECK(ss_mesh_alloc(&m, h.nv + 3, h.nf + 4, &e) == SS_OK);
+  memcpy(m.V, h.V, sizeof(double) * 3 * (size_t)h.nv);
+  memcpy(m.F, h.F, sizeof(int) * 3 * (size_t)h.nf);
+  int v = 0; /* the top of the head: the highest vertex */
+  for (int i = 0; i < h.nv; i++)
+    if (h.V[3 * i + 1] > h.V[3 * v + 1]) v = i;
+  const double *p = h.V + 3 * v;
+  double T[9] = {p[0] + 0.01, p[1] + 0.02, p[2], p[0] - 0.01, p[1] + 0.02, p[2] + 0.01, p[0], p[1] + 0.02, p[2] - 0.01};
+  memcpy(m.V + 3 * (size_t)h.nv, T, sizeof T);
+  int a = h.nv, b = h.nv + 1, c = h.nv + 2;
+  int F[12] = {v, a, b, v, b, c, v, c, a, a, c, b};
+  memcpy(m.F + 3 * (size_t)h.nf, F, sizeof F);
+  ss_mesh_report r;
+  CHECK(ss_mesh_check(&m, &r, &e) == SS_OK);
+  CHECK(r.nonmanifold_vertices == 1 && r.nonmanifold_edges == 0 && r.orientable);
+  ss_shape_prep sp;
+  ss_status st = ss_shape_prep_compute(&m, NULL, 10, &sp, &e);
+  CHECK_MSG(st == SS_OK, "%s", e.msg);
+  if (!st) {
+    CHECK(sp.seg.m >= 2);
+    ss_shape_prep_free(&sp);
+  }
+  ss_segmentation seg = {0};
+  char warn[1024];
+  CHECK(ss_segment_warn(&m, NULL, &seg, warn, sizeof warn, &e) == SS_OK);
+  CHECK_MSG(strstr(warn, "pinched") != NULL, "warnings: '%s'", warn);
+  printf("D11 pinched humanoid: %s\n", warn);
+  ss_segmentation_free(&seg);
+  /* an unreferenced vertex is still refused, with a message naming it */
+  ss_mesh u = {0};
+  CHECK(ss_mesh_alloc(&u, h.nv + 1, h.nf, &e) == SS_OK);
+  memcpy(u.V, h.V, sizeof(double) * 3 * (size_t)h.nv);
+  u.V[3 * h.nv] = u.V[3 * h.nv + 1] = u.V[3 * h.nv + 2] = 5;
+  memcpy(u.F, h.F, sizeof(int) * 3 * (size_t)h.nf);
+  st = ss_shape_prep_compute(&u, NULL, 10, &sp, &e);
+  char name[64];
+  snprintf(name, sizeof name, "vertex %d", h.nv);
+  CHECK_MSG(st == SS_ERR_INVALID && strstr(e.msg, name), "%s", e.msg);
+  ss_mesh_free(&u);
+  ss_mesh_free(&m);
+  ss_mesh_free(&h);
+}
+
 int main(void) {
+  test_pinched_match();
   test_big_fans();
   test_geodesic_bounded();
   test_components();
