@@ -98,7 +98,7 @@ SS_API ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts
  * treatment of several components.
  * Components (after sanitizing; faces joined through shared vertices): a mesh of one component goes
  * through the pipeline as described above. With several, each component of at least 1% of the total
- * area is segmented on its own, as if it were the only shape (own CMCF, remeshing to the full
+ * area (and the largest one, when none reaches 1%) is segmented on its own, as if it were the only shape (own CMCF, remeshing to the full
  * target_faces, Fiedler vector, critical points and iVd), its segment indices following those of the
  * components before it (ordered by lowest vertex), so labels are unique across components. Smaller
  * components (crumbs of a scan) get no segment of their own: their vertices take the segment of the

@@ -347,7 +347,7 @@ done:
 /* ---- meshes of several components -------------------------------------------------------------
  * A component whose area is at least SSI_SIGNIFICANT_AREA of the total is segmented on its own, as
  * if it were the only shape (its own CMCF, remeshing to the full target, Fiedler vector, critical
- * points and iVd); its segment indices follow those of the components before it (components ordered
+ * points and iVd), and so is the largest component when none reaches that share; its segment indices follow those of the components before it (components ordered
  * by their lowest vertex). Smaller components (crumbs of a scan, a stray triangle) get no segments of
  * their own: each of their vertices takes the segment of the nearest vertex (Euclidean, input
  * positions) of a significant component, and a warning names them. */
@@ -396,8 +396,11 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
   char tiny_list[256] = "";
   size_t tl = 0;
   for (int i = 0; i < np; i++) plabel[i] = -1, pwork[i] = -1;
+  int biggest = 0; /* always segmented, so that a soup of small pieces still gets segments */
+  for (int c = 1; c < ncomp; c++)
+    if (carea[c] > carea[biggest]) biggest = c;
   for (int c = 0; c < ncomp; c++) {
-    if (!(carea[c] >= SSI_SIGNIFICANT_AREA * total)) {
+    if (!(carea[c] >= SSI_SIGNIFICANT_AREA * total) && c != biggest) {
       if (tl + 32 < sizeof tiny_list)
         tl += (size_t)snprintf(tiny_list + tl, sizeof tiny_list - tl, "%s%d", ntiny ? ", " : "",
                                to_input ? to_input[cfirst[c]] : cfirst[c]);
