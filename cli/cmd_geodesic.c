@@ -78,6 +78,12 @@ int cmd_geodesic(int argc, char **argv) {
       ss_mesh_free(&m);
       goto done;
     }
+  if (method == SS_GEODESIC_EXACT) {
+    ss_mesh_report rep;
+    if (!ss_mesh_check(&m, &rep, NULL) && !rep.oriented && rep.orientable)
+      cli_warn("%s: faces are not consistently oriented (%d misoriented edges); %d faces re-oriented internally",
+               cli_in_name(path), rep.misoriented_edges, rep.reorient_faces);
+  }
   double *d = malloc(sizeof(double) * (size_t)(m.nv > 0 ? m.nv : 1));
   if (!d) { ss_mesh_free(&m); rc = cli_error("out of memory"); goto done; }
   if (ss_geodesic_distances(&m, method, src, ns, maxd, d, &err)) rc = cli_error("%s: %s", cli_in_name(path), err.msg);

@@ -8,9 +8,10 @@ static const char USAGE[] =
     "usage: specseg info MESH\n"
     "\n"
     "Mesh statistics and checks, one 'key: value' a line: vertices, faces, area, components, boundary\n"
-    "loops, manifoldness, bounding-box diagonal, the counts of defects (boundary and non-manifold edges,\n"
-    "non-manifold vertices, degenerate and duplicate faces, unreferenced and non-finite vertices), the\n"
-    "Euler characteristic and, for a closed manifold, the genus.\n"
+    "loops, manifoldness, bounding-box diagonal, whether the faces are consistently oriented (and\n"
+    "orientable), the counts of defects (boundary and non-manifold edges, non-manifold vertices,\n"
+    "degenerate and duplicate faces, unreferenced and non-finite vertices, misoriented edges, faces the\n"
+    "pipeline would re-orient), the Euler characteristic and, for a closed manifold, the genus.\n"
     "\n"
     "  MESH                OFF, OBJ or PLY file; - reads standard input (format from the content)\n";
 
@@ -42,6 +43,8 @@ int cmd_info(int argc, char **argv) {
   printf("components: %d\n", r.components);
   printf("boundary_loops: %d\n", r.boundary_loops);
   printf("manifold: %s\n", r.manifold ? "yes" : "no");
+  printf("oriented: %s\n", r.oriented ? "yes" : "no");
+  printf("orientable: %s\n", r.orientable ? "yes" : "no");
   printf("bbox_diagonal: %.10g\n", r.bbox_diagonal);
   printf("boundary_edges: %d\n", r.boundary_edges);
   printf("nonmanifold_edges: %d\n", r.nonmanifold_edges);
@@ -50,6 +53,8 @@ int cmd_info(int argc, char **argv) {
   printf("duplicate_faces: %d\n", r.duplicate_faces);
   printf("unreferenced_vertices: %d\n", r.unreferenced_vertices);
   printf("nonfinite_vertices: %d\n", r.nonfinite_vertices);
+  printf("misoriented_edges: %d\n", r.misoriented_edges);
+  printf("reorient_faces: %d\n", r.reorient_faces);
   printf("euler_characteristic: %d\n", r.euler_characteristic);
   /* genus is only defined for a closed manifold: chi = sum over components of (2 - 2 g_i) */
   if (r.manifold && r.boundary_edges == 0 && r.degenerate_faces == 0 && r.duplicate_faces == 0)

@@ -111,6 +111,16 @@ int cmd_match(int argc, char **argv) {
       goto done;
     }
   }
+  for (int s = 0; s < 2; s++) { /* what the pipeline repairs internally */
+    ss_mesh_report rep;
+    if (!ss_mesh_check(s ? &Y : &X, &rep, NULL)) {
+      if (rep.nonmanifold_vertices)
+        cli_warn("%s: %d pinched (non-manifold) vertices: split internally for the segmentation", s ? yn : xn,
+                 rep.nonmanifold_vertices);
+      if (!rep.oriented && rep.orientable)
+        cli_warn("%s: faces not consistently oriented: %d re-oriented internally", s ? yn : xn, rep.reorient_faces);
+    }
+  }
   if (ss_match(&X, &Y, nl, lx, ly, &o, &res, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;

@@ -70,10 +70,12 @@ int cmd_segment(int argc, char **argv) {
   double t0 = ss_time();
   if (cli_read_mesh(in, &m, &err)) return cli_error("%s", err.msg);
   double t_read = ss_time() - t0;
-  if (ss_segment(&m, &opt, &seg, &err)) {
+  char warnings[2048];
+  if (ss_segment_warn(&m, &opt, &seg, warnings, sizeof warnings, &err)) {
     rc = cli_error("%s: %s", cli_in_name(in), err.msg);
     goto done;
   }
+  if (warnings[0]) cli_warn("%s: %s", cli_in_name(in), warnings);
   seg.t_read = t_read;
   if (cli_write_ints(labels_path, seg.labels, seg.nv, &err)) {
     rc = cli_error("%s", err.msg);

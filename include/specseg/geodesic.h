@@ -32,10 +32,12 @@ SS_API ss_status ss_graph_dijkstra(const ss_graph *g, const int *sources, int ns
 
 
 /* ---- Exact polyhedral geodesics (window propagation with VTP-style vertex pruning) ----------
- * Distances are lengths of shortest paths on the piecewise-flat surface. The mesh must be
- * consistently oriented; edges shared by more than two faces, or by two faces with opposite
- * orientations, and zero-area faces are treated as cuts (their vertices become boundary
- * vertices), so distances there are exact on the cut surface. */
+ * Distances are lengths of shortest paths on the piecewise-flat surface. Faces of an orientable
+ * mesh that are not consistently oriented are re-oriented internally (each component as the
+ * majority of its faces; the distances equal those of the clean mesh); a non-orientable mesh is
+ * refused (SS_ERR_INVALID). Edges shared by more than two faces and zero-area faces are treated
+ * as cuts (their vertices become boundary vertices), so distances there are exact on the cut
+ * surface. */
 typedef struct ss_geodesic_mesh ss_geodesic_mesh;
 
 /* Build the propagation structure (twins, edge frames, vertex classes). Read-only afterwards (no

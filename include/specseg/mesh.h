@@ -23,6 +23,13 @@ typedef struct ss_mesh_report {
   int nonfinite_vertices;    /* NaN / Inf coordinates */
   int euler_characteristic;  /* V - E + F over referenced vertices */
   int manifold;              /* 1 when no non-manifold edge or vertex */
+  /* orientation, over edges shared by exactly two faces (faces with a repeated index left out) */
+  int misoriented_edges;     /* edges both of whose faces run it in the same direction */
+  int oriented;              /* 1 when no edge is misoriented (faces consistently oriented) */
+  int orientable;            /* 1 when every component can be oriented consistently (no Moebius-like
+                                band); the pipeline re-orients such meshes itself, with a warning */
+  int reorient_faces;        /* faces the pipeline would reverse (each component keeps the orientation
+                                of the majority of its faces); 0 when oriented or not orientable */
 } ss_mesh_report;
 
 /* O(n log n). Faces with a repeated vertex index count as degenerate and are left out of the topology
@@ -33,12 +40,15 @@ typedef struct ss_mesh_report {
 SS_API ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err);
 
 /* Make a mesh the pipeline can process: drops degenerate/duplicate faces and unreferenced vertices,
- * splits pinched (non-manifold) vertices into one copy per fan. `to_input[i]` (malloc'd, out->nv
- * entries) gives the input vertex of each output vertex. Fails with SS_ERR_INVALID on NaN/Inf
- * coordinates, non-manifold edges that cannot be split, or an empty result. `warnings` (may be NULL)
- * receives a human-readable summary of what was changed ("" when nothing).
+ * splits pinched (non-manifold) vertices into one copy per fan, and orients every component
+ * consistently (a component's faces of the minority orientation are reversed). `to_input[i]`
+ * (malloc'd, out->nv entries) gives the input vertex of each output vertex. Fails with
+ * SS_ERR_INVALID on NaN/Inf coordinates, non-manifold edges that cannot be split, a non-orientable
+ * surface (named by one of its faces), or an empty result. `warnings` (may be NULL) receives a
+ * human-readable summary of what was changed ("" when nothing).
  * Output vertices keep the input order (copies of a split vertex are adjacent) and faces keep their
- * order and orientation, so a mesh that needs no repair comes back identical with to_input = identity.
+ * order (and orientation, unless inconsistent), so a mesh that needs no repair comes back identical
+ * with to_input = identity.
  * Non-finite coordinates are an error only on vertices that a kept face uses. */
 SS_API ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char *warnings,
                                   size_t warnings_size, ss_error *err);

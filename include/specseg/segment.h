@@ -93,6 +93,21 @@ typedef struct ss_segmentation {
  * vertex index of `work`, and segment s is the iVd cell of crit[s]. On failure `out` is zeroed. */
 SS_API ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts, ss_segmentation *out,
                             ss_error *err);
+/* The same, with a human-readable summary of what was done to the input beyond the paper's pipeline
+ * in `warnings` (may be NULL; "" when nothing): the sanitizer's repairs (ss_mesh_sanitize) and the
+ * treatment of several components.
+ * Components (after sanitizing; faces joined through shared vertices): a mesh of one component goes
+ * through the pipeline as described above. With several, each component of at least 1% of the total
+ * area (and the largest one, when none reaches 1%) is segmented on its own, as if it were the only shape (own CMCF, remeshing to the full
+ * target_faces, Fiedler vector, critical points and iVd), its segment indices following those of the
+ * components before it (ordered by lowest vertex), so labels are unique across components. Smaller
+ * components (crumbs of a scan) get no segment of their own: their vertices take the segment of the
+ * nearest (Euclidean) vertex of a significant component, psi is -1 on them, and the warning names
+ * them by their first input vertex. `work`, phi, crit, work_labels and work_dist are then the
+ * concatenation of the components' (in that order), lambda2 is that of the largest component and the
+ * timings are sums. */
+SS_API ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts, ss_segmentation *out,
+                                 char *warnings, size_t warnings_size, ss_error *err);
 SS_API void ss_segmentation_free(ss_segmentation *s);
 
 /* ---- Coherency (§5) ----------------------------------------------------------------------------- */

@@ -21,7 +21,11 @@ typedef struct ss_eigs_stats {
 } ss_eigs_stats;
 
 typedef struct ss_eigs_options {
-  double sigma; /* shift; default -1e-8 (just below 0 so W - σM is positive definite) */
+  double sigma; /* shift; default -1e-8 (just below 0 so W - σM is positive definite). A negative
+                   shift means "just below the spectrum": its size relative to the shape,
+                   |σ|·Σ M, is kept within [1e-10, 1e-3] (σ is used as given inside that band,
+                   e.g. the default on any shape of area 1e-2 ... 1e5; the nearer end of the
+                   band outside it), so results scale exactly with the shape */
   double tol;   /* ARPACK tolerance; default 1e-10 */
   int ncv;      /* Krylov dimension; 0 = automatic */
   int maxiter;  /* 0 = automatic */

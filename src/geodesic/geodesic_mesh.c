@@ -1,6 +1,7 @@
 /* Build the shared, read-only structure for exact geodesic propagation. */
 #include "geodesic/geodesic_mesh.h"
 #include "geodesic/graph_build.h"
+#include "mesh/mesh_topology.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -25,12 +26,29 @@ void ss_geodesic_mesh_free(ss_geodesic_mesh *gm) {
 
 int ss_geodesic_mesh_nv(const ss_geodesic_mesh *gm) { return gm ? gm->nv : 0; }
 
+static ss_status build_oriented(const ss_mesh *m, ss_geodesic_mesh **out, ss_error *err);
+
+/* The propagation needs consistently oriented faces (twins run an edge in opposite directions): a
+ * mesh whose orientable components have some faces reversed is oriented first (face order and
+ * vertex indices are kept, so the distances are those of the clean mesh); a non-orientable one is
+ * refused. */
 ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "null output");
   *out = NULL;
   ss_status st = ssi_graph_check_mesh(m, err);
   if (st) return st;
   if (m->nv < 1) return ss_fail(err, SS_ERR_INVALID, "empty mesh");
+  int *Fo = NULL;
+  if ((st = ssi_mesh_orient_copy(m, &Fo, NULL, err))) return st;
+  if (!Fo) return build_oriented(m, out, err);
+  ss_mesh mo = *m;
+  mo.F = Fo;
+  st = build_oriented(&mo, out, err);
+  free(Fo);
+  return st;
+}
+
+static ss_status build_oriented(const ss_mesh *m, ss_geodesic_mesh **out, ss_error *err) {
   int nv = m->nv, nf = m->nf;
   size_t nh = 3 * (size_t)nf;
   ss_geodesic_mesh *gm = calloc(1, sizeof *gm);
@@ -56,8 +74,22 @@ ss_status ss_geodesic_mesh_build(const ss_mesh *m, ss_geodesic_mesh **out, ss_er
   }
   memcpy(gm->F, m->F, sizeof(int) * nh);
   memcpy(gm->V, m->V, sizeof(double) * 3 * (size_t)nv);
-  gm->scale = ss_mesh_bbox_diagonal(m);
-  if (!(gm->scale > 0)) gm->scale = 1;
+  /* the size of the surface: bounding box of the vertices faces use (an unreferenced vertex far
+   * away must not set the tolerances: at 1e20 they swallowed every comparison) */
+  {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t c = 0; c < nh; c++) {
+      const double *p = m->V + 3 * (size_t)m->F[c];
+      for (int k = 0; k < 3; k++) {
+        if (p[k] < lo[k]) lo[k] = p[k];
+        if (p[k] > hi[k]) hi[k] = p[k];
+      }
+    }
+    double d2 = 0;
+    for (int k = 0; k < 3 && nh > 0; k++) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    gm->scale = sqrt(d2);
+  }
+  if (!(gm->scale > 0) || !isfinite(gm->scale)) gm->scale = 1;
   /* frames and angles; faces of (near) zero area, or with a repeated vertex, are cut out */
   for (int f = 0; f < nf; f++) {
     const int *t = m->F + 3 * (size_t)f;

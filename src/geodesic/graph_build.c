@@ -16,6 +16,12 @@ ss_status ssi_graph_check_mesh(const ss_mesh *m, ss_error *err) {
   return SS_OK;
 }
 
+static int row_cmp(const void *a, const void *b) {
+  const ssi_arc *x = a, *y = b;
+  if (x->v != y->v) return x->v < y->v ? -1 : 1;
+  return (x->w > y->w) - (x->w < y->w);
+}
+
 ss_status ssi_graph_from_arcs(int n, const ssi_arc *arcs, size_t narcs, ss_graph *g, ss_error *err) {
   memset(g, 0, sizeof *g);
   int *ptr = calloc((size_t)n + 1, sizeof(int));
@@ -36,11 +42,29 @@ ss_status ssi_graph_from_arcs(int n, const ssi_arc *arcs, size_t narcs, ss_graph
     int p = pos[u]++; adj[p] = v; w[p] = arcs[k].w;
     p = pos[v]++; adj[p] = u; w[p] = arcs[k].w;
   }
-  /* sort each row by neighbour (rows are short) and merge duplicates keeping the minimum */
+  /* sort each row by neighbour and merge duplicates keeping the minimum: insertion sort for short
+   * rows, qsort for long ones (a vertex in 10^5 faces — copies of one face, a fan-triangulated
+   * polygon of 10^6 corners — made the insertion sort quadratic); the merged rows are the same */
   int out = 0, start = 0;
+  int maxrow = 0;
+  for (int i = 0; i < n; i++)
+    if (ptr[i + 1] - ptr[i] > maxrow) maxrow = ptr[i + 1] - ptr[i];
+  ssi_arc *row = NULL;
+  if (maxrow > 32) {
+    row = malloc(sizeof(ssi_arc) * (size_t)maxrow);
+    if (!row) {
+      free(ptr); free(adj); free(w); free(pos);
+      return ss_fail(err, SS_ERR_NOMEM, "out of memory building a graph");
+    }
+  }
   for (int i = 0; i < n; i++) {
     int end = ptr[i + 1];
-    for (int a = start + 1; a < end; a++) {
+    if (end - start > 32) {
+      for (int a = start; a < end; a++) row[a - start].v = adj[a], row[a - start].w = w[a];
+      qsort(row, (size_t)(end - start), sizeof *row, row_cmp);
+      for (int a = start; a < end; a++) adj[a] = row[a - start].v, w[a] = row[a - start].w;
+    }
+    else for (int a = start + 1; a < end; a++) {
       int v = adj[a]; double x = w[a]; int b = a - 1;
       while (b >= start && adj[b] > v) { adj[b + 1] = adj[b]; w[b + 1] = w[b]; b--; }
       adj[b + 1] = v; w[b + 1] = x;
@@ -55,6 +79,7 @@ ss_status ssi_graph_from_arcs(int n, const ssi_arc *arcs, size_t narcs, ss_graph
   }
   ptr[n] = out;
   free(pos);
+  free(row);
   g->n = n; g->ptr = ptr; g->adj = adj; g->w = w;
   return SS_OK;
 }

@@ -633,6 +633,15 @@ static ss_status run_core(const ss_geodesic_mesh *gm, const ss_geodesic_landmark
   int stop_targets = ntargets > 0, hit_dummy;
   if (!first_hit) first_hit = &hit_dummy;
   *first_hit = -1;
+  /* Bounded cost. On clean meshes a full field creates 4-8 windows per half-edge. Around the apex of
+   * a cone of sliver triangles (an octahedron with one vertex pulled out to 1e9) a window wraps
+   * around and comes back to the same edges ever closer to the apex, and the distances of successive
+   * wraps differ by less than one ulp, so no pruning rule can tell them apart: the spiral never
+   * ends. Past 1e6 + 16 nh^1.5 windows (1e6 on tiny meshes, 1.4e8 on FAUST, which needs 2e5) the
+   * propagation gives up with a message naming a face where it was still going. */
+  const double nhd = (double)ws->nh;
+  const long long wcap = (long long)(1e6 + 16.0 * nhd * sqrt(nhd));
+  int runaway_face = -1;
   while (ws->hsize > 0 && !ws->nomem) {
     hent e = heap_pop(ws);
     if (e.key > ws->maxd) { radius = ws->maxd; break; }
@@ -690,6 +699,7 @@ static ss_status run_core(const ss_geodesic_mesh *gm, const ss_geodesic_landmark
       heap_push(ws, k, h);
       continue;
     }
+    if (ws->st.windows_created > wcap) { runaway_face = h / 3; break; }
     int id = ws->head[h];
     ws->head[h] = -1;
     ws->hkey[h] = INFINITY;
@@ -704,6 +714,12 @@ static ss_status run_core(const ss_geodesic_mesh *gm, const ss_geodesic_landmark
   }
   ws->st.touched = ws->ntouched;
   if (ws->nomem) return ss_fail(err, SS_ERR_NOMEM, "out of memory during geodesic propagation");
+  if (runaway_face >= 0)
+    return ss_fail(err, SS_ERR_NUMERIC,
+                   "exact geodesics: the propagation did not finish after %lld windows on a mesh of %d faces (still "
+                   "going around face %d): sliver (needle) triangles there make windows spiral; remesh the input "
+                   "or use the graph method",
+                   ws->st.windows_created, gm->nf, runaway_face);
   if (settled_radius) *settled_radius = radius;
   return SS_OK;
 }

@@ -5,6 +5,7 @@
 #include "specseg/mesh.h"
 #include "specseg/spectrum.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,21 +18,41 @@ void ss_shape_prep_free(ss_shape_prep *p) {
   memset(p, 0, sizeof *p);
 }
 
-/* 1 when ss_mesh_sanitize would return the mesh as it is (then input vertex = processed vertex, which
- * is what Ψ and the landmark indices assume). */
+/* The mesh must be usable as it is (its vertex indices are what landmarks and maps refer to, and the
+ * eigenpairs are computed on it): no face the sanitizer would drop (degenerate, duplicate) and no
+ * vertex it would drop (unreferenced: zero mass). Pinched (non-manifold) vertices are fine: the
+ * segmentation splits them internally and maps its labels back, and the Laplacian of the mesh as
+ * given is well defined there. A non-orientable surface is refused by the sanitizer. */
 static ss_status check_clean(const ss_mesh *m, ss_error *err) {
   ss_mesh clean = {0};
   int *to_input = NULL;
   ss_status st = ss_mesh_sanitize(m, &clean, &to_input, NULL, 0, err);
   if (st) return st;
-  int same = clean.nv == m->nv && clean.nf == m->nf;
-  for (int i = 0; same && i < clean.nv; i++) same = to_input[i] == i;
+  int nf_dropped = m->nf - clean.nf, nv_dropped = 0;
+  unsigned char *seen = calloc((size_t)m->nv, 1);
+  if (!seen) {
+    ss_mesh_free(&clean);
+    free(to_input);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  for (int i = 0; i < clean.nv; i++) seen[to_input[i]] = 1;
+  int first_unref = -1;
+  for (int i = 0; i < m->nv; i++)
+    if (!seen[i]) {
+      if (first_unref < 0) first_unref = i;
+      nv_dropped++;
+    }
+  free(seen);
   ss_mesh_free(&clean);
   free(to_input);
-  if (!same)
+  if (nf_dropped || nv_dropped) {
+    char ex[64] = "";
+    if (first_unref >= 0) snprintf(ex, sizeof ex, " (e.g. vertex %d)", first_unref);
     return ss_fail(err, SS_ERR_INVALID,
-                   "match: the mesh has degenerate/duplicate faces, unreferenced or non-manifold vertices; "
-                   "repair it first (its vertex indices are what landmarks and maps refer to)");
+                   "match: the mesh has %d degenerate or duplicate face%s and %d unreferenced vertex%s%s; remove "
+                   "them first (`specseg info` lists them): landmarks and maps refer to its vertex indices",
+                   nf_dropped, nf_dropped == 1 ? "" : "s", nv_dropped, nv_dropped == 1 ? "" : "es", ex);
+  }
   return SS_OK;
 }
 

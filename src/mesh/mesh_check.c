@@ -99,6 +99,15 @@ ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err) {
     if (T.loop[c] == (int)c) r->boundary_loops++;
   r->euler_characteristic = nref_proper - T.nedges + (int)ntk;
   r->manifold = r->nonmanifold_edges == 0 && r->nonmanifold_vertices == 0;
+  {
+    ssi_orientation o;
+    if ((st = ssi_mesh_orientation(m, NULL, &o, err))) goto done;
+    r->misoriented_edges = o.misoriented_edges;
+    r->oriented = o.misoriented_edges == 0;
+    r->orientable = o.orientable;
+    r->reorient_faces = o.orientable ? o.flipped_faces : 0;
+    ssi_orientation_free(&o);
+  }
 
 done:
   topo_free(&T);

@@ -1,7 +1,8 @@
 /* ss_mesh_sanitize: turn a real-world triangle soup into a mesh the pipeline can process.
  * Drops degenerate faces (repeated vertex or zero area) and later copies of duplicate faces, then
  * gives every fan of faces around a vertex its own vertex copy (a pinched vertex shared by two cones
- * becomes two vertices), and drops vertices no face uses. Output vertices keep the input order (copies
+ * becomes two vertices), drops vertices no face uses, and orients each component consistently (the
+ * minority orientation of a component is reversed; a non-orientable surface is refused). Output vertices keep the input order (copies
  * of one input vertex are adjacent), so a mesh that needs nothing keeps its numbering exactly. */
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +30,7 @@ ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char
   int *newid = malloc(sizeof(int) * ncs); /* per fan representative corner */
   int *map = malloc(sizeof(int) * ncs);   /* output vertex -> input vertex */
   topo T = {0};
+  ssi_orientation O = {0};
   if (!use || !tk || !cstart || !corners || !newid || !map) {
     st = ss_fail(err, SS_ERR_NOMEM, "out of memory sanitizing a mesh of %d faces", in->nf);
     goto done;
@@ -107,12 +109,27 @@ ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char
     st = ss_fail(err, SS_ERR_INVALID, "no usable faces left after removing %d degenerate and %d duplicate faces", ndeg, ndup);
     goto done;
   }
+  /* orientation of the kept faces: each component consistently, as the majority of its faces */
+  if ((st = ssi_mesh_orientation(in, use, &O, err))) goto done;
+  if (!O.orientable) {
+    st = ss_fail(err, SS_ERR_INVALID,
+                 "the surface is not orientable: the faces around face %d cannot all be oriented "
+                 "consistently (a Moebius-like band); the pipeline needs orientable surfaces, so cut it "
+                 "into orientable pieces first",
+                 O.bad_face);
+    goto done;
+  }
   if ((st = ss_mesh_alloc(out, nout, nfo, err))) goto done;
   for (int i = 0; i < nout; i++) memcpy(out->V + 3 * (size_t)i, in->V + 3 * (size_t)map[i], 3 * sizeof(double));
   int k = 0;
   for (size_t f = 0; f < nf; f++) {
     if (!use[f]) continue;
     for (int j = 0; j < 3; j++) out->F[3 * (size_t)k + (size_t)j] = newid[T.fan[3 * f + (size_t)j]];
+    if (O.flip[f]) {
+      int s = out->F[3 * (size_t)k + 1];
+      out->F[3 * (size_t)k + 1] = out->F[3 * (size_t)k + 2];
+      out->F[3 * (size_t)k + 2] = s;
+    }
     k++;
   }
   int *ti = realloc(map, sizeof(int) * (size_t)nout);
@@ -136,11 +153,16 @@ ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char
     if (ndup) SS_APPEND("dropped %d duplicate face%s", ndup, ndup > 1 ? "s" : "");
     if (nunref) SS_APPEND("dropped %d unreferenced vertex%s", nunref, nunref > 1 ? "es" : "");
     if (npinched) SS_APPEND("split %d non-manifold (pinched) vertex%s into %d copies", npinched, npinched > 1 ? "es" : "", ncopies);
+    if (O.flipped_faces)
+      SS_APPEND("re-oriented %d face%s (in %d component%s) to agree with their neighbours: the faces were not "
+                "consistently oriented", O.flipped_faces, O.flipped_faces > 1 ? "s" : "", O.components_flipped,
+                O.components_flipped > 1 ? "s" : "");
 #undef SS_APPEND
   }
 
 done:
   topo_free(&T);
+  ssi_orientation_free(&O);
   free(use);
   free(tk);
   free(cstart);

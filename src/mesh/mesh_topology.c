@@ -32,9 +32,18 @@ typedef struct {
   int he;
 } hekey;
 
-/* Counting sort on the leading vertex, then insertion sort inside each (small) bucket: O(n + nv) for
- * meshes of bounded valence, and the same order a full comparison sort would give. */
+/* Counting sort on the leading vertex, then insertion sort inside each small bucket (qsort inside
+ * large ones): O(n + nv) for meshes of bounded valence, O(n log n) always, and the same order a full
+ * comparison sort would give. */
 static int hekey_less(const hekey *x, const hekey *y) { return x->key < y->key || (x->key == y->key && x->he < y->he); }
+static int hekey_cmp(const void *a, const void *b) {
+  const hekey *x = a, *y = b;
+  return hekey_less(x, y) ? -1 : hekey_less(y, x);
+}
+/* Buckets longer than this are sorted with qsort: a vertex in 10^5 faces (200,000 copies of one
+ * face, a polygon fan with 10^6 corners) made the insertion sort quadratic. Both orders are total
+ * (ties broken by the unique half-edge / face index), so the result is the same either way. */
+#define TOPO_SMALL_BUCKET 32
 
 static int sort_hekeys(hekey *H, size_t n, int nv) {
   size_t *start = calloc((size_t)nv + 1, sizeof(size_t));
@@ -51,6 +60,11 @@ static int sort_hekeys(hekey *H, size_t n, int nv) {
   size_t b = 0;
   for (int v = 0; v < nv; v++) {
     size_t e = start[v];
+    if (e - b > TOPO_SMALL_BUCKET) {
+      qsort(tmp + b, e - b, sizeof *tmp, hekey_cmp);
+      b = e;
+      continue;
+    }
     for (size_t i = b + 1; i < e; i++) {
       hekey x = tmp[i];
       size_t j = i;
@@ -73,6 +87,10 @@ static int tri_less(const topo_tri *x, const topo_tri *y) {
     if (x->v[k] != y->v[k]) return x->v[k] < y->v[k];
   return x->f < y->f;
 }
+static int tri_cmp(const void *a, const void *b) {
+  const topo_tri *x = a, *y = b;
+  return tri_less(x, y) ? -1 : tri_less(y, x);
+}
 
 int topo_sort_tris(topo_tri *t, size_t n, int nv) {
   size_t *start = calloc((size_t)nv + 1, sizeof(size_t));
@@ -88,6 +106,11 @@ int topo_sort_tris(topo_tri *t, size_t n, int nv) {
   size_t b = 0;
   for (int v = 0; v < nv; v++) {
     size_t e = start[v];
+    if (e - b > TOPO_SMALL_BUCKET) {
+      qsort(tmp + b, e - b, sizeof *tmp, tri_cmp);
+      b = e;
+      continue;
+    }
     for (size_t i = b + 1; i < e; i++) {
       topo_tri x = tmp[i];
       size_t j = i;

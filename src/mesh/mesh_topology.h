@@ -19,7 +19,7 @@ typedef struct topo_tri {
   int v[3];
   int f;
 } topo_tri;
-/* Sorts by (v[0], v[1], v[2], f) in O(n + nv) plus small per-vertex insertion sorts; equal vertex sets
+/* Sorts by (v[0], v[1], v[2], f) in O(n + nv) plus per-vertex sorts (O(n log n)); equal vertex sets
  * end up adjacent with the lowest face index first. 0 ok, -1 out of memory. */
 int topo_sort_tris(topo_tri *t, size_t n, int nv);
 /* Fills t[] (sorted vertex sets) for the faces with three distinct indices where use is NULL or set. */
@@ -43,5 +43,25 @@ typedef struct topo {
 /* use: NULL (all faces) or nf flags; faces with a repeated vertex index are always left out. */
 ss_status topo_build(const ss_mesh *m, const unsigned char *use, topo *T, ss_error *err);
 void topo_free(topo *T);
+
+/* Orientation (mesh_orient.c). Faces are glued across edges shared by exactly two used faces (three
+ * distinct indices); an edge both faces run in the same direction is misoriented. */
+typedef struct ssi_orientation {
+  int misoriented_edges;       /* edges of two faces that traverse it in the same direction */
+  int orientable;              /* 1: every component can be oriented consistently */
+  int components;              /* components of the face graph (through two-face edges) */
+  int nonorientable_components;
+  int bad_face;                /* lowest face of the first non-orientable component, or -1 */
+  int flipped_faces;           /* faces `flip` marks (orientable components only) */
+  int components_flipped;      /* components with at least one flipped face */
+  unsigned char *flip;         /* nf: 1 = reverse this face to orient its component consistently
+                                  (each component keeps its majority orientation) */
+} ssi_orientation;
+/* use: NULL (all faces) or nf flags. */
+ss_status ssi_mesh_orientation(const ss_mesh *m, const unsigned char *use, ssi_orientation *o, ss_error *err);
+void ssi_orientation_free(ssi_orientation *o);
+/* A consistently re-oriented copy of m->F in *F_out (malloc'd), or NULL when m is consistently
+ * oriented already; *flipped (may be NULL) = faces reversed. SS_ERR_INVALID when not orientable. */
+ss_status ssi_mesh_orient_copy(const ss_mesh *m, int **F_out, int *flipped, ss_error *err);
 
 #endif

@@ -8,6 +8,7 @@
 #include "fill_holes.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -72,9 +73,57 @@ static double dist2(const double *a, const double *b) {
   return x * x + y * y + z * z;
 }
 
+static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, const int *to_input, const int *comp,
+                                    int ncomp, const ss_segment_options *o, ss_segmentation *out, char *warnings,
+                                    size_t warnings_size, ss_error *err);
+
 ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts_in, ss_segmentation *out,
                      ss_error *err) {
+  return ss_segment_warn(input, opts_in, out, NULL, 0, err);
+}
+
+/* Appends "; what" (or "what" first) to a warnings buffer, truncating. */
+static void warn_append(char *w, size_t size, const char *what) {
+  if (!w || !size) return;
+  size_t len = strlen(w);
+  if (len + 1 >= size) return;
+  snprintf(w + len, size - len, "%s%s", len ? "; " : "", what);
+}
+
+/* Connected components of the faces of a (sanitized) mesh through shared vertices: comp[v] for every
+ * vertex (numbered by lowest vertex; -1 for a vertex in no face). Returns the count, -1 on OOM. */
+static int mesh_components(const ss_mesh *m, int *comp) {
+  int *p = malloc(sizeof(int) * (size_t)m->nv);
+  if (!p) return -1;
+  for (int i = 0; i < m->nv; i++) p[i] = i, comp[i] = -1;
+  for (int f = 0; f < m->nf; f++)
+    for (int j = 0; j < 3; j++) {
+      int a = m->F[3 * f + j], b = m->F[3 * f + (j + 1) % 3];
+      while (p[a] != a) a = p[a] = p[p[a]];
+      while (p[b] != b) b = p[b] = p[p[b]];
+      if (a != b) { if (a < b) p[b] = a; else p[a] = b; }
+    }
+  unsigned char *used = calloc((size_t)m->nv, 1);
+  if (!used) { free(p); return -1; }
+  for (int i = 0; i < 3 * m->nf; i++) used[m->F[i]] = 1;
+  int nc = 0;
+  for (int i = 0; i < m->nv; i++) {
+    int r = i;
+    while (p[r] != r) r = p[r];
+    p[i] = r;
+    if (!used[i]) continue;
+    if (comp[r] < 0) comp[r] = nc++;
+    comp[i] = comp[r];
+  }
+  free(p);
+  free(used);
+  return nc;
+}
+
+ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_in, ss_segmentation *out,
+                          char *warnings, size_t warnings_size, ss_error *err) {
   double t_start = ss_time();
+  if (warnings && warnings_size) warnings[0] = '\0';
   ss_segment_options o;
   if (opts_in) o = *opts_in;
   else ss_segment_default_options(&o);
@@ -99,8 +148,26 @@ ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts_in, ss
 
   /* 0. optional repair of what would break the Laplacian / remesher */
   if (o.sanitize) {
-    if ((st = ss_mesh_sanitize(input, &clean, &to_input, NULL, 0, err))) goto fail;
+    char sw[512];
+    if ((st = ss_mesh_sanitize(input, &clean, &to_input, sw, sizeof sw, err))) goto fail;
+    if (sw[0]) warn_append(warnings, warnings_size, sw);
     proc = &clean;
+  }
+
+  /* several components: each one of significant area is segmented on its own */
+  {
+    int *comp = malloc(sizeof(int) * (size_t)proc->nv);
+    if (!comp) goto nomem;
+    int nc = mesh_components(proc, comp);
+    if (nc < 0) { free(comp); goto nomem; }
+    if (nc > 1) {
+      st = segment_components(input, proc, to_input, comp, nc, &o, out, warnings, warnings_size, err);
+      free(comp);
+      if (st) goto fail;
+      out->t_total = ss_time() - t_start;
+      goto done;
+    }
+    free(comp);
   }
 
   /* 1. the shape the Fiedler function lives on (`work`) and Ψ: proc vertex → work vertex */
@@ -274,5 +341,217 @@ done:
   free(input_src);
   free(psi);
   ss_graph_free(&g);
+  return st;
+}
+
+/* ---- meshes of several components -------------------------------------------------------------
+ * A component whose area is at least SSI_SIGNIFICANT_AREA of the total is segmented on its own, as
+ * if it were the only shape (its own CMCF, remeshing to the full target, Fiedler vector, critical
+ * points and iVd), and so is the largest component when none reaches that share; its segment indices follow those of the components before it (components ordered
+ * by their lowest vertex). Smaller components (crumbs of a scan, a stray triangle) get no segments of
+ * their own: each of their vertices takes the segment of the nearest vertex (Euclidean, input
+ * positions) of a significant component, and a warning names them. */
+#define SSI_SIGNIFICANT_AREA 0.01
+
+static double face_area(const ss_mesh *m, int f) {
+  const double *a = m->V + 3 * (size_t)m->F[3 * f], *b = m->V + 3 * (size_t)m->F[3 * f + 1],
+               *c = m->V + 3 * (size_t)m->F[3 * f + 2];
+  double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+  return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, const int *to_input, const int *comp,
+                                    int ncomp, const ss_segment_options *o, ss_segmentation *out, char *warnings,
+                                    size_t warnings_size, ss_error *err) {
+  ss_status st = SS_OK;
+  const int np = proc->nv, nv = input->nv;
+  double *carea = calloc((size_t)ncomp, sizeof(double));
+  int *cnv = calloc((size_t)ncomp, sizeof(int)), *cnf = calloc((size_t)ncomp, sizeof(int));
+  int *cfirst = malloc(sizeof(int) * (size_t)ncomp);
+  int *local = malloc(sizeof(int) * (size_t)np);      /* proc vertex -> index in its component */
+  int *plabel = malloc(sizeof(int) * (size_t)np);     /* proc vertex -> segment (or -1) */
+  int *pwork = malloc(sizeof(int) * (size_t)np);      /* proc vertex -> work vertex (or -1) */
+  ss_segmentation *part = calloc((size_t)ncomp, sizeof *part);
+  int *back = NULL;                                   /* local vertex -> proc vertex, per component */
+  ss_mesh sub = {0};
+  if (!carea || !cnv || !cnf || !cfirst || !local || !plabel || !pwork || !part) goto nomem;
+  double total = 0;
+  for (int c = 0; c < ncomp; c++) cfirst[c] = -1;
+  for (int i = 0; i < np; i++) {
+    if (comp[i] < 0) { local[i] = -1; continue; }
+    if (cfirst[comp[i]] < 0) cfirst[comp[i]] = i;
+    local[i] = cnv[comp[i]]++;
+  }
+  for (int f = 0; f < proc->nf; f++) {
+    int c = comp[proc->F[3 * f]];
+    double a = face_area(proc, f);
+    carea[c] += a;
+    total += a;
+    cnf[c]++;
+  }
+  back = malloc(sizeof(int) * (size_t)np);
+  if (!back) goto nomem;
+  int nsig = 0, ntiny = 0, seg_off = 0, work_nv = 0, work_nf = 0, largest = -1;
+  char tiny_list[256] = "";
+  size_t tl = 0;
+  for (int i = 0; i < np; i++) plabel[i] = -1, pwork[i] = -1;
+  int biggest = 0; /* always segmented, so that a soup of small pieces still gets segments */
+  for (int c = 1; c < ncomp; c++)
+    if (carea[c] > carea[biggest]) biggest = c;
+  for (int c = 0; c < ncomp; c++) {
+    if (!(carea[c] >= SSI_SIGNIFICANT_AREA * total) && c != biggest) {
+      if (tl + 32 < sizeof tiny_list)
+        tl += (size_t)snprintf(tiny_list + tl, sizeof tiny_list - tl, "%s%d", ntiny ? ", " : "",
+                               to_input ? to_input[cfirst[c]] : cfirst[c]);
+      else if (tl + 5 < sizeof tiny_list && tiny_list[tl - 1] != '.')
+        tl += (size_t)snprintf(tiny_list + tl, sizeof tiny_list - tl, ", ...");
+      ntiny++;
+      continue;
+    }
+    /* the component as a mesh of its own */
+    if ((st = ss_mesh_alloc(&sub, cnv[c], cnf[c], err))) goto fail;
+    for (int i = 0; i < np; i++)
+      if (comp[i] == c) {
+        memcpy(sub.V + 3 * (size_t)local[i], proc->V + 3 * (size_t)i, 3 * sizeof(double));
+        back[local[i]] = i;
+      }
+    int k = 0;
+    for (int f = 0; f < proc->nf; f++)
+      if (comp[proc->F[3 * f]] == c) {
+        for (int j = 0; j < 3; j++) sub.F[3 * k + j] = local[proc->F[3 * f + j]];
+        k++;
+      }
+    ss_segment_options oc = *o;
+    oc.sanitize = 0; /* proc is clean already */
+    st = ss_segment(&sub, &oc, &part[c], err);
+    if (st) {
+      char msg[sizeof err->msg];
+      snprintf(msg, sizeof msg, "%s", err ? err->msg : "");
+      st = ss_fail(err, st,
+                   "segment: component %d of %d (input vertex %d onwards, %d vertices, %.3g%% of the area): %s",
+                   c + 1, ncomp, to_input ? to_input[cfirst[c]] : cfirst[c], cnv[c], 100 * carea[c] / total, msg);
+      goto fail;
+    }
+    for (int l = 0; l < cnv[c]; l++) {
+      int i = back[l];
+      plabel[i] = part[c].labels[l] + seg_off;
+      pwork[i] = part[c].psi[l] >= 0 ? part[c].psi[l] + work_nv : -1;
+    }
+    /* centres: local vertex -> proc vertex for now (input indices below) */
+    for (int s2 = 0; s2 < part[c].m; s2++) part[c].centers[s2] = back[part[c].centers[s2]];
+    seg_off += part[c].m;
+    work_nv += part[c].work.nv;
+    work_nf += part[c].work.nf;
+    if (largest < 0 || carea[c] > carea[largest]) largest = c;
+    nsig++;
+    ss_mesh_free(&sub);
+  }
+  if (nsig == 0) {
+    st = ss_fail(err, SS_ERR_INVALID, "segment: none of the %d components has a significant area", ncomp);
+    goto fail;
+  }
+
+  /* the union of the parts */
+  const int m = seg_off;
+  out->m = m;
+  out->labels = malloc(sizeof(int) * (size_t)nv);
+  out->centers = malloc(sizeof(int) * (size_t)m);
+  out->psi = malloc(sizeof(int) * (size_t)nv);
+  out->phi = malloc(sizeof(double) * (size_t)work_nv);
+  out->crit = malloc(sizeof(int) * (size_t)m);
+  out->crit_type = malloc((size_t)m);
+  out->work_labels = malloc(sizeof(int) * (size_t)work_nv);
+  out->work_dist = malloc(sizeof(double) * (size_t)work_nv);
+  if (!out->labels || !out->centers || !out->psi || !out->phi || !out->crit || !out->crit_type || !out->work_labels ||
+      !out->work_dist)
+    goto nomem;
+  if ((st = ss_mesh_alloc(&out->work, work_nv, work_nf, err))) goto fail;
+  {
+    int vo = 0, fo = 0, so = 0;
+    for (int c = 0; c < ncomp; c++) {
+      const ss_segmentation *p = &part[c];
+      if (!p->labels) continue;
+      memcpy(out->work.V + 3 * (size_t)vo, p->work.V, sizeof(double) * 3 * (size_t)p->work.nv);
+      for (int i = 0; i < 3 * p->work.nf; i++) out->work.F[3 * (size_t)fo + (size_t)i] = p->work.F[i] + vo;
+      memcpy(out->phi + vo, p->phi, sizeof(double) * (size_t)p->work.nv);
+      memcpy(out->work_dist + vo, p->work_dist, sizeof(double) * (size_t)p->work.nv);
+      for (int i = 0; i < p->work.nv; i++) out->work_labels[vo + i] = p->work_labels[i] >= 0 ? p->work_labels[i] + so : -1;
+      for (int s2 = 0; s2 < p->m; s2++) {
+        out->crit[so + s2] = p->crit[s2] + vo;
+        out->crit_type[so + s2] = p->crit_type[s2];
+        out->centers[so + s2] = to_input ? to_input[p->centers[s2]] : p->centers[s2];
+      }
+      out->ncrit_raw += p->ncrit_raw;
+      out->empty_segments += p->empty_segments;
+      out->t_smooth += p->t_smooth, out->t_remesh += p->t_remesh, out->t_psi += p->t_psi;
+      out->t_spectrum += p->t_spectrum, out->t_critical += p->t_critical, out->t_ivd += p->t_ivd;
+      vo += p->work.nv, fo += p->work.nf, so += p->m;
+    }
+    out->lambda2 = part[largest].lambda2;
+  }
+
+  /* input vertices: through the proc vertex they came from; the rest (tiny components, vertices the
+   * sanitizer dropped) take the label of the nearest labelled input vertex */
+  for (int i = 0; i < nv; i++) out->labels[i] = -1, out->psi[i] = -1;
+  for (int j = np - 1; j >= 0; j--) { /* the first proc copy of an input vertex wins */
+    int i = to_input ? to_input[j] : j;
+    if (i < 0 || i >= nv || plabel[j] < 0) continue;
+    out->labels[i] = plabel[j];
+    out->psi[i] = pwork[j];
+  }
+  {
+    int nk = 0, nq = 0;
+    for (int i = 0; i < nv; i++) nk += out->labels[i] >= 0;
+    nq = nv - nk;
+    if (nq > 0) {
+      ss_mesh kept = {0};
+      double *Q = malloc(sizeof(double) * 3 * (size_t)nq);
+      int *qi = malloc(sizeof(int) * (size_t)nq), *nn = malloc(sizeof(int) * (size_t)nq);
+      int *kidx = malloc(sizeof(int) * (size_t)nk);
+      if (!Q || !qi || !nn || !kidx || ss_mesh_alloc(&kept, nk, 0, NULL)) {
+        free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
+        goto nomem;
+      }
+      int a = 0, b = 0;
+      for (int i = 0; i < nv; i++) {
+        if (out->labels[i] >= 0) {
+          memcpy(kept.V + 3 * (size_t)a, input->V + 3 * (size_t)i, 3 * sizeof(double));
+          kidx[a++] = i;
+        } else {
+          memcpy(Q + 3 * (size_t)b, input->V + 3 * (size_t)i, 3 * sizeof(double));
+          qi[b++] = i;
+        }
+      }
+      st = ss_closest_vertices(Q, nq, &kept, nn, err);
+      if (!st)
+        for (int q = 0; q < nq; q++) out->labels[qi[q]] = out->labels[kidx[nn[q]]];
+      free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
+      if (st) goto fail;
+    }
+  }
+  {
+    char w[512];
+    snprintf(w, sizeof w, "%d components: %d segmented on their own (%d segments)", ncomp, nsig, m);
+    warn_append(warnings, warnings_size, w);
+    if (ntiny) {
+      snprintf(w, sizeof w,
+               "%d small component%s (under %g%% of the area each; first input vertex %s) got no segment of "
+               "their own: their vertices take the segment of the nearest vertex of a larger component",
+               ntiny, ntiny > 1 ? "s" : "", 100 * SSI_SIGNIFICANT_AREA, tiny_list);
+      warn_append(warnings, warnings_size, w);
+    }
+  }
+  goto done;
+
+nomem:
+  st = ss_fail(err, SS_ERR_NOMEM, "segment: out of memory");
+fail:
+  ss_segmentation_free(out);
+done:
+  if (part)
+    for (int c = 0; c < ncomp; c++) ss_segmentation_free(&part[c]);
+  ss_mesh_free(&sub);
+  free(carea), free(cnv), free(cnf), free(cfirst), free(local), free(plabel), free(pwork), free(part), free(back);
   return st;
 }

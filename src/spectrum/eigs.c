@@ -221,6 +221,7 @@ typedef struct {
   int ndefl;
   double *coef;       /* ndefl */
   double sigma, tol;
+  double opscale; /* OP is applied times this power of two (1 at everyday scales, see ss_eigs) */
   int maxiter, ncv_opt;
   int nops;
   double tsolve;
@@ -254,7 +255,10 @@ static ss_status arpack_iterate(lanczos_ctx *c, int nev, int ncv, double *resid,
     c->tsolve += ss_time() - ts;
     c->nops++;
     if (st) return st;
-    for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
+    if (c->opscale != 1)
+      for (int i = 0; i < n; i++) y[i] *= c->sqm[i] * c->opscale;
+    else
+      for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
     project_all(c, y);
   }
 }
@@ -333,7 +337,7 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
       st = ss_fail(err, SS_ERR_NUMERIC, "eigs: zero Ritz value of the shifted inverse");
       goto out;
     }
-    ep[j].lambda = c->sigma + 1.0 / rp[j].nu;
+    ep[j].lambda = c->sigma + 1.0 / (rp[j].nu / c->opscale);
     ep[j].col = rp[j].idx;
   }
   qsort(ep, (size_t)nev, sizeof *ep, by_lambda_asc);
@@ -364,6 +368,39 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   if (o.ncv != 0 && (o.ncv <= k || o.ncv > n))
     return ss_fail(err, SS_ERR_INVALID, "eigs: ncv = %d must satisfy k = %d < ncv <= n = %d", o.ncv, k, n);
   if (o.maxiter < 0) return ss_fail(err, SS_ERR_INVALID, "eigs: maxiter must be >= 0");
+  /* Scale. W is invariant under a uniform scaling of the shape by s and M scales with s², so the
+   * eigenvalues scale with 1/s² while an absolute shift does not: at s = 1e8 a shift of −1e-8 lies
+   * 1e8 times farther below 0 than λ₂ is above it, OP = (W − σM)⁻¹ is ~ −M⁻¹/σ up to 1e-8 and the
+   * low eigenvalues drown (wrong values, split multiplets). A negative shift only says "below the
+   * spectrum", so its dimensionless size |σ|·area is kept in [1e-10, 1e-3]: inside that band (every
+   * FAUST and TOSCA shape: 1.6e-8 ... 7.1e-4 with the default) σ is used as given, bit for bit;
+   * outside it the nearer end of the band is used, which makes the computation covariant under
+   * scaling (the same dimensionless problem at every scale). */
+  double sigma = o.sigma;
+  if (sigma < 0) {
+    double area = 0;
+    for (int i = 0; i < n; i++) area += M[i];
+    const double lo = 1e-10, hi = 1e-3;
+    if (isfinite(area) && area > 0) {
+      if (-sigma * area > hi) sigma = -hi / area;
+      else if (-sigma * area < lo) sigma = -lo / area;
+    }
+  }
+  /* The operator's eigenvalues 1/(λ − σ) have the dimension of an area. ARPACK's convergence test
+   * is relative only above eps^(2/3) ~ 4e-11 (dsconv: tol · max(eps23, |ritz|)), so on a shape of
+   * area 1e-20 every Ritz value looks converged at once. Outside the everyday range of areas the
+   * operator is applied times a power of two near 1/area (exact: no rounding is added), which
+   * makes the Lanczos process the same at every scale; inside it (FAUST, TOSCA) nothing changes. */
+  double opscale = 1;
+  {
+    double area = 0;
+    for (int i = 0; i < n; i++) area += M[i];
+    if (isfinite(area) && area > 0 && (area < 1e-3 || area > 1e6)) {
+      int e2;
+      frexp(area, &e2);
+      opscale = ldexp(1.0, -e2);
+    }
+  }
   /* passed by value to ARPACK's C binding, where 0 does not mean machine precision: be explicit */
   double tol = o.tol > 0 ? o.tol : DBL_EPSILON;
   int maxiter = o.maxiter > 0 ? o.maxiter : 1000;
@@ -382,7 +419,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
    * pairs are known exactly (constants per component), so for σ <= 0 we project them out of OP and
    * ask ARPACK only for the remaining k − c pairs. */
   int nnull = 0;
-  if (o.sigma <= 0) {
+  if (sigma <= 0) {
     nnull = null_components(W, label);
     if (nnull < 0) { st = ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory"); goto done; }
   }
@@ -400,12 +437,12 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   }
 
   double tt0 = ss_time(), tt1 = tt0, tt2 = tt0;
-  lanczos_ctx lc = {NULL, sqm, mass, label, acc, n, nnull, NULL, 0, NULL, o.sigma, tol, maxiter, o.ncv, 0, 0.0};
+  lanczos_ctx lc = {NULL, sqm, mass, label, acc, n, nnull, NULL, 0, NULL, sigma, tol, opscale, maxiter, o.ncv, 0, 0.0};
   int recovered = 0;
   if (kk > 0) {
     lam = malloc(sizeof(double) * (size_t)k);
     if (!lam) { st = ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory"); goto done; }
-    st = ssi_chol_factor(W, -o.sigma, M, &chol, err);
+    st = ssi_chol_factor(W, -sigma, M, &chol, err);
     tt1 = ss_time();
     if (st) goto done;
     lc.chol = chol;
@@ -417,7 +454,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
      * a second copy. Sylvester's inertia of W − τM, τ just below the largest computed λ, counts the
      * eigenvalues below τ; if we hold fewer, the missing ones are computed with everything found so
      * far deflated, and the k smallest of the union kept. */
-    for (int attempt = 0; o.sigma <= 0 && attempt < 8; attempt++) {
+    for (int attempt = 0; sigma <= 0 && attempt < 8; attempt++) {
       double top = lam[kk - 1];
       if (!(top > 0)) break;
       double tau = top * (1 - 1e-6);

@@ -77,6 +77,8 @@ ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt_in, ss_me
   int *diagpos = malloc(sizeof(int) * n);
   cholmod_common cc;
   cholmod_start(&cc);
+  cc.print = 0;               /* the library never prints: failures are reported through err */
+  cc.error_handler = NULL;
   cc.supernodal = CHOLMOD_SIMPLICIAL; /* faster than supernodal at these sizes (paper-notes) */
   cholmod_sparse *A = NULL;
   cholmod_factor *L = NULL;
@@ -149,8 +151,18 @@ ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt_in, ss_me
       if (!L) { st = ss_fail(err, SS_ERR_NUMERIC, "cmcf: CHOLMOD analysis failed (status %d)", cc.status); goto done; }
     }
     if (!cholmod_factorize(A, L, &cc) || cc.status != CHOLMOD_OK) {
-      free(Wdiag);
-      st = ss_fail(err, SS_ERR_NUMERIC, "cmcf: CHOLMOD factorisation failed at step %d (status %d)", step, cc.status);
+      /* Wdiag and the rest are released once, at done: */
+      if (cc.status == CHOLMOD_NOT_POSDEF && L->minor < (size_t)n) {
+        int v = L->Perm ? ((const int *)L->Perm)[L->minor] : (int)L->minor;
+        st = ss_fail(err, SS_ERR_NUMERIC,
+                     "cmcf: the flow's system is not positive definite at step %d (pivot of vertex %d): "
+                     "near-degenerate (needle) triangles there, or the flow collapsed a small piece of the "
+                     "surface; drop such faces and crumbs (ss_mesh_sanitize) or use fewer / smaller steps",
+                     step, v);
+      } else {
+        st = ss_fail(err, cc.status == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                     "cmcf: CHOLMOD factorisation failed at step %d (status %d)", step, cc.status);
+      }
       goto done;
     }
     double *Bx = B->x;
