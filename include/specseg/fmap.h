@@ -115,7 +115,7 @@ SS_API ss_status ss_fmap_energy(int k_S, int k_T, int p, const double *A, const 
                                 const double *evals_T, int nd, const double *D_S, const double *D_T,
                                 const ss_fmap_weights *w, const double *C, double *E, double *grad, ss_error *err);
 
-/* --------------------------------------------------------------- point maps (p2p.c) */
+/* ------------------------------- nearest neighbours and point maps (nearest_neighbor.c, p2p.c) */
 
 /* Exact nearest neighbours: for each query point q (nq x d, column-major, leading dimension ldq)
  * the index of the closest database point (ndb x d, leading dimension lddb) in Euclidean distance;
@@ -162,7 +162,7 @@ SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const doub
 SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                             const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
-/* ---------------------------------------------------------------- pipeline (match.c) */
+/* ----------------------------------------------------------- pipeline (fmap_match.c) */
 
 /* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric
  * masses of the mesh, as ss_mesh_eigs uses) and eigenpairs (kev of them, evecs nv x kev). */

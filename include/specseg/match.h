@@ -56,7 +56,7 @@ typedef enum ss_segment_profile {
 SS_API ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, ss_segment_profile profile,
                                    double **E, ss_error *err);
 
-/* ---- Per-shape preparation (match_shapes.c) ----------------------------------------------------- */
+/* ---- Per-shape preparation (shape_prep.c) ------------------------------------------------------- */
 
 typedef struct ss_shape_prep {
   const ss_mesh *mesh;  /* the input mesh (borrowed: must outlive the prep) */
@@ -77,7 +77,7 @@ SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_option
                                        ss_error *err);
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
 
-/* ---- The matching pipeline (match_shapes.c) ----------------------------------------------------- */
+/* ---- The matching pipeline (match.c) ------------------------------------------------------------ */
 
 typedef enum ss_probe_set {
   SS_PROBES_STD = 0,  /* WKS + landmark wave-kernel maps (NO17) */

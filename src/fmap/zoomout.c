@@ -7,7 +7,7 @@
  * made once on Φ_S's first kmax columns: ‖E(x) − E(x')‖ ≤ ‖C‖ ‖Φ_S(x) − Φ_S(x')‖ and ZoomOut's C are
  * close to orthonormal, so clusters compact there stay compact in every E. On FAUST (50 -> 100, step
  * 1, one thread) ZoomOut went from 2.6–3.0 s to 1.0–1.25 s CPU per pair with these and the frame
- * bound of nn_exact.c, with bit-identical maps and C. */
+ * bound of nearest_neighbor.c, with bit-identical maps and C. */
 #include "specseg/fmap.h"
 
 #include <cblas.h>
