@@ -83,6 +83,42 @@ ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts_in, ss
 }
 
 /* Appends "; what" (or "what" first) to a warnings buffer, truncating. */
+/* Input vertices still unlabelled (labels[i] < 0: in no processed face, or in a component without a
+ * centre) take the label of the nearest labelled input vertex (Euclidean, input positions). */
+static ss_status label_unlabelled_by_nearest(const ss_mesh *input, int *labels, ss_error *err) {
+  const int nv = input->nv;
+  int nk = 0;
+  for (int i = 0; i < nv; i++) nk += labels[i] >= 0;
+  const int nq = nv - nk;
+  if (nq == 0) return SS_OK;
+  if (nk == 0) return ss_fail(err, SS_ERR_NUMERIC, "segment: no input vertex received a label");
+  ss_mesh kept = {0};
+  double *Q = malloc(sizeof(double) * 3 * (size_t)nq);
+  int *qi = malloc(sizeof(int) * (size_t)nq), *nn = malloc(sizeof(int) * (size_t)nq);
+  int *kidx = malloc(sizeof(int) * (size_t)nk);
+  ss_status st = SS_OK;
+  if (!Q || !qi || !nn || !kidx || ss_mesh_alloc(&kept, nk, 0, NULL)) {
+    st = ss_fail(err, SS_ERR_NOMEM, "segment: out of memory");
+    goto done;
+  }
+  int a = 0, b = 0;
+  for (int i = 0; i < nv; i++) {
+    if (labels[i] >= 0) {
+      memcpy(kept.V + 3 * (size_t)a, input->V + 3 * (size_t)i, 3 * sizeof(double));
+      kidx[a++] = i;
+    } else {
+      memcpy(Q + 3 * (size_t)b, input->V + 3 * (size_t)i, 3 * sizeof(double));
+      qi[b++] = i;
+    }
+  }
+  st = ss_closest_vertices(Q, nq, &kept, nn, err);
+  if (!st)
+    for (int q = 0; q < nq; q++) labels[qi[q]] = labels[kidx[nn[q]]];
+done:
+  free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
+  return st;
+}
+
 static void warn_append(char *w, size_t size, const char *what) {
   if (!w || !size) return;
   size_t len = strlen(w);
@@ -259,38 +295,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
     out->labels[i] = out->work_labels[psi[input_src[i]]];
     if (out->labels[i] < 0) nlost++; /* a component without a centre: handled below */
   }
-  if (nlost) {
-    /* nearest labelled input vertex (Euclidean, input positions) */
-    int nk = 0;
-    for (int i = 0; i < nv; i++) nk += out->labels[i] >= 0;
-    if (nk == 0) {
-      st = ss_fail(err, SS_ERR_NUMERIC, "segment: no input vertex received a label");
-      goto fail;
-    }
-    ss_mesh kept = {0};
-    double *Q = malloc(sizeof(double) * 3 * (size_t)nlost);
-    int *qi = malloc(sizeof(int) * (size_t)nlost), *nn = malloc(sizeof(int) * (size_t)nlost);
-    int *kidx = malloc(sizeof(int) * (size_t)nk);
-    if (!Q || !qi || !nn || !kidx || ss_mesh_alloc(&kept, nk, 0, NULL)) {
-      free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
-      goto nomem;
-    }
-    int a = 0, b = 0;
-    for (int i = 0; i < nv; i++) {
-      if (out->labels[i] >= 0) {
-        memcpy(kept.V + 3 * (size_t)a, input->V + 3 * (size_t)i, 3 * sizeof(double));
-        kidx[a++] = i;
-      } else {
-        memcpy(Q + 3 * (size_t)b, input->V + 3 * (size_t)i, 3 * sizeof(double));
-        qi[b++] = i;
-      }
-    }
-    st = ss_closest_vertices(Q, nlost, &kept, nn, err);
-    if (!st)
-      for (int k = 0; k < nlost; k++) out->labels[qi[k]] = out->labels[kidx[nn[k]]];
-    free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
-    if (st) goto fail;
-  }
+  if (nlost && (st = label_unlabelled_by_nearest(input, out->labels, err))) goto fail;
 
   /* 6. centres on the input: among the input vertices of segment s, the one whose smoothed twin is
    * closest to the critical point (falls back to all vertices when the segment is empty on the
@@ -500,36 +505,7 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
     out->labels[i] = plabel[j];
     out->psi[i] = pwork[j];
   }
-  {
-    int nk = 0, nq = 0;
-    for (int i = 0; i < nv; i++) nk += out->labels[i] >= 0;
-    nq = nv - nk;
-    if (nq > 0) {
-      ss_mesh kept = {0};
-      double *Q = malloc(sizeof(double) * 3 * (size_t)nq);
-      int *qi = malloc(sizeof(int) * (size_t)nq), *nn = malloc(sizeof(int) * (size_t)nq);
-      int *kidx = malloc(sizeof(int) * (size_t)nk);
-      if (!Q || !qi || !nn || !kidx || ss_mesh_alloc(&kept, nk, 0, NULL)) {
-        free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
-        goto nomem;
-      }
-      int a = 0, b = 0;
-      for (int i = 0; i < nv; i++) {
-        if (out->labels[i] >= 0) {
-          memcpy(kept.V + 3 * (size_t)a, input->V + 3 * (size_t)i, 3 * sizeof(double));
-          kidx[a++] = i;
-        } else {
-          memcpy(Q + 3 * (size_t)b, input->V + 3 * (size_t)i, 3 * sizeof(double));
-          qi[b++] = i;
-        }
-      }
-      st = ss_closest_vertices(Q, nq, &kept, nn, err);
-      if (!st)
-        for (int q = 0; q < nq; q++) out->labels[qi[q]] = out->labels[kidx[nn[q]]];
-      free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
-      if (st) goto fail;
-    }
-  }
+  if ((st = label_unlabelled_by_nearest(input, out->labels, err))) goto fail;
   {
     char w[512];
     snprintf(w, sizeof w, "%d components: %d segmented on their own (%d segments)", ncomp, nsig, m);
