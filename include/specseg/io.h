@@ -24,6 +24,13 @@ SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
  * content sniffing (a "ply" first line, an OFF header or counts, OBJ keywords); name (NULL:
  * "<memory>") stands for the file in messages, "NAME:LINE: what". buf is not modified or kept. */
 SS_API ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err);
+/* ss_read_mesh / ss_read_mesh_memory that also return the file's per-vertex colours: *rgb gets 3*nv
+ * malloc'd bytes (free them) when the file has them, else NULL (rgb NULL: not wanted, as ss_read_mesh).
+ * PLY: vertex properties red, green, blue (or diffuse_red.., or r g b; integer types clamped to
+ * 0..255, floating-point ones in [0, 1] scaled by 255); other formats give NULL. */
+SS_API ss_status ss_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err);
+SS_API ss_status ss_read_mesh_colors_memory(const void *buf, size_t len, const char *name, ss_mesh *m,
+                                            unsigned char **rgb, ss_error *err);
 
 /* Write by extension (.off or .ply; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
  * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue).
