@@ -466,7 +466,7 @@ static void test_colors(void) {
     CHECK(got && same_mesh(&m, &r) && !memcmp(got, rgb, 3 * (size_t)m.nv));
     free(got);
     ss_mesh_free(&r);
-    size_t n;
+    size_t n = 0;
     char *b = read_all(p, &n);
     CHECK(ss_read_mesh_colors_memory(b, n, "mem", &r, &got, &err) == SS_OK);
     CHECK(got && !memcmp(got, rgb, 3 * (size_t)m.nv));
