@@ -77,6 +77,8 @@ const char *cli_out_name(const char *path); /* "<stdout>" for "-", else path */
 /* How many of the n paths (NULLs skipped) are "-". */
 int cli_count_std(const char *const *paths, int n);
 ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err);
+/* The mesh and its vertex colours (*rgb: 3 nv malloc'd bytes, or NULL when the file has none). */
+ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err);
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);

@@ -122,6 +122,17 @@ ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
   return ss_read_mesh_memory(b, n, cli_in_name(path), m, err);
 }
 
+ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err) {
+  const char *b;
+  size_t n;
+  memset(m, 0, sizeof *m);
+  *rgb = NULL;
+  int is;
+  ss_status st = stream_input(path, &is, &b, &n, err);
+  if (st || !is) return st ? st : ss_read_mesh_colors(path, m, rgb, err);
+  return ss_read_mesh_colors_memory(b, n, cli_in_name(path), m, rgb, err);
+}
+
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err) {
   const char *b;
   size_t len;
