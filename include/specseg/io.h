@@ -45,6 +45,15 @@ SS_API ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned
 SS_API ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
 /* Reads '<f8' or '>f8', C or Fortran order, 1-D or 2-D; returns a freshly malloc'd column-major array. */
 SS_API ss_status ss_read_npy(const char *path, double **a, int *rows, int *cols, ss_error *err);
+/* Integers: writes '<i4'; reads '<i4', '<i8' (or big-endian '>i4', '>i8'; int64 values must fit an int),
+ * C or Fortran order, 1-D (rows = n, cols = 1) or 2-D, into a malloc'd column-major int array. */
+SS_API ss_status ss_write_npy_ints(const char *path, const int *a, int rows, int cols, ss_error *err);
+SS_API ss_status ss_read_npy_ints(const char *path, int **a, int *rows, int *cols, ss_error *err);
+/* ss_read_npy / ss_read_npy_ints of len bytes in memory; name (NULL: "<memory>") stands for the file. */
+SS_API ss_status ss_read_npy_memory(const void *buf, size_t len, const char *name, double **a, int *rows, int *cols,
+                                    ss_error *err);
+SS_API ss_status ss_read_npy_ints_memory(const void *buf, size_t len, const char *name, int **a, int *rows, int *cols,
+                                         ss_error *err);
 
 /* Text vectors: one value a line. Integers (labels, maps, landmark indices) and doubles (%.17g;
  * "inf" allowed). Readers allocate *out with malloc and set *n; comments (#) and blank lines skipped.
