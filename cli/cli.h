@@ -79,6 +79,11 @@ int cli_count_std(const char *const *paths, int n);
 ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err);
 /* The mesh and its vertex colours (*rgb: 3 nv malloc'd bytes, or NULL when the file has none). */
 ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err);
+/* Vectors (labels, maps, fields, landmarks): text, or NumPy when the name ends in .npy or the bytes
+ * start with the NumPy magic (standard input): shape (n,), (n, 1) or (1, n); landmarks also (n, 2);
+ * fields also "F.npy:J", column J of an (n, k) array. Writers: .npy by extension ((n, 1) '<i4' /
+ * '<f8'), else text. */
+int cli_is_npy(const char *path);
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);
