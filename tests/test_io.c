@@ -508,6 +508,60 @@ static void test_colors(void) {
   ss_mesh_free(&m);
 }
 
+/* OBJ output (ss_write_mesh by extension, exact round trip, colours as "v x y z r g b") and the PLY
+ * label property (ascii and binary: the mesh reads back unchanged, the labels are in the file). */
+static void test_obj_out_and_labels(void) {
+  ss_mesh m, r;
+  ss_error err;
+  test_mesh(&m);
+  unsigned char *rgb = malloc(3 * (size_t)m.nv);
+  int *lab = malloc(sizeof(int) * (size_t)m.nv);
+  for (int i = 0; i < m.nv; i++) {
+    rgb[3 * i] = (unsigned char)i, rgb[3 * i + 1] = 255, rgb[3 * i + 2] = 0;
+    lab[i] = i % 7 - 1;
+  }
+  CHECK(ss_write_mesh(tmp("o.obj"), &m, NULL, &err) == SS_OK);
+  CHECK(ss_read_mesh(tmp("o.obj"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  ss_mesh_free(&r);
+  CHECK(ss_write_mesh(tmp("oc.OBJ"), &m, rgb, &err) == SS_OK);
+  CHECK(ss_read_mesh(tmp("oc.OBJ"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  ss_mesh_free(&r);
+  size_t n = 0;
+  char *txt = read_all(tmp("oc.OBJ"), &n);
+  CHECK(txt && strstr(txt, " 0 1 0\n") && strstr(txt, "\nf 1 "));
+  free(txt);
+  const ss_ply_format fmts[] = {SS_PLY_ASCII, SS_PLY_BINARY_LE, SS_PLY_BINARY_BE};
+  for (int k = 0; k < 3; k++)
+    for (int with_rgb = 0; with_rgb < 2; with_rgb++) {
+      CHECK(ss_write_ply_labels(tmp("l.ply"), &m, with_rgb ? rgb : NULL, lab, fmts[k], &err) == SS_OK);
+      unsigned char *got = NULL;
+      CHECK(ss_read_mesh_colors(tmp("l.ply"), &r, &got, &err) == SS_OK && same_mesh(&m, &r));
+      CHECK(with_rgb ? got && !memcmp(got, rgb, 3 * (size_t)m.nv) : got == NULL);
+      free(got);
+      ss_mesh_free(&r);
+      txt = read_all(tmp("l.ply"), &n);
+      CHECK(txt && strstr(txt, "property int label\nelement face"));
+      if (txt && k == 0) { /* ascii: the last value of vertex 2's line is its label, 1 */
+        char *body = strstr(txt, "end_header\n") + 11;
+        for (int line = 0; line < 2; line++) body = strchr(body, '\n') + 1;
+        char *eol = strchr(body, '\n'), *sp = eol;
+        while (sp > body && sp[-1] != ' ') sp--;
+        CHECK(atoi(sp) == lab[2]);
+      }
+      free(txt);
+    }
+  CHECK(ss_write_mesh_labels(tmp("ml.ply"), &m, rgb, lab, &err) == SS_OK);
+  txt = read_all(tmp("ml.ply"), &n);
+  CHECK(txt && strstr(txt, "binary_little_endian") && strstr(txt, "property int label"));
+  free(txt);
+  CHECK(ss_write_mesh_labels(tmp("ml.off"), &m, rgb, lab, &err) == SS_OK); /* labels dropped */
+  CHECK(ss_read_mesh(tmp("ml.off"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  ss_mesh_free(&r);
+  free(rgb);
+  free(lab);
+  ss_mesh_free(&m);
+}
+
 int main(void) {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/ss_test_io_XXXXXX");
   if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 2; }
@@ -519,6 +573,7 @@ int main(void) {
   test_vectors();
   test_memory();
   test_colors();
+  test_obj_out_and_labels();
   test_faust();
   /* clean up the scratch folder */
   DIR *d = opendir(tmpdir);

@@ -32,14 +32,22 @@ SS_API ss_status ss_read_mesh_colors(const char *path, ss_mesh *m, unsigned char
 SS_API ss_status ss_read_mesh_colors_memory(const void *buf, size_t len, const char *name, ss_mesh *m,
                                             unsigned char **rgb, ss_error *err);
 
-/* Write by extension (.off or .ply; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
- * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue).
+/* Write by extension (.off, .ply or .obj; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
+ * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue; OBJ
+ * "v x y z r g b" with colours in [0, 1]; OBJ faces are 1-based "f a b c").
  * Coordinates are written losslessly (%.17g text, float64 binary): write -> read is exact. */
 SS_API ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 SS_API ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 typedef enum ss_ply_format { SS_PLY_ASCII = 0, SS_PLY_BINARY_LE = 1, SS_PLY_BINARY_BE = 2 } ss_ply_format;
 SS_API ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_ply_format fmt,
                               ss_error *err);
+SS_API ss_status ss_write_obj(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
+/* PLY with an integer vertex property `label` (labels: nv values, e.g. segment ids; NULL: none) after
+ * the colours; ss_write_mesh_labels: the same for .ply, ss_write_mesh (labels dropped) otherwise. */
+SS_API ss_status ss_write_ply_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                     ss_ply_format fmt, ss_error *err);
+SS_API ss_status ss_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                      ss_error *err);
 
 /* NumPy .npy (format 1.0, '<f8', C order) of a rows x cols matrix given column-major in `a`. */
 SS_API ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
