@@ -92,6 +92,9 @@ ss_status cli_write_doubles(const char *path, const double *v, int n, ss_error *
 /* A mesh by the extension of path; "-" writes format `std_ext` ("off" or "ply") to stdout. */
 ss_status cli_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, const char *std_ext,
                          ss_error *err);
+/* The same with a PLY's integer vertex property `label` (labels NULL: none; other formats drop it). */
+ss_status cli_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                const char *std_ext, ss_error *err);
 ss_status cli_write_png(const char *path, const unsigned char *rgb, int w, int h, ss_error *err);
 ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
 /* A text file the CLI writes itself: stdout for "-" (then cli_close_out only flushes). NULL with

@@ -332,11 +332,12 @@ typedef struct out_job {
   const unsigned char *rgb;
   const double *a;
   int w, h;
+  const int *labels; /* meshes: a PLY's label property (NULL: none) */
 } out_job;
 
 static ss_status run_job(const out_job *j, const char *path, ss_error *err) {
   switch (j->what) {
-    case JOB_MESH: return ss_write_mesh(path, j->m, j->rgb, err);
+    case JOB_MESH: return ss_write_mesh_labels(path, j->m, j->rgb, j->labels, err);
     case JOB_NPY: return ss_write_npy(path, j->a, j->w, j->h, err);
     default: return ss_write_png(path, j->rgb, j->w, j->h, err);
   }
@@ -393,22 +394,27 @@ static ss_status write_via_temp(const out_job *j, ss_error *err) {
   return st;
 }
 
+ss_status cli_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                const char *std_ext, ss_error *err) {
+  if (!cli_is_std(path)) return ss_write_mesh_labels(path, m, rgb, labels, err);
+  int ply = !strcmp(std_ext, "ply");
+  out_job j = {JOB_MESH, ply ? "PLY" : "OFF", ply, std_ext, m, rgb, NULL, 0, 0, labels};
+  return write_via_temp(&j, err);
+}
+
 ss_status cli_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, const char *std_ext,
                          ss_error *err) {
-  if (!cli_is_std(path)) return ss_write_mesh(path, m, rgb, err);
-  int ply = !strcmp(std_ext, "ply");
-  out_job j = {JOB_MESH, ply ? "PLY" : "OFF", ply, std_ext, m, rgb, NULL, 0, 0};
-  return write_via_temp(&j, err);
+  return cli_write_mesh_labels(path, m, rgb, NULL, std_ext, err);
 }
 
 ss_status cli_write_png(const char *path, const unsigned char *rgb, int w, int h, ss_error *err) {
   if (!cli_is_std(path)) return ss_write_png(path, rgb, w, h, err);
-  out_job j = {JOB_PNG, "PNG", 1, "png", NULL, rgb, NULL, w, h};
+  out_job j = {JOB_PNG, "PNG", 1, "png", NULL, rgb, NULL, w, h, NULL};
   return write_via_temp(&j, err);
 }
 
 ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err) {
   if (!cli_is_std(path)) return ss_write_npy(path, a, rows, cols, err);
-  out_job j = {JOB_NPY, ".npy", 1, "npy", NULL, NULL, a, rows, cols};
+  out_job j = {JOB_NPY, ".npy", 1, "npy", NULL, NULL, a, rows, cols, NULL};
   return write_via_temp(&j, err);
 }

@@ -58,6 +58,17 @@ read -r w2 h2 <<< "$(sil "$TMP/common.png" 200 400)"
 
 # ---- a PLY's own colours: a segmented PLY re-rendered shows its segment colours ----
 "$BIN" segment "$M" -o "$TMP/l.txt" --ply "$TMP/seg.ply" --faces 6000 > /dev/null 2>&1 || bad "segment --ply failed"
+# the PLY carries the labels as an int vertex property 'label' beside the colours
+"$PY" - "$TMP/seg.ply" "$TMP/l.txt" <<'PYEOF' && ok || bad "segment --ply: no 'label' property equal to the labels"
+import struct, sys
+data = open(sys.argv[1], "rb").read()
+head, body = data.split(b"end_header\n", 1)
+assert b"property uchar blue\nproperty int label\n" in head, head
+nv = int(head.split(b"element vertex ")[1].split()[0])
+lab = [struct.unpack_from("<i", body, 31 * i + 27)[0] for i in range(nv)]
+want = [int(x) for x in open(sys.argv[2]) if x.strip() and not x.startswith("#")]
+assert lab == want, (lab[:10], want[:10])
+PYEOF
 "$BIN" render "$TMP/seg.ply" "${R[@]}" -o "$TMP/ply.png" > /dev/null 2>&1 && ok || bad "render a coloured PLY"
 "$BIN" render "$M" "${R[@]}" -o "$TMP/plain.png" > /dev/null 2>&1 || bad "render the OFF"
 PAL=("230 25 75" "60 180 75" "255 200 25" "0 130 200" "245 130 48" "145 30 180")
@@ -85,6 +96,14 @@ seq 0 $((101 * 101 - 1)) > "$TMP/gid.txt"
   ok || bad "render --map on the grid"
 drops=$(png "$TMP/map.png" row 100 20 180 | awk '{ d = 0; for (i = 3; i <= NF; i++) if ($i < $(i - 2) - 20) d++; print d }')
 [ "$drops" -ge 5 ] && ok || bad "no checker on the --map target: $drops brightness drops along a row"
+
+# ---- OBJ output: a mesh written as .obj reads back with the same counts ----
+"$BIN" smooth "$M" --steps 1 -o "$TMP/s.obj" > /dev/null 2>&1 && ok || bad "smooth -o S.obj"
+head -1 "$TMP/s.obj" | grep -q "^# written by specseg" && grep -q "^f 1 \|^f [0-9]* [0-9]* [0-9]*$" "$TMP/s.obj" && ok || bad "not an OBJ"
+"$BIN" info "$TMP/s.obj" > "$TMP/i1" 2>&1
+"$BIN" info "$M" > "$TMP/i2" 2>&1
+c1=$(grep -E '^(vertices|faces):' "$TMP/i1"); c2=$(grep -E '^(vertices|faces):' "$TMP/i2")
+[ -n "$c1" ] && [ "$c1" = "$c2" ] && ok || bad "OBJ counts differ: $c1 / $c2"
 
 # ---- usage errors ----
 for a in "--up w" "--up=" "--scale big" "--scale"; do
