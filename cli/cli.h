@@ -77,6 +77,13 @@ const char *cli_out_name(const char *path); /* "<stdout>" for "-", else path */
 /* How many of the n paths (NULLs skipped) are "-". */
 int cli_count_std(const char *const *paths, int n);
 ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err);
+/* The mesh and its vertex colours (*rgb: 3 nv malloc'd bytes, or NULL when the file has none). */
+ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err);
+/* Vectors (labels, maps, fields, landmarks): text, or NumPy when the name ends in .npy or the bytes
+ * start with the NumPy magic (standard input): shape (n,), (n, 1) or (1, n); landmarks also (n, 2);
+ * fields also "F.npy:J", column J of an (n, k) array. Writers: .npy by extension ((n, 1) '<i4' /
+ * '<f8'), else text. */
+int cli_is_npy(const char *path);
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);
@@ -85,6 +92,9 @@ ss_status cli_write_doubles(const char *path, const double *v, int n, ss_error *
 /* A mesh by the extension of path; "-" writes format `std_ext` ("off" or "ply") to stdout. */
 ss_status cli_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, const char *std_ext,
                          ss_error *err);
+/* The same with a PLY's integer vertex property `label` (labels NULL: none; other formats drop it). */
+ss_status cli_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                const char *std_ext, ss_error *err);
 ss_status cli_write_png(const char *path, const unsigned char *rgb, int w, int h, ss_error *err);
 ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
 /* A text file the CLI writes itself: stdout for "-" (then cli_close_out only flushes). NULL with

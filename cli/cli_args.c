@@ -11,7 +11,9 @@ void cli_print_usage(const char *usage, FILE *f) {
   size_t n = strlen(usage);
   if (n && usage[n - 1] != '\n') fputc('\n', f);
   fputs("  -h, --help          this text\n"
-        "An option that takes a value accepts it as the next argument or after '=': --opt VALUE or --opt=VALUE.\n",
+        "An option that takes a value accepts it as the next argument or after '=': --opt VALUE or --opt=VALUE.\n"
+        "Vector files (labels, maps, fields, landmarks) are text, or NumPy when named *.npy (read: shape (n,),\n"
+        "(n, 1), landmarks (n, 2), fields F.npy:J for column J; written: (n, 1) int32 / float64).\n",
         f);
 }
 

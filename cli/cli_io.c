@@ -122,11 +122,110 @@ ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
   return ss_read_mesh_memory(b, n, cli_in_name(path), m, err);
 }
 
+ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err) {
+  const char *b;
+  size_t n;
+  memset(m, 0, sizeof *m);
+  *rgb = NULL;
+  int is;
+  ss_status st = stream_input(path, &is, &b, &n, err);
+  if (st || !is) return st ? st : ss_read_mesh_colors(path, m, rgb, err);
+  return ss_read_mesh_colors_memory(b, n, cli_in_name(path), m, rgb, err);
+}
+
+/* ---- .npy vectors ---------------------------------------------------------------------------------
+ * A file whose name ends in .npy (or whose bytes start with the NumPy magic, e.g. on standard input) is
+ * read as NumPy: shape (n,), (n, 1) or (1, n) for a vector. For doubles, "F.npy:J" takes column J
+ * (0-based) of an (n, k) array, e.g. one eigenvector of `eigs --evecs`. */
+
+int cli_is_npy(const char *path) {
+  size_t n = path ? strlen(path) : 0;
+  return n > 4 && !strcmp(path + n - 4, ".npy");
+}
+
+static int is_npy_bytes(const char *b, size_t len) { return len >= 6 && !memcmp(b, "\x93NUMPY", 6); }
+
+/* "F.npy:J" naming no existing file: *col = J and the path without ":J" in buf; else 0. */
+static int npy_column(const char *path, char *buf, size_t cap, int *col) {
+  const char *c = path ? strrchr(path, ':') : NULL;
+  if (!c || c - path < 5 || strncmp(c - 4, ".npy", 4) || !c[1] || (size_t)(c - path) >= cap) return 0;
+  struct stat st;
+  if (stat(path, &st) == 0) return 0;
+  long v = 0;
+  for (const char *q = c + 1; *q; q++) {
+    if (*q < '0' || *q > '9' || v > 100000000) return 0;
+    v = v * 10 + (*q - '0');
+  }
+  memcpy(buf, path, (size_t)(c - path));
+  buf[c - path] = '\0';
+  *col = (int)v;
+  return 1;
+}
+
+/* An (r, c) array as a vector of n values: a column `col` (>= 0) or the whole of a (n,), (n, 1), (1, n)
+ * array; *a is replaced by the vector. */
+static ss_status npy_vector(const char *name, void **a, size_t esz, int r, int c, int col, int *n, ss_error *err) {
+  if (col >= 0) {
+    if (col >= c) return ss_fail(err, SS_ERR_INVALID, "%s: column %d asked, the array has %d (shape (%d, %d))", name, col, c, r, c);
+    memmove(*a, (char *)*a + esz * (size_t)r * (size_t)col, esz * (size_t)r);
+    *n = r;
+    return SS_OK;
+  }
+  if (r > 1 && c > 1)
+    return ss_fail(err, SS_ERR_PARSE, "%s: shape (%d, %d) is not a vector (give one column as %s:J)", name, r, c, name);
+  *n = r * c;
+  return SS_OK;
+}
+
+static ss_status read_npy_vec(const char *path, int as_int, void **out, int *n, ss_error *err) {
+  char plain[4096];
+  int col = -1, r = 0, c = 0;
+  const char *p = npy_column(path, plain, sizeof plain, &col) ? plain : path;
+  if (col >= 0 && as_int) return ss_fail(err, SS_ERR_INVALID, "%s: a column (:J) is only for value fields", path);
+  const char *b;
+  size_t len;
+  int is;
+  ss_status st = stream_input(p, &is, &b, &len, err);
+  if (st) return st;
+  const char *name = cli_in_name(p);
+  if (as_int)
+    st = is ? ss_read_npy_ints_memory(b, len, name, (int **)out, &r, &c, err) : ss_read_npy_ints(p, (int **)out, &r, &c, err);
+  else
+    st = is ? ss_read_npy_memory(b, len, name, (double **)out, &r, &c, err) : ss_read_npy(p, (double **)out, &r, &c, err);
+  if (!st) st = npy_vector(name, out, as_int ? sizeof(int) : sizeof(double), r, c, col, n, err);
+  if (st) {
+    free(*out);
+    *out = NULL;
+    *n = 0;
+  }
+  return st;
+}
+
+/* A stream (stdin, pipe) holding .npy bytes: 1. */
+static int stream_is_npy(const char *path) {
+  const char *b;
+  size_t len;
+  int is;
+  ss_error e;
+  if (!cli_is_std(path)) {
+    struct stat st;
+    if (stat(path, &st) != 0 || !(S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode))) return 0;
+  }
+  return stream_input(path, &is, &b, &len, &e) == SS_OK && is && is_npy_bytes(b, len);
+}
+
+static int wants_npy(const char *path) {
+  char plain[4096];
+  int col;
+  return cli_is_npy(path) || npy_column(path, plain, sizeof plain, &col) || stream_is_npy(path);
+}
+
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err) {
   const char *b;
   size_t len;
   *out = NULL;
   *n = 0;
+  if (wants_npy(path)) return read_npy_vec(path, 1, (void **)out, n, err);
   int is;
   ss_status st = stream_input(path, &is, &b, &len, err);
   if (st || !is) return st ? st : ss_read_ints(path, out, n, err);
@@ -138,6 +237,7 @@ ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err
   size_t len;
   *out = NULL;
   *n = 0;
+  if (wants_npy(path)) return read_npy_vec(path, 0, (void **)out, n, err);
   int is;
   ss_status st = stream_input(path, &is, &b, &len, err);
   if (st || !is) return st ? st : ss_read_doubles(path, out, n, err);
@@ -151,6 +251,37 @@ ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, 
   if (lines) *lines = NULL;
   *n = 0;
   if (columns) *columns = 0;
+  if (wants_npy(path)) { /* (n,) or (n, 1): one column; (n, 2): "i j" pairs */
+    int *a = NULL, r = 0, c = 0, is;
+    const char *name = cli_in_name(path);
+    ss_status st = stream_input(path, &is, &b, &len, err);
+    if (!st) st = is ? ss_read_npy_ints_memory(b, len, name, &a, &r, &c, err) : ss_read_npy_ints(path, &a, &r, &c, err);
+    if (st) return st;
+    if (c > 2 || r == 0) {
+      free(a);
+      return ss_fail(err, SS_ERR_PARSE, "%s: landmarks need shape (n,), (n, 1) or (n, 2), not (%d, %d)", name, r, c);
+    }
+    int *x = malloc(sizeof(int) * (size_t)r), *y = malloc(sizeof(int) * (size_t)r);
+    int *ln = lines ? malloc(sizeof(int) * (size_t)r) : NULL;
+    if (!x || !y || (lines && !ln)) {
+      free(a), free(x), free(y), free(ln);
+      return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", name);
+    }
+    for (int i = 0; i < r; i++) {
+      x[i] = a[i];
+      y[i] = c == 2 ? a[r + i] : a[i];
+      if (ln) ln[i] = i + 1;
+      if (x[i] < 0 || y[i] < 0) {
+        free(a), free(x), free(y), free(ln);
+        return ss_fail(err, SS_ERR_PARSE, "%s: row %d: negative vertex index", name, i);
+      }
+    }
+    free(a);
+    *lx = x, *ly = y, *n = r;
+    if (lines) *lines = ln;
+    if (columns) *columns = c == 2 ? 2 : 1;
+    return SS_OK;
+  }
   int is;
   ss_status st = stream_input(path, &is, &b, &len, err);
   if (st || !is) return st ? st : ss_read_landmarks_lines(path, lx, ly, lines, n, columns, err);
@@ -179,11 +310,14 @@ static ss_status write_values_stdout(const int *iv, const double *dv, int n, ss_
   return SS_OK;
 }
 
+/* By extension: F.npy gets an (n, 1) array ('<i4' / '<f8', shape (n, 1)), anything else text lines. */
 ss_status cli_write_ints(const char *path, const int *v, int n, ss_error *err) {
+  if (cli_is_npy(path)) return ss_write_npy_ints(path, v, n, 1, err);
   return cli_is_std(path) ? write_values_stdout(v, NULL, n, err) : ss_write_ints(path, v, n, err);
 }
 
 ss_status cli_write_doubles(const char *path, const double *v, int n, ss_error *err) {
+  if (cli_is_npy(path)) return ss_write_npy(path, v, n, 1, err);
   return cli_is_std(path) ? write_values_stdout(NULL, v, n, err) : ss_write_doubles(path, v, n, err);
 }
 
@@ -198,11 +332,12 @@ typedef struct out_job {
   const unsigned char *rgb;
   const double *a;
   int w, h;
+  const int *labels; /* meshes: a PLY's label property (NULL: none) */
 } out_job;
 
 static ss_status run_job(const out_job *j, const char *path, ss_error *err) {
   switch (j->what) {
-    case JOB_MESH: return ss_write_mesh(path, j->m, j->rgb, err);
+    case JOB_MESH: return ss_write_mesh_labels(path, j->m, j->rgb, j->labels, err);
     case JOB_NPY: return ss_write_npy(path, j->a, j->w, j->h, err);
     default: return ss_write_png(path, j->rgb, j->w, j->h, err);
   }
@@ -259,22 +394,27 @@ static ss_status write_via_temp(const out_job *j, ss_error *err) {
   return st;
 }
 
+ss_status cli_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                const char *std_ext, ss_error *err) {
+  if (!cli_is_std(path)) return ss_write_mesh_labels(path, m, rgb, labels, err);
+  int ply = !strcmp(std_ext, "ply");
+  out_job j = {JOB_MESH, ply ? "PLY" : "OFF", ply, std_ext, m, rgb, NULL, 0, 0, labels};
+  return write_via_temp(&j, err);
+}
+
 ss_status cli_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, const char *std_ext,
                          ss_error *err) {
-  if (!cli_is_std(path)) return ss_write_mesh(path, m, rgb, err);
-  int ply = !strcmp(std_ext, "ply");
-  out_job j = {JOB_MESH, ply ? "PLY" : "OFF", ply, std_ext, m, rgb, NULL, 0, 0};
-  return write_via_temp(&j, err);
+  return cli_write_mesh_labels(path, m, rgb, NULL, std_ext, err);
 }
 
 ss_status cli_write_png(const char *path, const unsigned char *rgb, int w, int h, ss_error *err) {
   if (!cli_is_std(path)) return ss_write_png(path, rgb, w, h, err);
-  out_job j = {JOB_PNG, "PNG", 1, "png", NULL, rgb, NULL, w, h};
+  out_job j = {JOB_PNG, "PNG", 1, "png", NULL, rgb, NULL, w, h, NULL};
   return write_via_temp(&j, err);
 }
 
 ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err) {
   if (!cli_is_std(path)) return ss_write_npy(path, a, rows, cols, err);
-  out_job j = {JOB_NPY, ".npy", 1, "npy", NULL, NULL, a, rows, cols};
+  out_job j = {JOB_NPY, ".npy", 1, "npy", NULL, NULL, a, rows, cols, NULL};
   return write_via_temp(&j, err);
 }

@@ -19,11 +19,16 @@ static const char USAGE[] =
     "  --method M          exact: polyhedral geodesics, VTP window propagation (default); graph:\n"
     "                      Dijkstra on the NPP22 graph; edge: Dijkstra on the mesh edges\n"
     "  --max-dist D        stop at distance D > 0 (default: no limit)\n"
-    "  -o, --output FILE   the distances (required); - writes them to standard output\n";
+    "  -o, --output FILE   the distances (required), text or .npy by extension; - writes them to standard\n"
+    "                      output\n";
 
 static const char *const OPTS[] = {"-s=", "--source=", "--method=", "--max-dist=", "-o=", "--output=", NULL};
 
 static int write_field(const char *path, const double *d, int n) {
+  if (cli_is_npy(path)) { /* (n, 1) float64; unreachable vertices are inf */
+    ss_error err;
+    return cli_write_doubles(path, d, n, &err) ? -1 : 0;
+  }
   FILE *f = cli_open_out(path);
   if (!f) return -1;
   for (int i = 0; i < n; i++) {

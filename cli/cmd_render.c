@@ -2,8 +2,9 @@
  *                --error MAP.txt --target Y] [--view V] [--size WxH] [--centers C.txt] [--landmarks LM.txt]
  *                [--isolines N] ...
  * Pictures of segmentations, scalar fields, maps and map errors; several meshes become side-by-side
- * panels drawn at one common scale. Per-mesh files (--labels, --scalar, --map, --error, --centers,
- * --landmarks) are given either once (used for every mesh) or once per mesh, in mesh order. A
+ * panels, each fitted (--scale fit) or at one scale (common, the default for --map / --error).
+ * Per-mesh files (--labels, --scalar, --map, --error, --centers, --landmarks) are given either once
+ * (used for every mesh) or once per mesh, in mesh order. A
  * two-column landmark file ("i j", as `specseg match` takes) gives column 1 to the first mesh and
  * column 2 to the second (or to the --target of --map). */
 #include <math.h>
@@ -21,17 +22,20 @@ static const char USAGE[] =
     "                      [--view front|back|left|right|top|bottom|AZ,EL] [--size WxH] [--centers C.txt]\n"
     "                      [--landmarks LM.txt] [--isolines N] [--range LO,HI] [--cols N]\n"
     "                      [--match-colors REF_LABELS.txt] [--no-titles] [--supersample S]\n"
+    "                      [--up auto|x|y|z|-x|-y|-z] [--scale fit|common]\n"
     "\n"
-    "Software-rendered PNG (z-buffer, Phong, anti-aliased). Several meshes become panels at a common\n"
-    "scale; per-mesh files (--labels, --scalar, --map, --error, --centers, --landmarks) are given once\n"
-    "for all meshes or once per mesh, in mesh order. Prints a summary line (on stderr with -o -).\n"
+    "Software-rendered PNG (z-buffer, Phong, anti-aliased). Several meshes become panels; per-mesh files\n"
+    "(--labels, --scalar, --map, --error, --centers, --landmarks) are given once for all meshes or once\n"
+    "per mesh, in mesh order. Without a colouring option, a PLY's own vertex colours are drawn. Prints a\n"
+    "summary line (on stderr with -o -) that names the up axis used.\n"
     "\n"
     "  MESH ...            OFF, OBJ or PLY files (at most 64)\n"
     "  -o, --output FILE   the PNG (required); - writes it to standard output (not to a terminal)\n"
     "  --labels L.txt      segmentation: one colour per segment, boundary triangles neutral\n"
     "  --scalar F.txt      per-vertex field: viridis colormap and colour bar\n"
-    "  --map MAP.txt       colour transfer: the --target coloured by its normalised xyz, MESH by the\n"
-    "                      colour of its image (MAP line i = vertex of Y for vertex i of MESH)\n"
+    "  --map MAP.txt       colour transfer: the --target coloured by its normalised xyz with a soft 3-D\n"
+    "                      checker (as eval --figures), MESH by the colour of its image (MAP line i =\n"
+    "                      vertex of Y for vertex i of MESH)\n"
     "  --error MAP.txt     geodesic error d_Y(MAP(x), GT(x)) / sqrt(area Y) on MESH, exact geodesics,\n"
     "                      as a heat map with its colour scale\n"
     "  --target Y          the target mesh of --map / --error\n"
@@ -50,12 +54,17 @@ static const char USAGE[] =
     "  --match-colors REF  permute segment ids to agree with the REF labels (same vertex order)\n"
     "  --no-titles         no panel titles\n"
     "  --supersample S     anti-aliasing factor, 1..4 (default 2)\n"
+    "  --up AXIS           the axis drawn upwards: x, y, z, -x, -y, -z, or auto (default): the axis along\n"
+    "                      which the meshes' lowest vertices spread widest (feet on a floor), else +z\n"
+    "                      unless z is the first mesh's shortest side, else +y (FAUST: y, TOSCA: z)\n"
+    "  --scale fit|common  fit: each panel framed on its own mesh; common: one scale for all panels, so\n"
+    "                      sizes compare (default: common for --map / --error, else fit)\n"
     "One of the input files may be - (standard input).\n";
 
 static const char *const OPTS[] = {"--labels=", "--scalar=", "--map=", "--error=", "--centers=", "--landmarks=",
                                    "-o=", "--output=", "--target=", "--gt=", "--sym=", "--match-colors=",
                                    "--view=", "--size=", "--isolines=", "--cols=", "--supersample=", "--range=",
-                                   "--no-titles", NULL};
+                                   "--no-titles", "--up=", "--scale=", NULL};
 
 #define MAXM 64
 
@@ -86,6 +95,8 @@ typedef struct panel {
 } panel;
 
 static const unsigned char NEUTRAL[3] = {225, 225, 220};   /* boundary triangles */
+/* the --map target's checker cells, as ss_map_comparison's default (eval --figures) */
+#define CHECKER_PERIOD 0.06
 static const unsigned char CENTRE_RGB[3] = {20, 20, 20};
 /* landmarks: white on segment colours, blue on colormaps (whose low end is white) */
 static const unsigned char LANDMARK_RGB[3] = {250, 250, 250}, LANDMARK_RGB_CMAP[3] = {40, 90, 230};
@@ -96,6 +107,24 @@ static void stem(const char *path, char *out, size_t n) {
   snprintf(out, n, "%s", b);
   char *dot = strrchr(out, '.');
   if (dot && dot != out) *dot = 0;
+}
+
+/* --up: "auto" gives 99 (decided from the meshes), else an ss_up_axis; -1 when unknown. */
+static int parse_up(const char *s, int *up) {
+  static const struct { const char *name; int up; } U[] = {
+      {"auto", 99}, {"x", SS_UP_X}, {"y", SS_UP_Y}, {"z", SS_UP_Z}, {"+x", SS_UP_X}, {"+y", SS_UP_Y},
+      {"+z", SS_UP_Z}, {"-x", SS_UP_NEG_X}, {"-y", SS_UP_NEG_Y}, {"-z", SS_UP_NEG_Z}};
+  for (size_t i = 0; i < sizeof U / sizeof U[0]; i++)
+    if (!strcmp(s, U[i].name)) {
+      *up = U[i].up;
+      return 0;
+    }
+  return -1;
+}
+
+static const char *up_name(int up) {
+  static const char *names[] = {"-z", "-y", "-x", "+y", "+x", "+y", "+z"};
+  return up >= -3 && up <= 3 ? names[up + 3] : "?";
 }
 
 static int parse_view(const char *s, double *az, double *el) {
@@ -192,7 +221,7 @@ int cmd_render(int argc, char **argv) {
   list meshes = {0}, labels = {0}, scalars = {0}, maps = {0}, centers = {0}, landmarks = {0};
   const char *out = NULL, *target = NULL, *gt_path = NULL, *sym_path = NULL, *ref_path = NULL;
   enum mode mode = MODE_PLAIN;
-  int width = 800, height = 800, isolines = 0, cols = 0, titles = 1, ss = 2, have_range = 0;
+  int width = 800, height = 800, isolines = 0, cols = 0, titles = 1, ss = 2, have_range = 0, up = 99, common = -1;
   double az = 0, el = 0, rlo = 0, rhi = 0;
   cli_args A;
   cli_args_init(&A, argc, argv, USAGE, OPTS);
@@ -250,6 +279,12 @@ int cmd_render(int argc, char **argv) {
       have_range = 1;
     } else if (cli_is(&A, "--no-titles")) {
       titles = 0;
+    } else if (cli_is(&A, "--up")) {
+      if (parse_up(v, &up)) return cli_bad(&A, "--up needs auto, x, y, z, -x, -y or -z, not '%s'", v);
+    } else if (cli_is(&A, "--scale")) {
+      if (!strcmp(v, "fit")) common = 0;
+      else if (!strcmp(v, "common")) common = 1;
+      else return cli_bad(&A, "--scale needs fit or common, not '%s'", v);
     }
   }
   if (A.rc >= 0) return A.rc;
@@ -299,7 +334,7 @@ int cmd_render(int argc, char **argv) {
     P[0].path = target;
     if (ss_mesh_copy(&Y, &P[0].mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
     if (!(P[0].vrgb = malloc(3 * (size_t)Y.nv + 1))) { rc = cli_error("out of memory"); goto done; }
-    ss_coordinate_colors(&Y, P[0].vrgb);
+    ss_coordinate_pattern_colors(&Y, CHECKER_PERIOD, P[0].vrgb);
     stem(cli_in_name(target), P[0].title, sizeof P[0].title);
     if (lm_two && add_landmarks(&P[0], landmarks.v[0], 2, LANDMARK_RGB_CMAP)) { rc = SS_EXIT_FAIL; goto done; }
     np = 1;
@@ -318,7 +353,10 @@ int cmd_render(int argc, char **argv) {
   for (int i = 0; i < nm; i++) {
     panel *p = &P[np++];
     p->path = meshes.v[i];
-    if (cli_read_mesh(p->path, &p->mesh, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    unsigned char *own = NULL;
+    if (cli_read_mesh_colors(p->path, &p->mesh, &own, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    if (mode == MODE_PLAIN) p->vrgb = own; /* the file's own colours (PLY), when it has them */
+    else free(own);
     int nv = p->mesh.nv, n = 0;
     stem(cli_in_name(p->path), p->title, sizeof p->title);
     if (mode == MODE_LABELS) {
@@ -398,9 +436,14 @@ int cmd_render(int argc, char **argv) {
     }
   }
 
+  if (up == 99) { /* auto: one axis for all panels, from the meshes */
+    const ss_mesh *all_m[MAXM + 1];
+    for (int k = 0; k < np; k++) all_m[k] = &P[k].mesh;
+    up = ss_render_guess_up(all_m, np);
+  }
   ss_render_options o;
   ss_render_default_options(&o);
-  o.width = width, o.height = height, o.azimuth = az, o.elevation = el, o.supersample = ss;
+  o.width = width, o.height = height, o.azimuth = az, o.elevation = el, o.supersample = ss, o.up = up;
   for (int k = 0; k < np; k++) {
     ss_render_scene *sc = &SP[k].scene;
     ss_render_scene_init(sc, &P[k].mesh);
@@ -416,8 +459,10 @@ int cmd_render(int argc, char **argv) {
     sc->marker_rgb = P[k].mrgb;
     SP[k].title = P[k].title;
   }
-  ss_panel_layout L; /* one scale for all panels so sizes compare */
+  ss_panel_layout L;
   ss_panel_layout_init(&L);
+  /* one scale for all panels where sizes are compared (a map's source and target), else each fitted */
+  L.common_scale = common >= 0 ? common : mode == MODE_MAP || mode == MODE_ERROR;
   L.cols = cols;
   L.titles = titles;
   L.colorbar = bar;
@@ -429,8 +474,8 @@ int cmd_render(int argc, char **argv) {
   if (ss_render_panels(SP, np, &o, &L, &canvas, &cw, &ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
   t_render = ss_time() - t_render;
   if (cli_write_png(out, canvas, (int)cw, (int)ch, &err)) { rc = cli_error("%s", err.msg); goto done; }
-  fprintf(report, "%d panel%s %dx%d rendered in %.3f s (total %.3f s) -> %s (%dx%d)\n", np, np == 1 ? "" : "s",
-          width, height, t_render, ss_time() - t0, cli_out_name(out), cw, ch);
+  fprintf(report, "%d panel%s %dx%d rendered in %.3f s (total %.3f s), up %s -> %s (%dx%d)\n", np,
+          np == 1 ? "" : "s", width, height, t_render, ss_time() - t0, up_name(up), cli_out_name(out), cw, ch);
   if (fflush(report) != 0) rc = cli_error("cannot write to standard output");
 done:
   for (int k = 0; k <= nm; k++) {

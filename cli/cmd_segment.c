@@ -19,7 +19,8 @@ static const char USAGE[] =
     "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
     "  -o, --output FILE   labels: one segment index (0..m-1) per input vertex, a line (required)\n"
     "  --centers FILE      line s = input vertex at the centre of segment s\n"
-    "  --ply FILE          the input mesh coloured by segment, binary PLY\n"
+    "  --ply FILE          the input mesh coloured by segment, binary PLY with an int vertex property\n"
+    "                      'label' (the segment) beside red green blue\n"
     "  --faces N           remeshing target, 4..100000000 triangles (default 15000)\n"
     "  --no-streamline     everything straight on the input (no smoothing, no remeshing)\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
@@ -92,7 +93,7 @@ int cmd_segment(int argc, char **argv) {
       goto done;
     }
     for (int i = 0; i < m.nv; i++) ss_label_color(seg.labels[i], rgb + 3 * (size_t)i);
-    ss_status st = cli_write_mesh(ply_path, &m, rgb, "ply", &err);
+    ss_status st = cli_write_mesh_labels(ply_path, &m, rgb, seg.labels, "ply", &err);
     free(rgb);
     if (st) {
       rc = cli_error("%s", err.msg);

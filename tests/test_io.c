@@ -450,6 +450,118 @@ static void test_faust(void) {
   ss_mesh_free(&m);
 }
 
+/* ss_read_mesh_colors: a PLY's vertex colours come back (ascii, binary LE / BE, from memory too); float
+ * channels in [0, 1] are scaled; files without colours (and OFF) give NULL; ss_read_mesh is unchanged. */
+static void test_colors(void) {
+  ss_mesh m, r;
+  CHECK(ss_synth_icosphere(1, &m, NULL) == SS_OK);
+  unsigned char *rgb = malloc(3 * (size_t)m.nv), *got = NULL;
+  for (int i = 0; i < 3 * m.nv; i++) rgb[i] = (unsigned char)(i * 37 + 11);
+  ss_error err;
+  const ss_ply_format fmts[] = {SS_PLY_ASCII, SS_PLY_BINARY_LE, SS_PLY_BINARY_BE};
+  for (int k = 0; k < 3; k++) {
+    const char *p = tmp("c.ply");
+    CHECK(ss_write_ply(p, &m, rgb, fmts[k], &err) == SS_OK);
+    CHECK(ss_read_mesh_colors(p, &r, &got, &err) == SS_OK);
+    CHECK(got && same_mesh(&m, &r) && !memcmp(got, rgb, 3 * (size_t)m.nv));
+    free(got);
+    ss_mesh_free(&r);
+    size_t n = 0;
+    char *b = read_all(p, &n);
+    CHECK(ss_read_mesh_colors_memory(b, n, "mem", &r, &got, &err) == SS_OK);
+    CHECK(got && !memcmp(got, rgb, 3 * (size_t)m.nv));
+    free(got);
+    free(b);
+    ss_mesh_free(&r);
+    CHECK(ss_read_mesh(p, &r, &err) == SS_OK && same_mesh(&m, &r));
+    ss_mesh_free(&r);
+  }
+  /* no colours: NULL; OFF (even COFF) gives NULL */
+  CHECK(ss_write_ply(tmp("n.ply"), &m, NULL, SS_PLY_ASCII, &err) == SS_OK);
+  got = (unsigned char *)1;
+  CHECK(ss_read_mesh_colors(tmp("n.ply"), &r, &got, &err) == SS_OK && got == NULL);
+  ss_mesh_free(&r);
+  CHECK(ss_write_off(tmp("c.off"), &m, rgb, &err) == SS_OK);
+  CHECK(ss_read_mesh_colors(tmp("c.off"), &r, &got, &err) == SS_OK && got == NULL);
+  ss_mesh_free(&r);
+  /* float channels and the diffuse_ names; only two channels: no colours */
+  write_text(tmp("f.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nproperty float diffuse_red\nproperty float diffuse_green\n"
+                           "property float diffuse_blue\nelement face 1\nproperty list uchar int vertex_indices\n"
+                           "end_header\n0 0 0 1 0 0.5\n1 0 0 0 1 2\n0 1 0 0.2 0.4 -1\n3 0 1 2\n");
+  CHECK(ss_read_mesh_colors(tmp("f.ply"), &r, &got, &err) == SS_OK && got);
+  if (got) {
+    const unsigned char want[9] = {255, 0, 128, 0, 255, 255, 51, 102, 0};
+    CHECK_MSG(!memcmp(got, want, 9), "%d %d %d  %d %d %d  %d %d %d", got[0], got[1], got[2], got[3], got[4], got[5],
+              got[6], got[7], got[8]);
+  }
+  free(got);
+  ss_mesh_free(&r);
+  write_text(tmp("g.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nproperty uchar red\nproperty uchar green\n"
+                           "element face 1\nproperty list uchar int vertex_indices\n"
+                           "end_header\n0 0 0 1 0\n1 0 0 0 1\n0 1 0 2 4\n3 0 1 2\n");
+  got = (unsigned char *)1;
+  CHECK(ss_read_mesh_colors(tmp("g.ply"), &r, &got, &err) == SS_OK && got == NULL && r.nv == 3);
+  ss_mesh_free(&r);
+  free(rgb);
+  ss_mesh_free(&m);
+}
+
+/* OBJ output (ss_write_mesh by extension, exact round trip, colours as "v x y z r g b") and the PLY
+ * label property (ascii and binary: the mesh reads back unchanged, the labels are in the file). */
+static void test_obj_out_and_labels(void) {
+  ss_mesh m, r;
+  ss_error err;
+  test_mesh(&m);
+  unsigned char *rgb = malloc(3 * (size_t)m.nv);
+  int *lab = malloc(sizeof(int) * (size_t)m.nv);
+  for (int i = 0; i < m.nv; i++) {
+    rgb[3 * i] = (unsigned char)i, rgb[3 * i + 1] = 255, rgb[3 * i + 2] = 0;
+    lab[i] = i % 7 - 1;
+  }
+  CHECK(ss_write_mesh(tmp("o.obj"), &m, NULL, &err) == SS_OK);
+  CHECK(ss_read_mesh(tmp("o.obj"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  ss_mesh_free(&r);
+  CHECK(ss_write_mesh(tmp("oc.OBJ"), &m, rgb, &err) == SS_OK);
+  CHECK(ss_read_mesh(tmp("oc.OBJ"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  ss_mesh_free(&r);
+  size_t n = 0;
+  char *txt = read_all(tmp("oc.OBJ"), &n);
+  CHECK(txt && strstr(txt, " 0 1 0\n") && strstr(txt, "\nf 1 "));
+  free(txt);
+  const ss_ply_format fmts[] = {SS_PLY_ASCII, SS_PLY_BINARY_LE, SS_PLY_BINARY_BE};
+  for (int k = 0; k < 3; k++)
+    for (int with_rgb = 0; with_rgb < 2; with_rgb++) {
+      CHECK(ss_write_ply_labels(tmp("l.ply"), &m, with_rgb ? rgb : NULL, lab, fmts[k], &err) == SS_OK);
+      unsigned char *got = NULL;
+      CHECK(ss_read_mesh_colors(tmp("l.ply"), &r, &got, &err) == SS_OK && same_mesh(&m, &r));
+      CHECK(with_rgb ? got && !memcmp(got, rgb, 3 * (size_t)m.nv) : got == NULL);
+      free(got);
+      ss_mesh_free(&r);
+      txt = read_all(tmp("l.ply"), &n);
+      CHECK(txt && strstr(txt, "property int label\nelement face"));
+      if (txt && k == 0) { /* ascii: the last value of vertex 2's line is its label, 1 */
+        char *body = strstr(txt, "end_header\n") + 11;
+        for (int line = 0; line < 2; line++) body = strchr(body, '\n') + 1;
+        char *eol = strchr(body, '\n'), *sp = eol;
+        while (sp > body && sp[-1] != ' ') sp--;
+        CHECK(atoi(sp) == lab[2]);
+      }
+      free(txt);
+    }
+  CHECK(ss_write_mesh_labels(tmp("ml.ply"), &m, rgb, lab, &err) == SS_OK);
+  txt = read_all(tmp("ml.ply"), &n);
+  CHECK(txt && strstr(txt, "binary_little_endian") && strstr(txt, "property int label"));
+  free(txt);
+  CHECK(ss_write_mesh_labels(tmp("ml.off"), &m, rgb, lab, &err) == SS_OK); /* labels dropped */
+  CHECK(ss_read_mesh(tmp("ml.off"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  ss_mesh_free(&r);
+  free(rgb);
+  free(lab);
+  ss_mesh_free(&m);
+}
+
 int main(void) {
   snprintf(tmpdir, sizeof tmpdir, "/tmp/ss_test_io_XXXXXX");
   if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 2; }
@@ -460,6 +572,8 @@ int main(void) {
   test_errors();
   test_vectors();
   test_memory();
+  test_colors();
+  test_obj_out_and_labels();
   test_faust();
   /* clean up the scratch folder */
   DIR *d = opendir(tmpdir);

@@ -41,6 +41,66 @@ static void write_npy_raw(const char *path, const char *dict, int nval, int extr
   write_bytes(path, buf, off);
 }
 
+/* A header `dict` and n integers of isz bytes (little- or big-endian). */
+static void write_npy_ints_raw(const char *path, const char *dict, const long long *v, int n, int isz, int big) {
+  unsigned char buf[4096];
+  size_t dl = strlen(dict), total = 10 + dl + 1, pad = (64 - total % 64) % 64, hlen = dl + pad + 1;
+  memcpy(buf, "\x93NUMPY\x01\x00", 8);
+  buf[8] = (unsigned char)(hlen & 0xff);
+  buf[9] = (unsigned char)(hlen >> 8);
+  memcpy(buf + 10, dict, dl);
+  memset(buf + 10 + dl, ' ', pad);
+  buf[10 + hlen - 1] = '\n';
+  size_t off = 10 + hlen;
+  for (int i = 0; i < n; i++)
+    for (int t = 0; t < isz; t++) buf[off++] = (unsigned char)((unsigned long long)v[i] >> (8 * (big ? isz - 1 - t : t)));
+  write_bytes(path, buf, off);
+}
+
+/* ss_write_npy_ints / ss_read_npy_ints: '<i4' round trip, '<i8' / '>i4' / Fortran order read, int64 out
+ * of range and float files refused, the memory reader. */
+static void test_ints(void) {
+  ss_error e;
+  int A[6] = {0, -1, 2147483647, -2147483647 - 1, 5, 42}, *a = NULL, r, c;
+  CHECK(ss_write_npy_ints(tmp_path("i.npy"), A, 3, 2, &e) == SS_OK);
+  CHECK(ss_read_npy_ints(tmp_path("i.npy"), &a, &r, &c, &e) == SS_OK && r == 3 && c == 2 && a && !memcmp(a, A, sizeof A));
+  free(a);
+  a = NULL;
+  /* the bytes: '<i4', C order (row 0 = A[0], A[3]) */
+  FILE *f = fopen(tmp_path("i.npy"), "rb");
+  unsigned char b[256];
+  size_t got = f ? fread(b, 1, sizeof b, f) : 0;
+  if (f) fclose(f);
+  size_t d0 = 10 + (size_t)b[8]; /* data start, a multiple of 64 */
+  CHECK(d0 % 64 == 0 && got == d0 + 24 && !memcmp(b + 10, "{'descr': '<i4'", 15) && b[d0 + 4] == 0x00 && b[d0 + 7] == 0x80);
+  CHECK(ss_read_npy_ints_memory(b, got, "mem", &a, &r, &c, &e) == SS_OK && r == 3 && c == 2 && a && a[3] == A[3]);
+  free(a);
+  a = NULL;
+  double *d = NULL;
+  CHECK(ss_read_npy(tmp_path("i.npy"), &d, &r, &c, &e) == SS_ERR_PARSE && !d); /* ints are not doubles */
+  const long long v[4] = {7, -3, 1000000, 0};
+  write_npy_ints_raw(tmp_path("i8.npy"), "{'descr': '<i8', 'fortran_order': False, 'shape': (4,), }", v, 4, 8, 0);
+  CHECK(ss_read_npy_ints(tmp_path("i8.npy"), &a, &r, &c, &e) == SS_OK && r == 4 && c == 1 && a && a[0] == 7 && a[1] == -3 &&
+        a[2] == 1000000);
+  free(a);
+  a = NULL;
+  write_npy_ints_raw(tmp_path("be.npy"), "{'descr': '>i4', 'fortran_order': True, 'shape': (2, 2), }", v, 4, 4, 1);
+  CHECK(ss_read_npy_ints(tmp_path("be.npy"), &a, &r, &c, &e) == SS_OK && r == 2 && c == 2 && a && a[0] == 7 && a[1] == -3 &&
+        a[2] == 1000000);
+  free(a);
+  a = NULL;
+  const long long big[1] = {1LL << 40};
+  write_npy_ints_raw(tmp_path("big.npy"), "{'descr': '<i8', 'fortran_order': False, 'shape': (1,), }", big, 1, 8, 0);
+  CHECK(ss_read_npy_ints(tmp_path("big.npy"), &a, &r, &c, &e) == SS_ERR_PARSE && !a && strstr(e.msg, "big.npy"));
+  double D[2] = {1, 2};
+  CHECK(ss_write_npy(tmp_path("d.npy"), D, 2, 1, &e) == SS_OK);
+  CHECK(ss_read_npy_ints(tmp_path("d.npy"), &a, &r, &c, &e) == SS_ERR_PARSE && !a);
+  write_npy_ints_raw(tmp_path("u4.npy"), "{'descr': '<u4', 'fortran_order': False, 'shape': (1,), }", v, 1, 4, 0);
+  CHECK(ss_read_npy_ints(tmp_path("u4.npy"), &a, &r, &c, &e) == SS_ERR_PARSE && !a);
+  const char *names[] = {"i.npy", "i8.npy", "be.npy", "big.npy", "d.npy", "u4.npy"};
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) remove(tmp_path(names[i]));
+}
+
 static ss_status read_it(const char *path, double **a, int *r, int *c, ss_error *e) {
   ss_status st = ss_read_npy(path, a, r, c, e);
   if (st) CHECK_MSG(*a == NULL && strlen(e->msg) > 0 && strstr(e->msg, path) != NULL, "error message: %s", e->msg);
@@ -185,6 +245,7 @@ int main(void) {
   CHECK(read_it(dir, &a, &r, &c, &e) != SS_OK); /* a directory */
   CHECK(ss_write_npy(tmp_path("no/such/dir.npy"), A, 5, 3, &e) == SS_ERR_IO);
 
+  test_ints();
   /* clean up */
   const char *names[] = {"a.npy", "e.npy", "v.npy", "1d.npy", "f.npy", "c.npy", "be.npy", "empty.npy", "magic.npy",
                          "version.npy", "hlen.npy", "hlen2.npy", "cut.npy", "nul.npy", "trunc.npy"};

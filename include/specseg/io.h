@@ -24,20 +24,44 @@ SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
  * content sniffing (a "ply" first line, an OFF header or counts, OBJ keywords); name (NULL:
  * "<memory>") stands for the file in messages, "NAME:LINE: what". buf is not modified or kept. */
 SS_API ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err);
+/* ss_read_mesh / ss_read_mesh_memory that also return the file's per-vertex colours: *rgb gets 3*nv
+ * malloc'd bytes (free them) when the file has them, else NULL (rgb NULL: not wanted, as ss_read_mesh).
+ * PLY: vertex properties red, green, blue (or diffuse_red.., or r g b; integer types clamped to
+ * 0..255, floating-point ones in [0, 1] scaled by 255); other formats give NULL. */
+SS_API ss_status ss_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err);
+SS_API ss_status ss_read_mesh_colors_memory(const void *buf, size_t len, const char *name, ss_mesh *m,
+                                            unsigned char **rgb, ss_error *err);
 
-/* Write by extension (.off or .ply; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
- * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue).
+/* Write by extension (.off, .ply or .obj; .ply is binary little-endian). rgb: NULL or 3*nv bytes of
+ * per-vertex colour (OFF becomes COFF with "x y z r g b 255" lines; PLY gets uchar red green blue; OBJ
+ * "v x y z r g b" with colours in [0, 1]; OBJ faces are 1-based "f a b c").
  * Coordinates are written losslessly (%.17g text, float64 binary): write -> read is exact. */
 SS_API ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 SS_API ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
 typedef enum ss_ply_format { SS_PLY_ASCII = 0, SS_PLY_BINARY_LE = 1, SS_PLY_BINARY_BE = 2 } ss_ply_format;
 SS_API ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_ply_format fmt,
                               ss_error *err);
+SS_API ss_status ss_write_obj(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err);
+/* PLY with an integer vertex property `label` (labels: nv values, e.g. segment ids; NULL: none) after
+ * the colours; ss_write_mesh_labels: the same for .ply, ss_write_mesh (labels dropped) otherwise. */
+SS_API ss_status ss_write_ply_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                     ss_ply_format fmt, ss_error *err);
+SS_API ss_status ss_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                                      ss_error *err);
 
 /* NumPy .npy (format 1.0, '<f8', C order) of a rows x cols matrix given column-major in `a`. */
 SS_API ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err);
 /* Reads '<f8' or '>f8', C or Fortran order, 1-D or 2-D; returns a freshly malloc'd column-major array. */
 SS_API ss_status ss_read_npy(const char *path, double **a, int *rows, int *cols, ss_error *err);
+/* Integers: writes '<i4'; reads '<i4', '<i8' (or big-endian '>i4', '>i8'; int64 values must fit an int),
+ * C or Fortran order, 1-D (rows = n, cols = 1) or 2-D, into a malloc'd column-major int array. */
+SS_API ss_status ss_write_npy_ints(const char *path, const int *a, int rows, int cols, ss_error *err);
+SS_API ss_status ss_read_npy_ints(const char *path, int **a, int *rows, int *cols, ss_error *err);
+/* ss_read_npy / ss_read_npy_ints of len bytes in memory; name (NULL: "<memory>") stands for the file. */
+SS_API ss_status ss_read_npy_memory(const void *buf, size_t len, const char *name, double **a, int *rows, int *cols,
+                                    ss_error *err);
+SS_API ss_status ss_read_npy_ints_memory(const void *buf, size_t len, const char *name, int **a, int *rows, int *cols,
+                                         ss_error *err);
 
 /* Text vectors: one value a line. Integers (labels, maps, landmark indices) and doubles (%.17g;
  * "inf" allowed). Readers allocate *out with malloc and set *n; comments (#) and blank lines skipped.

@@ -668,11 +668,12 @@ def label_colors(labels):
     return table[inv.ravel()] if labels.size else np.zeros((0, 3), np.uint8)
 
 
+_UPS = {"x": 1, "y": 2, "z": 3, "-x": -1, "-y": -2, "-z": -3}
 _VIEWS = {"front": (0, 0), "back": (180, 0), "left": (90, 0), "right": (-90, 0), "top": (0, 90), "bottom": (0, -90)}
 
 
 def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isolines=0, markers=None,
-           size=(800, 800), view="front", supersample=2, background=(255, 255, 255)):
+           size=(800, 800), view="front", supersample=2, background=(255, 255, 255), up="y"):
     """A software-rendered picture of the mesh (orthographic, z-buffer, Blinn-Phong headlight).
 
     Parameters
@@ -704,6 +705,9 @@ def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isoli
         Anti-aliasing: s x s samples per pixel, 1..4 (default 2).
     background : (int, int, int), optional
         Background colour, each 0..255 (default white).
+    up : str, optional
+        The axis drawn upwards: "x", "y" (default), "z", "-x", "-y", "-z", or "auto" (the rule of
+        ``specseg render``, ss_render_guess_up: +z for TOSCA, +y for FAUST).
 
     Returns
     -------
@@ -772,6 +776,13 @@ def render(V, F, labels=None, vertex_rgb=None, face_rgb=None, scalar=None, isoli
     o.width, o.height = width, height
     o.azimuth, o.elevation = az, el
     o.supersample = _as_int32(supersample, "supersample")
+    if up == "auto":
+        meshes = (C.POINTER(_clib.ss_mesh) * 1)(C.pointer(m))
+        o.up = rl.ss_render_guess_up(meshes, 1)
+    elif up in _UPS:
+        o.up = _UPS[up]
+    else:
+        raise ValueError("up must be one of %s or 'auto' (got %r)" % (", ".join(_UPS), up))
     for c in range(3):
         o.background[c] = int(bg[c])
     img, e = np.zeros((height, width, 3), np.uint8), _err()

@@ -128,7 +128,7 @@ class ss_match_result(C.Structure):
 class ss_render_options(C.Structure):
     _fields_ = [("width", C.c_int), ("height", C.c_int), ("azimuth", C.c_double), ("elevation", C.c_double),
                 ("background", C.c_ubyte * 3), ("supersample", C.c_int), ("margin", C.c_double),
-                ("scale", C.c_double)]
+                ("scale", C.c_double), ("up", C.c_int)]
 
 
 class ss_render_scene(C.Structure):
@@ -435,6 +435,8 @@ _sig(render_lib, "ss_render_default_options", None, C.POINTER(ss_render_options)
 _sig(render_lib, "ss_render_scene_init", None, C.POINTER(ss_render_scene), _PM)
 _sig(render_lib, "ss_render", _i, C.POINTER(ss_render_scene), C.POINTER(ss_render_options), C.POINTER(C.c_ubyte), _PE)
 _sig(render_lib, "ss_render_fit_scale", _d, _PM, C.POINTER(ss_render_options))
+_sig(render_lib, "ss_render_guess_up", _i, C.POINTER(_PM), _i)
+_sig(render_lib, "ss_render_guess_up", _i, C.POINTER(_PM), _i)
 _sig(render_lib, "ss_write_png", _i, C.c_char_p, C.POINTER(C.c_ubyte), _i, _i, _PE)
 _sig(render_lib, "ss_label_color", None, _i, C.c_ubyte * 3)
 _sig(render_lib, "ss_segmentation_face_colors", _i, _PM, _PI, C.POINTER(C.c_ubyte), C.POINTER(C.c_ubyte), _PE)

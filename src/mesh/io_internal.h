@@ -15,6 +15,10 @@
 ss_status io_parse_off(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_obj(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+/* The same with the vertices' colours (red / green / blue, also diffuse_red.. or r g b): *rgb gets 3 nv
+ * malloc'd bytes, or NULL when the file has none (rgb itself may be NULL: not wanted). */
+ss_status io_parse_ply_rgb(const char *path, const char *buf, size_t len, ss_mesh *m, unsigned char **rgb,
+                           ss_error *err);
 
 /* Read the whole file and run one of the parsers above on it (the body of ss_read_off/obj/ply). */
 typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);

@@ -62,7 +62,7 @@ static int sniff(const char *buf, size_t len) {
 
 /* The parser for a loaded buffer: by the extension of `path` when given, else by content. */
 static ss_status parse_any(const char *path, const char *name, const char *buf, size_t len, ss_mesh *m,
-                           ss_error *err) {
+                           unsigned char **rgb, ss_error *err) {
   int kind = path && ext_is(path, "off")   ? 'o'
              : path && ext_is(path, "obj") ? 'j'
              : path && ext_is(path, "ply") ? 'p'
@@ -70,27 +70,34 @@ static ss_status parse_any(const char *path, const char *name, const char *buf, 
   switch (kind) {
     case 'o': return io_parse_off(name, buf, len, m, err);
     case 'j': return io_parse_obj(name, buf, len, m, err);
-    case 'p': return io_parse_ply(name, buf, len, m, err);
+    case 'p': return io_parse_ply_rgb(name, buf, len, m, rgb, err);
     default:
       return len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", name)
                       : ss_fail(err, SS_ERR_UNSUPPORTED, "%s:1: unknown mesh format (expected OFF, OBJ or PLY)", name);
   }
 }
 
-ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
+ss_status ss_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb, ss_error *err) {
+  if (!m) return ss_fail(err, SS_ERR_INVALID, "read mesh: NULL output");
   memset(m, 0, sizeof *m);
+  if (rgb) *rgb = NULL;
+  if (!path) return ss_fail(err, SS_ERR_INVALID, "read mesh: NULL path");
   char *buf;
   size_t len;
   ss_status st = io_slurp(path, &buf, &len, err);
   if (st) return st;
-  st = parse_any(path, path, buf, len, m, err);
+  st = parse_any(path, path, buf, len, m, rgb, err);
   free(buf);
   return st;
 }
 
-ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err) {
+ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err) { return ss_read_mesh_colors(path, m, NULL, err); }
+
+ss_status ss_read_mesh_colors_memory(const void *buf, size_t len, const char *name, ss_mesh *m, unsigned char **rgb,
+                                     ss_error *err) {
   if (!m) return ss_fail(err, SS_ERR_INVALID, "read mesh: NULL output");
   memset(m, 0, sizeof *m);
+  if (rgb) *rgb = NULL;
   if (!name) name = "<memory>";
   if (!buf && len > 0) return ss_fail(err, SS_ERR_INVALID, "%s: NULL buffer", name);
   if (len == SIZE_MAX) return ss_fail(err, SS_ERR_NOMEM, "%s: buffer too large", name);
@@ -99,9 +106,13 @@ ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_
   if (!copy) return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", name);
   if (len) memcpy(copy, buf, len);
   copy[len] = '\0';
-  ss_status st = parse_any(NULL, name, copy, len, m, err);
+  ss_status st = parse_any(NULL, name, copy, len, m, rgb, err);
   free(copy);
   return st;
+}
+
+ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err) {
+  return ss_read_mesh_colors_memory(buf, len, name, m, NULL, err);
 }
 
 ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err) {

@@ -240,8 +240,39 @@ static int find_prop(const ply_elem *E, const char *name) {
   return -1;
 }
 
+/* A vertex colour channel: "red" (or "diffuse_red", "r"), likewise green and blue; -1 when absent. */
+static int find_channel(const ply_elem *E, const char *name) {
+  char alt[32];
+  int k = find_prop(E, name);
+  if (k < 0) {
+    snprintf(alt, sizeof alt, "diffuse_%s", name);
+    k = find_prop(E, alt);
+  }
+  if (k < 0) {
+    alt[0] = name[0], alt[1] = '\0';
+    k = find_prop(E, alt);
+  }
+  return k >= 0 && !E->props[k].list ? k : -1;
+}
+
+/* A colour channel value as a byte: integer types as they are (clamped to 0..255), floating-point
+ * ones in [0, 1] scaled by 255. */
+static unsigned char channel_byte(int type, double v) {
+  if (!type_is_int(type)) v *= 255.0;
+  if (!(v > 0)) return 0;
+  if (v >= 255) return 255;
+  return (unsigned char)(v + (type_is_int(type) ? 0 : 0.5));
+}
+
 ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err) {
+  return io_parse_ply_rgb(path, buf, len, m, NULL, err);
+}
+
+ss_status io_parse_ply_rgb(const char *path, const char *buf, size_t len, ss_mesh *m, unsigned char **rgb,
+                           ss_error *err) {
   memset(m, 0, sizeof *m);
+  if (rgb) *rgb = NULL;
+  io_bvec C = {0};
   ply_in in;
   memset(&in, 0, sizeof in);
   in.path = path;
@@ -255,7 +286,7 @@ ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m
   ss_status st = parse_header(&in, el, &nel, err);
   io_dvec V = {0};
   io_ivec F = {0};
-  int vi = -1, fi = -1, px = -1, py = -1, pz = -1, pf = -1;
+  int vi = -1, fi = -1, px = -1, py = -1, pz = -1, pf = -1, pc[3] = {-1, -1, -1};
   long header_lines = in.t.line;
   if (!st) {
     for (int i = 0; i < nel; i++) {
@@ -271,6 +302,12 @@ ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m
     pz = find_prop(&el[vi], "z");
     if (px < 0 || py < 0 || pz < 0 || el[vi].props[px].list || el[vi].props[py].list || el[vi].props[pz].list)
       st = io_fail_line(err, SS_ERR_PARSE, path, header_lines, "vertex element lacks scalar x, y, z properties");
+    if (rgb) {
+      pc[0] = find_channel(&el[vi], "red");
+      pc[1] = find_channel(&el[vi], "green");
+      pc[2] = find_channel(&el[vi], "blue");
+      if (pc[0] < 0 || pc[1] < 0 || pc[2] < 0) pc[0] = pc[1] = pc[2] = -1; /* all three or none */
+    }
     pf = find_prop(&el[fi], "vertex_indices");
     if (pf < 0) pf = find_prop(&el[fi], "vertex_index");
     if (!st && (pf < 0 || !el[fi].props[pf].list))
@@ -291,12 +328,16 @@ ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m
     const ply_elem *E = &el[ie];
     if (E->nprops == 0) continue; /* nothing stored: a huge count must not spin */
     for (long long r = 0; r < E->count && !st; r++) {
-      double xyz[3] = {0, 0, 0};
+      double xyz[3] = {0, 0, 0}, col[3] = {0, 0, 0};
       for (int ip = 0; ip < E->nprops && !st; ip++) {
         const ply_prop *P = &E->props[ip];
         if (ie == vi && (ip == px || ip == py || ip == pz)) {
           ply_where w = {"vertex", r, P->name};
           st = read_value(&in, P->type, 0, &xyz[ip == px ? 0 : ip == py ? 1 : 2], NULL, w, err);
+        } else if (ie == vi && pc[0] >= 0 && (ip == pc[0] || ip == pc[1] || ip == pc[2])) {
+          ply_where w = {"vertex", r, P->name};
+          int c = ip == pc[0] ? 0 : ip == pc[1] ? 1 : 2;
+          if (!(st = read_value(&in, P->type, 0, &col[c], NULL, w, err))) col[c] = channel_byte(P->type, col[c]);
         } else if (ie == fi && ip == pf) {
           long long k;
           char what[128];
@@ -343,7 +384,8 @@ ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m
       }
       if (!st && ie == vi)
         for (int d = 0; d < 3 && !st; d++)
-          if (io_dvec_push(&V, xyz[d])) st = in_fail(&in, err, SS_ERR_NOMEM, "out of memory");
+          if (io_dvec_push(&V, xyz[d]) || (pc[0] >= 0 && io_bvec_push(&C, (unsigned char)col[d])))
+            st = in_fail(&in, err, SS_ERR_NOMEM, "out of memory");
     }
   }
   /* leftover data means the declared counts are wrong (trailing blank space is tolerated) */
@@ -365,8 +407,13 @@ ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m
     else st = io_fail_byte(err, SS_ERR_PARSE, path, max_loc, "vertex index %lld out of range", max_idx);
   }
   if (!st) st = io_finish_mesh(&V, &F, m, path, err);
+  if (!st && rgb && pc[0] >= 0) {
+    *rgb = C.a; /* 3 nv bytes: one colour per vertex read */
+    C.a = NULL;
+  }
   free(V.a);
   free(F.a);
+  free(C.a);
   free(el);
   return st;
 }

@@ -1,4 +1,4 @@
-/* OFF and PLY writers. Coordinates are written losslessly (%.17g in text, float64 in binary PLY) so
+/* OFF, PLY and OBJ writers. Coordinates are written losslessly (%.17g in text, float64 in binary PLY) so
  * that write -> read round trips are exact. Binary output is assembled byte by byte, independent of
  * the host's endianness. */
 #include <ctype.h>
@@ -63,6 +63,11 @@ static void put_bytes(unsigned char *dst, uint64_t u, int n, int big) {
 }
 
 ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_ply_format fmt, ss_error *err) {
+  return ss_write_ply_labels(path, m, rgb, NULL, fmt, err);
+}
+
+ss_status ss_write_ply_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                              ss_ply_format fmt, ss_error *err) {
   ss_status st = check_mesh(path, m, err);
   if (st) return st;
   if (fmt != SS_PLY_ASCII && fmt != SS_PLY_BINARY_LE && fmt != SS_PLY_BINARY_BE)
@@ -73,14 +78,15 @@ ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *
   fprintf(f, "ply\nformat %s 1.0\ncomment written by specseg\nelement vertex %d\n", names[fmt], m->nv);
   fprintf(f, "property double x\nproperty double y\nproperty double z\n");
   if (rgb) fprintf(f, "property uchar red\nproperty uchar green\nproperty uchar blue\n");
+  if (labels) fprintf(f, "property int label\n");
   fprintf(f, "element face %d\nproperty list uchar int vertex_indices\nend_header\n", m->nf);
   if (fmt == SS_PLY_ASCII) {
     for (int i = 0; i < m->nv && !ferror(f); i++) {
       const double *p = m->V + 3 * (size_t)i;
-      if (rgb)
-        fprintf(f, "%.17g %.17g %.17g %u %u %u\n", p[0], p[1], p[2], rgb[3 * (size_t)i], rgb[3 * (size_t)i + 1], rgb[3 * (size_t)i + 2]);
-      else
-        fprintf(f, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
+      fprintf(f, "%.17g %.17g %.17g", p[0], p[1], p[2]);
+      if (rgb) fprintf(f, " %u %u %u", rgb[3 * (size_t)i], rgb[3 * (size_t)i + 1], rgb[3 * (size_t)i + 2]);
+      if (labels) fprintf(f, " %d", labels[i]);
+      fputc('\n', f);
     }
     for (int i = 0; i < m->nf && !ferror(f); i++) {
       const int *t = m->F + 3 * (size_t)i;
@@ -88,7 +94,7 @@ ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *
     }
   } else {
     int big = fmt == SS_PLY_BINARY_BE;
-    unsigned char rec[27];
+    unsigned char rec[31];
     for (int i = 0; i < m->nv && !ferror(f); i++) {
       for (int d = 0; d < 3; d++) {
         uint64_t u;
@@ -99,6 +105,10 @@ ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *
       if (rgb) {
         memcpy(rec + 24, rgb + 3 * (size_t)i, 3);
         n = 27;
+      }
+      if (labels) {
+        put_bytes(rec + n, (uint32_t)labels[i], 4, big);
+        n += 4;
       }
       fwrite(rec, 1, n, f);
     }
@@ -111,6 +121,37 @@ ss_status ss_write_ply(const char *path, const ss_mesh *m, const unsigned char *
   return close_out(path, f, err);
 }
 
+ss_status ss_write_obj(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err) {
+  ss_status st = check_mesh(path, m, err);
+  if (st) return st;
+  FILE *f;
+  if ((st = open_out(path, &f, err))) return st;
+  fprintf(f, "# written by specseg\n");
+  for (int i = 0; i < m->nv && !ferror(f); i++) {
+    const double *p = m->V + 3 * (size_t)i;
+    fprintf(f, "v %.17g %.17g %.17g", p[0], p[1], p[2]);
+    /* the common "v x y z r g b" extension, colours in [0, 1] */
+    if (rgb)
+      fprintf(f, " %.9g %.9g %.9g", rgb[3 * (size_t)i] / 255.0, rgb[3 * (size_t)i + 1] / 255.0, rgb[3 * (size_t)i + 2] / 255.0);
+    fputc('\n', f);
+  }
+  for (int i = 0; i < m->nf && !ferror(f); i++) {
+    const int *t = m->F + 3 * (size_t)i;
+    fprintf(f, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  }
+  return close_out(path, f, err);
+}
+
+ss_status ss_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,
+                               ss_error *err) {
+  const char *dot = strrchr(path, '.');
+  char ext[8] = {0};
+  if (dot && !strchr(dot, '/') && strlen(dot + 1) < sizeof ext)
+    for (size_t i = 0; dot[1 + i]; i++) ext[i] = (char)tolower((unsigned char)dot[1 + i]);
+  if (!strcmp(ext, "ply")) return ss_write_ply_labels(path, m, rgb, labels, SS_PLY_BINARY_LE, err);
+  return ss_write_mesh(path, m, rgb, err);
+}
+
 ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err) {
   const char *dot = strrchr(path, '.');
   char ext[8] = {0};
@@ -118,5 +159,6 @@ ss_status ss_write_mesh(const char *path, const ss_mesh *m, const unsigned char 
     for (size_t i = 0; dot[1 + i]; i++) ext[i] = (char)tolower((unsigned char)dot[1 + i]);
   if (!strcmp(ext, "off")) return ss_write_off(path, m, rgb, err);
   if (!strcmp(ext, "ply")) return ss_write_ply(path, m, rgb, SS_PLY_BINARY_LE, err);
-  return ss_fail(err, SS_ERR_UNSUPPORTED, "%s: cannot choose a mesh format from the extension (use .off or .ply)", path);
+  if (!strcmp(ext, "obj")) return ss_write_obj(path, m, rgb, err);
+  return ss_fail(err, SS_ERR_UNSUPPORTED, "%s: cannot choose a mesh format from the extension (use .off, .ply or .obj)", path);
 }

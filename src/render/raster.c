@@ -32,7 +32,7 @@ void ss_render_scene_init(ss_render_scene *s, const ss_mesh *m) {
 }
 
 /* Rotation taking world coordinates to camera coordinates: view direction -z, up +y. */
-static void view_rotation(double az_deg, double el_deg, double R[9]) {
+static void view_rotation_y(double az_deg, double el_deg, double R[9]) {
   double a = az_deg * M_PI / 180, e = el_deg * M_PI / 180;
   double ca = cos(a), sa = sin(a), ce = cos(e), se = sin(e);
   /* first rotate about y by -a, then about x by e */
@@ -42,6 +42,28 @@ static void view_rotation(double az_deg, double el_deg, double R[9]) {
     for (int j = 0; j < 3; j++) {
       double s = 0;
       for (int k = 0; k < 3; k++) s += Rx[3 * i + k] * Ry[3 * k + j];
+      R[3 * i + j] = s;
+    }
+}
+
+/* The rotation turning world axis `up` (ss_up_axis) into +y (see render.h), then the view's. */
+static void view_rotation(const ss_render_options *o, double R[9]) {
+  static const double U[7][9] = {
+      {1, 0, 0, 0, 0, -1, 0, 1, 0},  /* -z: (x, -z, y) */
+      {-1, 0, 0, 0, -1, 0, 0, 0, 1}, /* -y: (-x, -y, z) */
+      {0, 1, 0, -1, 0, 0, 0, 0, 1},  /* -x: (y, -x, z) */
+      {1, 0, 0, 0, 1, 0, 0, 0, 1},   /* default: +y */
+      {0, -1, 0, 1, 0, 0, 0, 0, 1},  /* +x: (-y, x, z) */
+      {1, 0, 0, 0, 1, 0, 0, 0, 1},   /* +y */
+      {1, 0, 0, 0, 0, 1, 0, -1, 0},  /* +z: (x, z, -y) */
+  };
+  double Rv[9];
+  view_rotation_y(o->azimuth, o->elevation, Rv);
+  int u = o->up >= -3 && o->up <= 3 ? o->up + 3 : 3;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double s = 0;
+      for (int k = 0; k < 3; k++) s += Rv[3 * i + k] * U[u][3 * k + j];
       R[3 * i + j] = s;
     }
 }
@@ -69,7 +91,7 @@ static int view_bbox(const ss_mesh *m, const double R[9], double lo[3], double h
 
 double ss_render_fit_scale(const ss_mesh *m, const ss_render_options *o) {
   double R[9], lo[3], hi[3];
-  view_rotation(o->azimuth, o->elevation, R);
+  view_rotation(o, R);
   if (!m || !view_bbox(m, R, lo, hi) || o->width < 1 || o->height < 1) return 0;
   double avail = 1.0 - 2 * o->margin;
   if (avail <= 0.01) avail = 0.01;
@@ -187,7 +209,7 @@ ss_status ss_render(const ss_render_scene *sc, const ss_render_options *o, unsig
     return ss_fail(err, SS_ERR_NOMEM, "out of memory for a %dx%d render", W, H);
   }
   double R[9];
-  view_rotation(o->azimuth, o->elevation, R);
+  view_rotation(o, R);
   double lo[3], hi[3];
   if (!view_bbox(m, R, lo, hi)) lo[0] = lo[1] = lo[2] = hi[0] = hi[1] = hi[2] = 0;
   for (int i = 0; i < m->nv; i++) rotate(R, m->V + 3 * (size_t)i, P + 3 * (size_t)i);

@@ -182,6 +182,19 @@ int io_dvec_push(io_dvec *v, double x) {
   return 0;
 }
 
+int io_bvec_push(io_bvec *v, unsigned char x) {
+  if (v->n == v->cap) {
+    size_t nc = v->cap ? v->cap * 2 : 1024;
+    if (nc < v->cap) return -1;
+    unsigned char *na = realloc(v->a, nc);
+    if (!na) return -1;
+    v->a = na;
+    v->cap = nc;
+  }
+  v->a[v->n++] = x;
+  return 0;
+}
+
 int io_ivec_push(io_ivec *v, int x) {
   if (v->n == v->cap) {
     size_t nc = v->cap ? v->cap * 2 : 1024;

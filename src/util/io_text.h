@@ -63,5 +63,10 @@ typedef struct io_ivec {
 } io_ivec;
 int io_dvec_push(io_dvec *v, double x); /* 0 ok, -1 out of memory */
 int io_ivec_push(io_ivec *v, int x);
+typedef struct io_bvec {
+  unsigned char *a;
+  size_t n, cap;
+} io_bvec;
+int io_bvec_push(io_bvec *v, unsigned char x);
 
 #endif

@@ -6,6 +6,8 @@ usage: png_check.py FILE size                 -> "W H"
        png_check.py FILE grey [XMAX]          -> number of non-background grey pixels (x < XMAX)
        png_check.py FILE red [XMAX]           -> number of strongly red pixels (x < XMAX)
        png_check.py FILE top                  -> "X Y" of the topmost non-white pixel
+       png_check.py FILE bbox [XMIN XMAX]     -> "X0 Y0 X1 Y1" of the non-white pixels (XMIN <= x < XMAX)
+       png_check.py FILE row Y [XMIN XMAX]    -> R+G+B of each pixel of row Y, space-separated
 """
 import struct
 import sys
@@ -93,6 +95,20 @@ def main():
                     print(x, y)
                     return
         print(-1, -1)
+    elif cmd == "bbox":
+        x0, x1 = (int(args[0]), int(args[1])) if len(args) > 1 else (0, w)
+        xs, ys = [], []
+        for y in range(h):
+            r = rows[y]
+            for x in range(x0, min(x1, w)):
+                if r[3 * x:3 * x + 3] != b"\xff\xff\xff":
+                    xs.append(x)
+                    ys.append(y)
+        print(*((min(xs), min(ys), max(xs), max(ys)) if xs else (-1, -1, -1, -1)))
+    elif cmd == "row":
+        y = int(args[0])
+        x0, x1 = (int(args[1]), int(args[2])) if len(args) > 2 else (0, w)
+        print(*(sum(rows[y][3 * x:3 * x + 3]) for x in range(x0, min(x1, w))))
     else:
         raise SystemExit("unknown command " + cmd)
 

@@ -132,6 +132,16 @@ cli("render", MESH, "--labels", path("labels.txt"), "--size", "120x160", "--no-t
 w, h, rows = read_png(path("c.png"))
 cimg = np.frombuffer(b"".join(bytes(r) for r in rows), np.uint8).reshape(h, w, 3)
 check(cimg.shape == img.shape and np.array_equal(cimg, img), "render: same pixels as specseg render")
+# up: a z-up copy ((x, y, z) -> (x, -z, y)) drawn with up="z" or "auto" is the y-up picture
+Vz = np.stack([V[:, 0], -V[:, 2], V[:, 1]], 1)
+check(np.array_equal(specseg.render(Vz, F, labels=seg.labels, size=(120, 160), up="z"), img), "render: up='z'")
+check(np.array_equal(specseg.render(Vz, F, labels=seg.labels, size=(120, 160), up="auto"), img), "render: up='auto'")
+check(not np.array_equal(specseg.render(Vz, F, labels=seg.labels, size=(120, 160)), img), "render: default up is y")
+try:
+    specseg.render(V, F, up="w")
+    check(False, "render: up='w' accepted")
+except ValueError:
+    check(True, "render: up='w' refused")
 al = specseg.align_labels((seg.labels + 3) % seg.m, seg.labels)
 check(np.array_equal(al, seg.labels), "align_labels undoes a permutation")
 specseg.write_png(path("b.png"), img)
