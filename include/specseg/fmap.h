@@ -196,6 +196,11 @@ typedef struct ss_fmap_match_options {
    * the defaults were chosen: docs/tuning.md. */
   double w_extra;
   int extra_dcomm;
+  /* Eigenpairs the probe functions (WKS, landmark wave kernels, wave-filtered extras) are computed
+   * from, independently of the basis size k in which Eq. (1) is solved: the probes are synthesised
+   * from the first descr_k eigenpairs, then projected onto the first k. 0 = k (NO17 and the paper:
+   * what specseg eval's Table 1 uses). Must be 0 or >= k; the shapes need that many eigenpairs. */
+  int descr_k;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);

@@ -49,6 +49,7 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   if (k < 3 || (kz != 0 && kz < k))
     return ss_fail(err, SS_ERR_INVALID, "match: bad basis sizes (k %d, ZoomOut %d)", k, kz);
   int need = kz > k ? kz : k;
+  if (o.fmap.descr_k > need) need = o.fmap.descr_k;
   if (X->kev < need || Y->kev < need)
     return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs needed, shapes have %d and %d", need, X->kev, Y->kev);
 
@@ -135,6 +136,7 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->nv);
   }
   int kev = o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : o.fmap.k;
+  if (o.fmap.descr_k > kev) kev = o.fmap.descr_k;
   ss_shape_prep pX, pY;
   ss_status st = ss_shape_prep_compute(X, &o.seg, kev, &pX, err);
   if (st) return st;
