@@ -43,3 +43,52 @@ ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evec
   free(part);
   return st;
 }
+
+ss_status ss_p2p_energy(int n_S, int n_T, const double *evals_S, const double *evals_T, const double *evecs_S,
+                        const double *evecs_T, const double *M_T, const int *map, int k0, int K, int step, double w_lap,
+                        double *E, double *E_orth, double *E_lap, ss_error *err) {
+  if (n_S < 1 || n_T < 1 || k0 < 1 || K < k0 || step < 1 || !evals_S || !evals_T || !evecs_S || !evecs_T || !M_T ||
+      !map || !E || !(w_lap >= 0))
+    return ss_fail(err, SS_ERR_INVALID, "p2p energy: bad arguments (k0 %d, K %d, step %d)", k0, K, step);
+  for (int y = 0; y < n_T; y++)
+    if (map[y] < 0 || map[y] >= n_S) return ss_fail(err, SS_ERR_INVALID, "p2p energy: map[%d] = %d out of range", y, map[y]);
+  double *C = malloc(sizeof(double) * (size_t)K * K), *G = malloc(sizeof(double) * (size_t)K * K);
+  if (!C || !G) {
+    free(C), free(G);
+    return ss_fail(err, SS_ERR_NOMEM, "p2p energy: out of memory");
+  }
+  ss_status st = ss_fmap_from_p2p(n_S, n_T, K, K, evecs_S, evecs_T, M_T, map, C, err);
+  double eo = 0, num = 0, den = 0;
+  int ns = 0;
+  if (!st) {
+    /* G = C_kᵀ C_k (upper triangle) for each size, C_k the leading block of C: ~k³ flops a size,
+     * negligible next to a point map */
+    for (int k = k0;; k = k + step < K ? k + step : K) {
+      cblas_dsyrk(CblasColMajor, CblasUpper, CblasTrans, k, k, 1.0, C, K, 0.0, G, K);
+      double s = 0;
+      for (int j = 0; j < k; j++)
+        for (int i = 0; i <= j; i++) {
+          double d = G[i + (size_t)K * j] - (i == j);
+          s += (i == j ? 1.0 : 2.0) * d * d;
+        }
+      eo += s / k;
+      ns++;
+      if (k == K) break;
+    }
+    eo /= ns;
+    for (int j = 0; j < K; j++)
+      for (int i = 0; i < K; i++) {
+        double c2 = C[i + (size_t)K * j] * C[i + (size_t)K * j], d = evals_T[i] - evals_S[j];
+        num += c2 * d * d;
+        den += c2 * (evals_T[i] * evals_T[i] + evals_S[j] * evals_S[j]);
+      }
+  }
+  if (!st) {
+    double el = den > 0 ? num / den : 0.0;
+    *E = eo + w_lap * el;
+    if (E_orth) *E_orth = eo;
+    if (E_lap) *E_lap = el;
+  }
+  free(C), free(G);
+  return st;
+}
