@@ -1,5 +1,5 @@
-/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] -o MAP.txt
- *                   [--fmap C.npy] [--pairs PAIRS.txt] [--timings] */
+/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] [--no-refine]
+ *                   [--descr-k K] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings] */
 #include "cli.h"
 #include "specseg/match.h"
 
@@ -9,7 +9,7 @@
 #include <string.h>
 
 static const char *USAGE = "specseg match X Y --landmarks LM.txt [--probes std|asa|diff] "
-                           "[--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings]";
+                           "[--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--no-refine] [--descr-k K] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings]";
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
@@ -28,7 +28,11 @@ int cmd_match(int argc, char **argv) {
              "NO17), asa (+ segment indicators), diff (+ wave-filtered segment indicators; default).\n"
              "--segment-profile: the segments' probe functions, indicator, tent (1 - d/R from the centre;\n"
              "default) or soft (soft Voronoi membership; better than tent from k = 60 on).\n"
-             "--k: basis size (default 50). --zoomout KMAX: ZoomOut refinement up to KMAX eigenfunctions.\n"
+             "--k: basis size (default 50). The output is refined: ZoomOut up to KMAX eigenfunctions (--zoomout,\n"
+             "default 100) from the STD map and from the segment-aided one, keeping the map of lowest\n"
+             "unsupervised energy (orthonormality of its functional map). --no-refine: the unrefined map of\n"
+             "--probes at size k (the paper's variants). --descr-k: eigenpairs the descriptors are computed\n"
+             "from (default 100; = k for the paper's construction).\n"
              "MAP.txt: line i = vertex of Y that is the image of vertex i of X. --fmap: the functional map\n"
              "(functions on Y -> functions on X, k x k) as .npy. --pairs: the paired segment centres, 'x y'\n"
              "(input vertices) per line. --timings: 'timing: STAGE SECONDS' lines on stderr.\n",
@@ -61,6 +65,11 @@ int cmd_match(int argc, char **argv) {
     } else if (!strcmp(a, "--zoomout")) {
       if (!has_next || cli_parse_int(argv[++i], 3, 10000, &o.fmap.zoomout_kmax))
         return cli_usage("%s: --zoomout needs an integer between 3 and 10000", USAGE);
+    } else if (!strcmp(a, "--no-refine")) {
+      o.refine = SS_REFINE_NONE;
+    } else if (!strcmp(a, "--descr-k")) {
+      if (!has_next || cli_parse_int(argv[++i], 3, 10000, &o.fmap.descr_k))
+        return cli_usage("%s: --descr-k needs an integer between 3 and 10000", USAGE);
     } else if (!strcmp(a, "--timings")) {
       timings = 1;
     } else if (a[0] == '-' && a[1]) {
@@ -78,6 +87,7 @@ int cmd_match(int argc, char **argv) {
   if (!outp) return cli_usage("%s: missing -o MAP.txt", USAGE);
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
     return cli_usage("%s: --zoomout %d is below --k %d", USAGE, o.fmap.zoomout_kmax, o.fmap.k);
+  if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
 
   ss_error err = {{0}};
   ss_mesh X = {0}, Y = {0};
@@ -134,10 +144,13 @@ int cmd_match(int argc, char **argv) {
     fprintf(stderr, "timing: write %.6f\n", t_write);
     fprintf(stderr, "timing: total %.6f\n", ss_time() - t0);
   }
-  printf("%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s -> %s\n", X.nv, Y.nv, nl,
+  static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
+  printf("%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv, Y.nv, nl,
          res.pairs.n, res.pairs.nx, res.pairs.ny,
          o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
-         o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", outp);
+         o.refine == SS_REFINE_NONE ? "" : ", refined: ",
+         res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "", outp);
+  if (res.notes[0]) printf("note: %s\n", res.notes);
 done:
   ss_match_result_free(&res);
   ss_mesh_free(&X);
