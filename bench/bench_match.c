@@ -9,7 +9,8 @@
  *   bench_match --split tune|held [--lm best|gt] [--pairs N] [--seed S] [--cfg NAME:SPEC]...
  *               held-out protocol (see run_split below): random pairs among FAUST subjects 0-4
  *               (tune, shapes 000-049) or 5-9 (held, 050-099), each ss_match_prepared configuration
- *               on every pair, per-pair errors, means, ratios to the first configuration, CPU s
+ *               on every pair, per-pair errors, means, ratios to the first configuration, CPU s;
+ *               [--sel NAME:A,B,C,D:K:W]... the refinement's selection rule applied to configurations
  * Errors: mean over x of d_Y(Π(x), x) / √area(Y), exact geodesics (ss_map_geodesic_error).
  * Accuracy runs reuse one ss_shape_prep per shape (segmentation + 100 eigenpairs); the timed run
  * is a separate, complete ss_match per pair (DIFF, no ZoomOut). */
@@ -473,8 +474,29 @@ static int config_kev(const ss_match_options *o) {
   return kev;
 }
 
+/* --sel NAME:A,B,C,D:K:W:WD — the refined default's rule applied afterwards to the maps of
+ * configurations A (STD start), B (its refinement), C (segment-aided start), D (its refinement)
+ * (0-based --cfg indices): lowest ss_p2p_energy (k0 = k of A, size K, w_lap W) + WD x
+ * ss_p2p_descr_residual (A's base probes at its k), a refinement only when not above its own start.
+ * Equals SS_REFINE_BEST when the configurations are its candidates, at no extra cost. */
+typedef struct selection {
+  char name[32];
+  int c[4], K;
+  double w, wd, sum, right, cmp;
+  int counts[4];
+} selection;
+
+static int parse_selection(const char *arg, selection *s) {
+  memset(s, 0, sizeof *s);
+  char nm[32];
+  if (sscanf(arg, "%31[^:]:%d,%d,%d,%d:%d:%lf:%lf", nm, &s->c[0], &s->c[1], &s->c[2], &s->c[3], &s->K, &s->w, &s->wd) != 8)
+    return 1;
+  snprintf(s->name, sizeof s->name, "%s", nm);
+  return s->K < 3 || s->w < 0 || s->wd < 0;
+}
+
 static int run_split(const char *dir, const char *split, const char *lmname, unsigned seed, int npairs, config *cf,
-                     int ncf) {
+                     int ncf, selection *sel, int nsel) {
   const int lo = !strcmp(split, "tune") ? 0 : !strcmp(split, "held") ? 50 : -1;
   if (lo < 0 || (strcmp(lmname, "best") && strcmp(lmname, "gt"))) {
     fprintf(stderr, "--split tune|held, --lm best|gt\n");
@@ -494,8 +516,13 @@ static int run_split(const char *dir, const char *split, const char *lmname, uns
   printf("FAUST split %s (shapes %03d-%03d), %d pairs, seed %u, %s landmarks (%d), eigenpairs %d\n", split, lo, lo + 49,
          npairs, seed, lmname, nl, kev);
   for (int c = 0; c < ncf; c++) printf("  %-10s %s\n", cf[c].name, cf[c].spec[0] ? cf[c].spec : "(defaults)");
+  for (int q = 0; q < nsel; q++)
+    for (int i = 0; i < 4; i++)
+      if (sel[q].c[i] < 0 || sel[q].c[i] >= ncf) { fprintf(stderr, "--sel %s: no configuration %d\n", sel[q].name, sel[q].c[i]); return 2; }
+  for (int q = 0; q < nsel; q++) if (sel[q].K > kev) kev = sel[q].K;
   slot *S = calloc(100, sizeof(slot));
   double *errs = malloc(sizeof(double) * (size_t)ncf);
+  int **maps = calloc((size_t)ncf, sizeof(int *));
   unsigned r = seed;
   ss_match_options so;
   ss_match_default_options(&so);
@@ -521,7 +548,44 @@ static int run_split(const char *dir, const char *split, const char *lmname, uns
       cf[c].wins += errs[c] < errs[0];
       printf("  %s %.4f", cf[c].name, errs[c]);
       if (res.refine_choice >= 0) printf(" [%c%s]", res.refine_choice < 2 ? 'S' : 'D', res.refine_choice & 1 ? "+ZO" : "");
+      free(maps[c]);
+      maps[c] = res.map;
+      res.map = NULL;
       ss_match_result_free(&res);
+    }
+    const ss_shape_prep *pX = &S[a].prep, *pY = &S[b].prep;
+    for (int q = 0; q < nsel; q++) {
+      double E[4], best = INFINITY, R = 0;
+      int ch = -1;
+      const ss_fmap_match_options *fo = &cf[sel[q].c[0]].o.fmap;
+      ss_fmap_shape sX = {&S[a].m, pX->M, pX->evals, pX->evecs, pX->kev}, sY = {&S[b].m, pY->M, pY->evals, pY->evecs, pY->kev};
+      ss_fmap_probes bX = {0}, bY = {0};
+      if (sel[q].wd > 0 &&
+          (ss_fmap_base_probes(&sX, nl, lm, fo, 0, &bX, &e) || ss_fmap_base_probes(&sY, nl, lm, fo, 0, &bY, &e))) {
+        fprintf(stderr, "probes: %s\n", e.msg);
+        return 1;
+      }
+      for (int i = 0; i < 4; i++) {
+        if (ss_p2p_energy(pY->mesh->nv, pX->mesh->nv, pY->evals, pX->evals, pY->evecs, pX->evecs, pX->M, maps[sel[q].c[i]],
+                          fo->k, sel[q].K, 1, sel[q].w, &E[i], NULL, NULL, &e) ||
+            (sel[q].wd > 0 && ss_p2p_descr_residual(pY->mesh->nv, pX->mesh->nv, pY->evecs, pX->evecs, pX->M, &bY, &bX,
+                                                    maps[sel[q].c[i]], &R, &e))) {
+          fprintf(stderr, "energy: %s\n", e.msg);
+          return 1;
+        }
+        E[i] += sel[q].wd * R;
+      }
+      ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
+      for (int i = 0; i < 4; i++)
+        if (E[i] < best && (!(i & 1) || E[i] <= E[i - 1])) best = E[i], ch = i;
+      double ev = errs[sel[q].c[ch]];
+      sel[q].sum += ev;
+      sel[q].counts[ch]++;
+      /* did it pick the better of the two refined maps (B, D)? */
+      double eb = errs[sel[q].c[1]], ed = errs[sel[q].c[3]];
+      int pick_d = E[3] < E[1];
+      if (eb != ed) sel[q].cmp++, sel[q].right += (pick_d == (ed < eb));
+      printf("  %s %.4f [%d]", sel[q].name, ev, ch);
     }
     printf("\n");
     fflush(stdout);
@@ -531,9 +595,15 @@ static int run_split(const char *dir, const char *split, const char *lmname, uns
   for (int c = 0; c < ncf; c++)
     printf("  %-10s %.4f  x %.3f  %2d/%d  %.3f s\n", cf[c].name, cf[c].sum / npairs, cf[c].sum / cf[0].sum, cf[c].wins,
            npairs, cf[c].cpu / npairs);
+  for (int q = 0; q < nsel; q++)
+    printf("  %-10s %.4f  x %.3f  (choices S %d, S+ZO %d, D %d, D+ZO %d; energy picks the better of the two refined maps on "
+           "%.0f/%.0f pairs where they differ)\n",
+           sel[q].name, sel[q].sum / npairs, sel[q].sum / cf[0].sum, sel[q].counts[0], sel[q].counts[1], sel[q].counts[2],
+           sel[q].counts[3], sel[q].right, sel[q].cmp);
   for (int i = 0; i < 100; i++)
     if (S[i].loaded) ss_shape_prep_free(&S[i].prep), ss_mesh_free(&S[i].m);
-  free(S), free(errs), free(lm);
+  for (int c = 0; c < ncf; c++) free(maps[c]);
+  free(S), free(errs), free(lm), free(maps);
   return 0;
 }
 
@@ -548,6 +618,8 @@ int main(int argc, char **argv) {
   int nvar = 0, diag = 0, ncf = 0;
   const char *split = NULL, *lmname = "best";
   static config cf[32];
+  static selection sel[16];
+  int nsel = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "0";
     if (!strcmp(a, "--data")) dir = v, i++;
@@ -569,6 +641,10 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--diag")) diag = 1;
     else if (!strcmp(a, "--split")) split = v, i++;
     else if (!strcmp(a, "--lm")) lmname = v, i++;
+    else if (!strcmp(a, "--sel") && nsel < 16) {
+      if (parse_selection(v, &sel[nsel++])) { fprintf(stderr, "bad --sel %s\n", v); return 2; }
+      i++;
+    }
     else if (!strcmp(a, "--cfg") && ncf < 32) {
       if (parse_config(v, &cf[ncf++])) { fprintf(stderr, "bad --cfg %s\n", v); return 2; }
       i++;
@@ -589,7 +665,7 @@ int main(int argc, char **argv) {
       for (int c = 0; c < 3; c++) parse_config(def[c], &cf[c]);
       ncf = 3;
     }
-    return run_split(dir, split, lmname, seed, npairs, cf, ncf);
+    return run_split(dir, split, lmname, seed, npairs, cf, ncf, sel, nsel);
   }
   int *lm = NULL, nl = 0;
   {

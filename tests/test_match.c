@@ -299,6 +299,36 @@ int main(void) {
     id[0] = X.nv;
     CHECK(ss_p2p_energy(X.nv, X.nv, pX.evals, pX.evals, pX.evecs, pX.evecs, pX.M, id, 10, 50, 5, 1.0, &E1, NULL, NULL, &e) ==
           SS_ERR_INVALID);
+    /* descriptor residual: 0 for the identity, large for a map onto one vertex, and it tells a
+     * left-right flip of the humanoid (a near-isometry the orthonormality energy accepts) */
+    ss_fmap_shape fx = {&X, pX.M, pX.evals, pX.evecs, pX.kev};
+    ss_fmap_match_options fo;
+    ss_fmap_match_default_options(&fo);
+    fo.k = 40;
+    ss_fmap_probes pb;
+    CHECK(ss_fmap_base_probes(&fx, 5, lm, &fo, 0, &pb, &e) == SS_OK);
+    double R0, R1;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &R1, &e) == SS_ERR_INVALID);
+    id[0] = 0;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &R1, &e) == SS_OK);
+    for (int x = 0; x < X.nv; x++) id[x] = x;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &R0, &e) == SS_OK);
+    CHECK(R0 < 1e-20 && R1 > 0.3);
+    /* the mirror x -> nearest vertex of (-x, y, z) */
+    for (int x = 0; x < X.nv; x++) {
+      double best = INFINITY;
+      for (int z = 0; z < X.nv; z++) {
+        double dx = X.V[3 * z] + X.V[3 * x], dy = X.V[3 * z + 1] - X.V[3 * x + 1], dz = X.V[3 * z + 2] - X.V[3 * x + 2];
+        double d = dx * dx + dy * dy + dz * dz;
+        if (d < best) best = d, id[x] = z;
+      }
+    }
+    double Rf, Ef;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &Rf, &e) == SS_OK);
+    CHECK(ss_p2p_energy(X.nv, X.nv, pX.evals, pX.evals, pX.evecs, pX.evecs, pX.M, id, 10, 50, 5, 0.0, &Ef, NULL, NULL, &e) == SS_OK);
+    printf("left-right flip: descriptor residual %.3f, orthonormality energy %.4f\n", Rf, Ef);
+    CHECK(Rf > 0.1 && Rf > 10 * Ef);
+    ss_fmap_probes_free(&pb);
     free(id);
   }
   /* bad input */

@@ -175,6 +175,16 @@ SS_API ss_status ss_p2p_energy(int n_S, int n_T, const double *evals_S, const do
                                const double *evecs_T, const double *M_T, const int *map, int k0, int K, int step,
                                double w_lap, double *E, double *E_orth, double *E_lap, ss_error *err);
 
+/* Descriptor preservation of a point map π : T -> S (map[n_T]), no ground truth: the probes of both
+ * shapes (S, T: the same columns, e.g. ss_fmap_base_probes' WKS + landmark wave kernels) synthesised
+ * in their bases, F = Φ A (k = S->k, T->k columns of evecs), and
+ *   *E = Σ_t M_T(t) ‖F_T(t) − F_S(π(t))‖² / Σ_t M_T(t) ‖F_T(t)‖².
+ * Unlike the orthonormality energy it sees a left–right flip (the landmark probes break the
+ * symmetry). */
+SS_API ss_status ss_p2p_descr_residual(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T,
+                                       const ss_fmap_probes *S, const ss_fmap_probes *T, const int *map, double *E,
+                                       ss_error *err);
+
 /* ---------------------------------------------------------------- pipeline (match.c) */
 
 /* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric

@@ -119,9 +119,11 @@ typedef enum ss_refine_mode {
   SS_REFINE_ZOOMOUT = 1, /* ZoomOut of that map up to fmap.zoomout_kmax */
   SS_REFINE_BEST = 2     /* default: the starts STD and, with ASA / DIFF probes and segments paired,
                             the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax; of
-                            the starts and their refinements the map with the lowest ss_p2p_energy
-                            (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap = refine_w_lap) is
-                            returned — never above its own start by that energy. No ground truth. */
+                            the starts and their refinements the map with the lowest selection energy
+                            ss_p2p_energy (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap =
+                            refine_w_lap) + refine_w_descr · ss_p2p_descr_residual (the base probes,
+                            at size k) is returned — a refinement only when not above its own start
+                            by that energy. No ground truth. */
 } ss_refine_mode;
 
 typedef struct ss_match_options {
@@ -134,6 +136,7 @@ typedef struct ss_match_options {
   ss_pairing_options pairing; /* confidence rules of the pairing (ss_pairing_default_options) */
   ss_refine_mode refine;      /* default SS_REFINE_BEST */
   double refine_w_lap;        /* w_lap of the selection energy (ss_p2p_energy) */
+  double refine_w_descr;      /* weight of the descriptor residual in the selection energy */
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);

@@ -92,3 +92,33 @@ ss_status ss_p2p_energy(int n_S, int n_T, const double *evals_S, const double *e
   free(C), free(G);
   return st;
 }
+
+ss_status ss_p2p_descr_residual(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T,
+                                const ss_fmap_probes *S, const ss_fmap_probes *T, const int *map, double *E,
+                                ss_error *err) {
+  if (n_S < 1 || n_T < 1 || !evecs_S || !evecs_T || !M_T || !S || !T || !S->A || !T->A || !map || !E || S->p != T->p ||
+      S->p < 1 || S->k < 1 || T->k < 1)
+    return ss_fail(err, SS_ERR_INVALID, "descriptor residual: bad arguments");
+  for (int t = 0; t < n_T; t++)
+    if (map[t] < 0 || map[t] >= n_S) return ss_fail(err, SS_ERR_INVALID, "descriptor residual: map[%d] = %d out of range", t, map[t]);
+  const int p = S->p;
+  double *FS = malloc(sizeof(double) * (size_t)n_S * p), *FT = malloc(sizeof(double) * (size_t)n_T * p);
+  if (!FS || !FT) {
+    free(FS), free(FT);
+    return ss_fail(err, SS_ERR_NOMEM, "descriptor residual: out of memory");
+  }
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n_S, p, S->k, 1.0, evecs_S, n_S, S->A, S->k, 0.0, FS, n_S);
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n_T, p, T->k, 1.0, evecs_T, n_T, T->A, T->k, 0.0, FT, n_T);
+  double num = 0, den = 0;
+  for (int j = 0; j < p; j++) {
+    const double *fs = FS + (size_t)n_S * j, *ft = FT + (size_t)n_T * j;
+    for (int t = 0; t < n_T; t++) {
+      double d = ft[t] - fs[map[t]];
+      num += M_T[t] * d * d;
+      den += M_T[t] * ft[t] * ft[t];
+    }
+  }
+  *E = den > 0 ? num / den : 0.0;
+  free(FS), free(FT);
+  return SS_OK;
+}

@@ -10,6 +10,7 @@
 /* Defaults of what the paper leaves open (docs/tuning.md). */
 #define SS_DEFAULT_DESCR_K 100
 #define SS_DEFAULT_REFINE_KMAX 100
+#define SS_DEFAULT_REFINE_W_DESCR 0.0
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);
@@ -22,6 +23,7 @@ void ss_match_default_options(ss_match_options *o) {
   ss_pairing_default_options(&o->pairing);
   o->refine = SS_REFINE_BEST;
   o->refine_w_lap = 0.0;
+  o->refine_w_descr = SS_DEFAULT_REFINE_W_DESCR;
 }
 
 void ss_match_paper_options(ss_match_options *o) {
@@ -50,6 +52,18 @@ static int match_kev(const ss_match_options *o) {
   return kev;
 }
 
+/* the selection energy of SS_REFINE_BEST for the point map X -> Y (see match.h) */
+static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o, int k, int kz,
+                               const ss_fmap_probes *bX, const ss_fmap_probes *bY, const int *map, double *E, ss_error *err) {
+  ss_status st = ss_p2p_energy(Y->mesh->nv, X->mesh->nv, Y->evals, X->evals, Y->evecs, X->evecs, X->M, map, k, kz, 1,
+                               o->refine_w_lap, E, NULL, NULL, err);
+  if (st || !(o->refine_w_descr > 0)) return st;
+  double r;
+  if ((st = ss_p2p_descr_residual(Y->mesh->nv, X->mesh->nv, Y->evecs, X->evecs, X->M, bY, bX, map, &r, err))) return st;
+  *E += o->refine_w_descr * r;
+  return SS_OK;
+}
+
 static void add_note(ss_match_result *r, const char *msg) {
   size_t n = strlen(r->notes);
   snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
@@ -73,8 +87,9 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     return ss_fail(err, SS_ERR_INVALID, "match: unknown probe set %d", (int)o.probes);
   if (o.refine < SS_REFINE_NONE || o.refine > SS_REFINE_BEST)
     return ss_fail(err, SS_ERR_INVALID, "match: unknown refinement %d", (int)o.refine);
-  if (!(o.refine_w_lap >= 0) || !isfinite(o.refine_w_lap))
-    return ss_fail(err, SS_ERR_INVALID, "match: refine_w_lap %g must be finite and non-negative", o.refine_w_lap);
+  if (!(o.refine_w_lap >= 0) || !isfinite(o.refine_w_lap) || !(o.refine_w_descr >= 0) || !isfinite(o.refine_w_descr))
+    return ss_fail(err, SS_ERR_INVALID, "match: refine weights %g, %g must be finite and non-negative", o.refine_w_lap,
+                   o.refine_w_descr);
   if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
   const int nX = X->mesh->nv, nY = Y->mesh->nv, k = o.fmap.k;
   for (int i = 0; i < nl; i++) {
@@ -184,17 +199,13 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
       if (!Ck[c]) continue;
       if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], cand, err))) goto fail;
       double e0, e1 = INFINITY;
-      if ((st = ss_p2p_energy(nY, nX, Y->evals, X->evals, Y->evecs, X->evecs, X->M, cand, k, kz, 1, o.refine_w_lap, &e0,
-                              NULL, NULL, err)))
-        goto fail;
+      if ((st = select_energy(X, Y, &o, k, kz, &bX, &bY, cand, &e0, err))) goto fail;
       out->refine_energy[2 * c] = e0;
       if (kz > k) {
         double tz = ss_time();
         if ((st = ss_zoomout(nY, nX, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
         out->t_zoomout += ss_time() - tz;
-        if ((st = ss_p2p_energy(nY, nX, Y->evals, X->evals, Y->evecs, X->evecs, X->M, zmap, k, kz, 1, o.refine_w_lap, &e1,
-                                NULL, NULL, err)))
-          goto fail;
+        if ((st = select_energy(X, Y, &o, k, kz, &bX, &bY, zmap, &e1, err))) goto fail;
         out->refine_energy[2 * c + 1] = e1;
       }
       /* the start, then its refinement only when it lowers the energy (ties keep the earlier one) */
