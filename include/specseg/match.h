@@ -137,6 +137,9 @@ typedef struct ss_match_options {
   ss_refine_mode refine;      /* default SS_REFINE_BEST */
   double refine_w_lap;        /* w_lap of the selection energy (ss_p2p_energy) */
   double refine_w_descr;      /* weight of the descriptor residual in the selection energy */
+  /* fmap.descr_k of the segment-aided (ASA / DIFF) map; fmap.descr_k is the STD map's. Default 0
+   * (= k, the paper's probes): with descriptors from 100 eigenpairs DIFF got worse (docs/tuning.md). */
+  int seg_descr_k;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);

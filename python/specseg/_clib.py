@@ -74,7 +74,8 @@ class ss_pairing_options(C.Structure):
 class ss_match_options(C.Structure):
     _fields_ = [("probes", C.c_int), ("fmap", ss_fmap_match_options), ("seg", ss_segment_options),
                 ("segment_profile", C.c_int), ("pairing", ss_pairing_options), ("refine", C.c_int),
-                ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double)]
+                ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double),
+                ("seg_descr_k", C.c_int)]
 
 
 class ss_segment_pairs(C.Structure):

@@ -29,6 +29,7 @@ void ss_match_default_options(ss_match_options *o) {
 void ss_match_paper_options(ss_match_options *o) {
   ss_match_default_options(o);
   o->fmap.descr_k = 0;
+  o->seg_descr_k = 0;
   o->fmap.zoomout_kmax = 0;
   ss_pairing_paper_options(&o->pairing);
   o->refine = SS_REFINE_NONE;
@@ -49,6 +50,7 @@ static int match_kev(const ss_match_options *o) {
   int kev = o->fmap.k;
   if (o->refine != SS_REFINE_NONE && o->fmap.zoomout_kmax > kev) kev = o->fmap.zoomout_kmax;
   if (o->fmap.descr_k > kev) kev = o->fmap.descr_k;
+  if (o->probes != SS_PROBES_STD && o->seg_descr_k > kev) kev = o->seg_descr_k;
   return kev;
 }
 
@@ -85,6 +87,8 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     return ss_fail(err, SS_ERR_INVALID, "match: unknown segment profile %d", (int)o.segment_profile);
   if (o.probes < SS_PROBES_STD || o.probes > SS_PROBES_DIFF)
     return ss_fail(err, SS_ERR_INVALID, "match: unknown probe set %d", (int)o.probes);
+  if (o.seg_descr_k != 0 && o.seg_descr_k < o.fmap.k)
+    return ss_fail(err, SS_ERR_INVALID, "match: seg_descr_k %d below k = %d", o.seg_descr_k, o.fmap.k);
   if (o.refine < SS_REFINE_NONE || o.refine > SS_REFINE_BEST)
     return ss_fail(err, SS_ERR_INVALID, "match: unknown refinement %d", (int)o.refine);
   if (!(o.refine_w_lap >= 0) || !isfinite(o.refine_w_lap) || !(o.refine_w_descr >= 0) || !isfinite(o.refine_w_descr))
@@ -109,7 +113,7 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   ss_status st = SS_OK;
   double *EX = NULL, *EY = NULL, *Ck[2] = {NULL, NULL}, *Cz = NULL, *Cbest = NULL;
   int *cand = NULL, *zmap = NULL;
-  ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0};
+  ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0}, sbX = {0}, sbY = {0}; /* sb: STD's base, no operators */
   ss_fmap_system *sys = NULL;
   out->nX = nX;
   out->t_segment = X->t_segment + Y->t_segment;
@@ -130,7 +134,7 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   out->t_pair = t1 - t0;
 
   /* 2. functional maps at size k: STD (base probes alone) and the segment-aided one (with the
-   * chosen extra probes), against one assembled system */
+   * chosen extra probes), against one assembled system per descriptor basis */
   int use_seg = o.probes != SS_PROBES_STD;
   if (use_seg && nl < o.pairing.min_landmarks) {
     char msg[160];
@@ -144,26 +148,41 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   /* candidate starts: 0 STD, 1 segment-aided */
   const int want_std = !use_seg || o.refine == SS_REFINE_BEST, want_seg = use_seg;
   ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev}, sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev};
-  ss_fmap_match_options fo = o.fmap;
-  fo.zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
-  const int ops = fo.w_dcomm > 0, xops = ops && fo.extra_dcomm;
-  if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo, ops, &bX, err))) goto fail;
-  if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo, ops, &bY, err))) goto fail;
-  if (want_seg) {
-    ss_probe_filter filt = o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
-    if ((st = ss_segment_probes(&X->seg, np, out->pairs.sx, o.segment_profile, &EX, err))) goto fail;
-    if ((st = ss_segment_probes(&Y->seg, np, out->pairs.sy, o.segment_profile, &EY, err))) goto fail;
-    if ((st = ss_fmap_extra_probes(&sX, nl, np, EX, filt, &fo, xops, &xX, err))) goto fail;
-    if ((st = ss_fmap_extra_probes(&sY, nl, np, EY, filt, &fo, xops, &xY, err))) goto fail;
-  }
-  /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
+  /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
+   * assembled system per distinct descriptor basis */
+  ss_fmap_match_options fo[2] = {o.fmap, o.fmap};
+  fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
+  fo[1].descr_k = o.seg_descr_k;
+  const int ops = o.fmap.w_dcomm > 0, xops = ops && o.fmap.extra_dcomm;
+  const int kd0 = fo[0].descr_k > k ? fo[0].descr_k : k, kd1 = fo[1].descr_k > k ? fo[1].descr_k : k;
+  const int own1 = want_seg && (!want_std || kd1 != kd0); /* the segment-aided map needs its own base */
   ss_fmap_weights w;
-  if ((st = ss_fmap_pair_weights(&sX, &sY, &fo, &w, err))) goto fail;
-  if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto fail;
+  if ((st = ss_fmap_pair_weights(&sX, &sY, &fo[0], &w, err))) goto fail;
   for (int c = 0; c < 2; c++) {
     if (!(c ? want_seg : want_std)) continue;
+    if (c == 0 || own1) {
+      ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
+      ss_fmap_system_free(sys);
+      sys = NULL;
+      if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo[c], ops, &bX, err))) goto fail;
+      if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[c], ops, &bY, err))) goto fail;
+      /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
+      if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto fail;
+      if (c == 0 && o.refine == SS_REFINE_BEST && o.refine_w_descr > 0) { /* for the selection energy */
+        if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo[0], 0, &sbX, err))) goto fail;
+        if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[0], 0, &sbY, err))) goto fail;
+      }
+    }
+    if (c == 1) {
+      ss_probe_filter filt = o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
+      if ((st = ss_segment_probes(&X->seg, np, out->pairs.sx, o.segment_profile, &EX, err))) goto fail;
+      if ((st = ss_segment_probes(&Y->seg, np, out->pairs.sy, o.segment_profile, &EY, err))) goto fail;
+      if ((st = ss_fmap_extra_probes(&sX, nl, np, EX, filt, &fo[1], xops, &xX, err))) goto fail;
+      if ((st = ss_fmap_extra_probes(&sY, nl, np, EY, filt, &fo[1], xops, &xY, err))) goto fail;
+    }
     if (!(Ck[c] = malloc(sizeof(double) * (size_t)k * k))) goto nomem;
-    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, fo.w_extra, fo.extra_dcomm, Ck[c], err))) goto fail;
+    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, Ck[c], err)))
+      goto fail;
   }
   out->map = malloc(sizeof(int) * (size_t)nX);
   if (!out->map) goto nomem;
@@ -199,13 +218,13 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
       if (!Ck[c]) continue;
       if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], cand, err))) goto fail;
       double e0, e1 = INFINITY;
-      if ((st = select_energy(X, Y, &o, k, kz, &bX, &bY, cand, &e0, err))) goto fail;
+      if ((st = select_energy(X, Y, &o, k, kz, &sbX, &sbY, cand, &e0, err))) goto fail;
       out->refine_energy[2 * c] = e0;
       if (kz > k) {
         double tz = ss_time();
         if ((st = ss_zoomout(nY, nX, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
         out->t_zoomout += ss_time() - tz;
-        if ((st = select_energy(X, Y, &o, k, kz, &bX, &bY, zmap, &e1, err))) goto fail;
+        if ((st = select_energy(X, Y, &o, k, kz, &sbX, &sbY, zmap, &e1, err))) goto fail;
         out->refine_energy[2 * c + 1] = e1;
       }
       /* the start, then its refinement only when it lowers the energy (ties keep the earlier one) */
@@ -233,6 +252,7 @@ fail:
 cleanup:
   ss_fmap_system_free(sys);
   ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
+  ss_fmap_probes_free(&sbX), ss_fmap_probes_free(&sbY);
   free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(cand), free(zmap);
   return st;
 }
