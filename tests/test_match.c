@@ -248,6 +248,7 @@ int main(void) {
     ss_match_options od;
     ss_match_default_options(&od);
     od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
+    od.refine_w_descr = 0; /* the energy recomputed below is ss_p2p_energy alone */
     ss_match_result rd;
     CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &rd, &e) == SS_OK);
     int c = rd.refine_choice;
@@ -266,6 +267,19 @@ int main(void) {
              rd.refine_energy[1], rd.refine_energy[2], rd.refine_energy[3]);
       CHECK(ed < 0.1);
       CHECK(rd.notes[0] == 0);
+    }
+    ss_match_result_free(&rd);
+    /* with the default selection energy (descriptor residual included): the same invariants */
+    ss_match_default_options(&od);
+    od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
+    CHECK(od.refine_w_descr > 0);
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &rd, &e) == SS_OK);
+    c = rd.refine_choice;
+    CHECK(c >= 0 && c <= 3);
+    if (c >= 0 && c <= 3) {
+      for (int i = 0; i < 4; i++) CHECK(isnan(rd.refine_energy[i]) || rd.refine_energy[c] <= rd.refine_energy[i]);
+      CHECK(rd.refine_energy[c] <= rd.refine_energy[c & ~1]);
+      printf("refined default, descriptor term: %.4f, candidate %d\n", map_error(&Y, X.nv, rd.map, NULL), c);
     }
     ss_match_result_free(&rd);
     /* 3 landmarks: no segment probes (a note says so), the map is STD's */

@@ -9,8 +9,8 @@
 
 /* Defaults of what the paper leaves open (docs/tuning.md). */
 #define SS_DEFAULT_DESCR_K 100
-#define SS_DEFAULT_REFINE_KMAX 100
-#define SS_DEFAULT_REFINE_W_DESCR 0.0
+#define SS_DEFAULT_REFINE_KMAX 120
+#define SS_DEFAULT_REFINE_W_DESCR 1.0
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);

@@ -25,7 +25,8 @@ void ss_pairing_paper_options(ss_pairing_options *o) {
 
 void ss_pairing_default_options(ss_pairing_options *o) {
   ss_pairing_paper_options(o);
-  o->min_landmarks = 4; /* docs/tuning.md */
+  o->min_ratio = 2.0;     /* docs/tuning.md */
+  o->min_landmarks = 4;
 }
 
 ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
