@@ -1,5 +1,5 @@
-/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] -o MAP.txt
- *                   [--fmap C.npy] [--pairs PAIRS.txt] [--timings] */
+/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] [--no-refine]
+ *                   [--descr-k K] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings] */
 #include "cli.h"
 #include "specseg/match.h"
 
@@ -11,11 +11,13 @@
 static const char USAGE[] =
     "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
-    "                     [--pairs PAIRS.txt] [--timings]\n"
+    "                     [--no-refine] [--descr-k K] [--pairs PAIRS.txt] [--timings]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
-    "the paired coherent segments as extra probe functions. Prints a summary line (on stderr when an\n"
-    "output goes to standard output).\n"
+    "the paired coherent segments as extra probe functions. The output is refined: ZoomOut up to KMAX\n"
+    "eigenfunctions from the STD map and from the segment-aided one, keeping the map of lowest\n"
+    "unsupervised energy (orthonormality of its functional map + preservation of the descriptors).\n"
+    "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
     "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
     "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
@@ -26,14 +28,18 @@ static const char USAGE[] =
     "  --segment-profile S the segments' probe functions: indicator, tent (1 - d/R from the centre;\n"
     "                      default) or soft (soft Voronoi membership; better than tent from k = 60 on)\n"
     "  --k K               basis size, 3..10000 (default 50)\n"
-    "  --zoomout KMAX      ZoomOut refinement up to KMAX >= K eigenfunctions (default: none)\n"
+    "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 120)\n"
+    "  --no-refine         the unrefined map of --probes at size K (the paper's variants)\n"
+    "  --descr-k K         eigenpairs the descriptors are computed from (default 100; = K for the\n"
+    "                      paper's construction)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
     "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
     "One of the output files may be - (standard output).\n";
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
-                                   "--segment-profile=", "--k=", "--zoomout=", "--timings", NULL};
+                                   "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
+                                   "--timings", NULL};
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
@@ -72,6 +78,11 @@ int cmd_match(int argc, char **argv) {
     } else if (cli_is(&A, "--zoomout")) {
       if (cli_parse_int(v, 3, 10000, &o.fmap.zoomout_kmax))
         return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--no-refine")) {
+      o.refine = SS_REFINE_NONE;
+    } else if (cli_is(&A, "--descr-k")) {
+      if (cli_parse_int(v, 3, 10000, &o.fmap.descr_k))
+        return cli_bad(&A, "--descr-k needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--timings")) {
       timings = 1;
     }
@@ -82,6 +93,7 @@ int cmd_match(int argc, char **argv) {
   if (!outp) return cli_bad(&A, "missing -o MAP.txt");
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
+  if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
   const char *ins[3] = {xp, yp, lmp}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 3) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
   int to_stdout = cli_count_std(outs, 3);
@@ -154,10 +166,14 @@ int cmd_match(int argc, char **argv) {
     fprintf(stderr, "timing: write %.6f\n", t_write);
     fprintf(stderr, "timing: total %.6f\n", ss_time() - t0);
   }
-  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s -> %s\n", X.nv, Y.nv, nl,
-         res.pairs.n, res.pairs.nx, res.pairs.ny,
-         o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
-         o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", cli_out_name(outp));
+  static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
+  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv,
+          Y.nv, nl, res.pairs.n, res.pairs.nx, res.pairs.ny,
+          o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
+          o.refine == SS_REFINE_NONE ? "" : ", refined: ",
+          res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "",
+          cli_out_name(outp));
+  if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
 done:
   ss_match_result_free(&res);
   ss_mesh_free(&X);

@@ -260,7 +260,7 @@ static void test_csv_and_merge(void) {
 static void test_adapter(void) {
   ev_context ctx;
   memset(&ctx, 0, sizeof ctx);
-  ss_match_default_options(&ctx.mopt);
+  ss_match_paper_options(&ctx.mopt);
   ctx.mopt.fmap.k = 20;
   ctx.mopt.fmap.n_energies = 30;
   ctx.kev = 20;

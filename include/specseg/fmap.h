@@ -162,6 +162,29 @@ SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const doub
 SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                             const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
+/* An unsupervised energy of a point map π : T -> S (map[n_T]), no ground truth: with C the functional
+ * map of π at size K (ss_fmap_from_p2p: C = Φ_Tᵀ M_T Π Φ_S) and C_k its leading k x k block,
+ *   E_orth = mean over k = k0, k0+step, …, K of ‖C_kᵀ C_k − I_k‖²_F / k
+ * (ZoomOut's energy, Melzi et al. 2019: the pull-back of an area-preserving bijection is orthonormal
+ * at every size), and
+ *   E_lap = Σ_ij C_ij² (λ_T,i − λ_S,j)² / Σ_ij C_ij² (λ_T,i² + λ_S,j²)
+ * (scale-free Laplacian commutativity: an isometry maps eigenfunctions to eigenfunctions of the same
+ * eigenvalue). *E = E_orth + w_lap · E_lap; E_orth, E_lap (may be NULL) receive the two terms.
+ * evecs/evals need ≥ K eigenpairs. */
+SS_API ss_status ss_p2p_energy(int n_S, int n_T, const double *evals_S, const double *evals_T, const double *evecs_S,
+                               const double *evecs_T, const double *M_T, const int *map, int k0, int K, int step,
+                               double w_lap, double *E, double *E_orth, double *E_lap, ss_error *err);
+
+/* Descriptor preservation of a point map π : T -> S (map[n_T]), no ground truth: the probes of both
+ * shapes (S, T: the same columns, e.g. ss_fmap_base_probes' WKS + landmark wave kernels) synthesised
+ * in their bases, F = Φ A (k = S->k, T->k columns of evecs), and
+ *   *E = Σ_t M_T(t) ‖F_T(t) − F_S(π(t))‖² / Σ_t M_T(t) ‖F_T(t)‖².
+ * Unlike the orthonormality energy it sees a left–right flip (the landmark probes break the
+ * symmetry). */
+SS_API ss_status ss_p2p_descr_residual(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T,
+                                       const ss_fmap_probes *S, const ss_fmap_probes *T, const int *map, double *E,
+                                       ss_error *err);
+
 /* ----------------------------------------------------------- pipeline (fmap_match.c) */
 
 /* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric
@@ -196,6 +219,11 @@ typedef struct ss_fmap_match_options {
    * the defaults were chosen: docs/tuning.md. */
   double w_extra;
   int extra_dcomm;
+  /* Eigenpairs the probe functions (WKS, landmark wave kernels, wave-filtered extras) are computed
+   * from, independently of the basis size k in which Eq. (1) is solved: the probes are synthesised
+   * from the first descr_k eigenpairs, then projected onto the first k. 0 = k (NO17 and the paper:
+   * what specseg eval's Table 1 uses). Must be 0 or >= k; the shapes need that many eigenpairs. */
+  int descr_k;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);

@@ -19,7 +19,7 @@ ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64
     return ss_fail(err, SS_ERR_INVALID, "figure: bad arguments (pair %d, %d, landmarks %d, k %d)", x, y, lmset, k);
   ev_context ctx;
   memset(&ctx, 0, sizeof ctx);
-  ss_match_default_options(&ctx.mopt);
+  ss_match_paper_options(&ctx.mopt); /* Table 1: the paper's STD / ASA / DIFF */
   ctx.mopt.fmap.k = k;
   ctx.kev = k;
   ev_shape X, Y;

@@ -133,7 +133,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   ss_status st = SS_OK;
   ev_context ctx;
   memset(&ctx, 0, sizeof ctx);
-  ss_match_default_options(&ctx.mopt);
+  ss_match_paper_options(&ctx.mopt); /* Table 1: the paper's STD / ASA / DIFF */
   ctx.mopt.fmap.k = o->k;
   ctx.kev = o->k;
   unit *U = NULL;

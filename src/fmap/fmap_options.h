@@ -13,7 +13,9 @@ ss_status ssi_fmap_options_resolve(const ss_fmap_match_options *opts, ss_fmap_ma
 ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err);
 /* The shape has its mesh, eigenpairs and at least `need` of them. name: "X", "Y", ... for messages. */
 ss_status ssi_fmap_check_shape(const ss_fmap_shape *s, const char *name, int need, ss_error *err);
-/* Eigenpairs the options need on each shape: max(k, zoomout_kmax). */
+/* Eigenpairs the options need on each shape: max(k, zoomout_kmax, descr_k). */
 int ssi_fmap_basis_needed(const ss_fmap_match_options *o);
+/* Eigenpairs the probe functions are synthesised from: max(k, descr_k). */
+int ssi_fmap_descr_k(const ss_fmap_match_options *o);
 
 #endif
