@@ -5,6 +5,12 @@
 #include "specseg/synth.h"
 #include "testlib.h"
 
+#include <time.h>
+
+/* Cost bounds are CPU seconds with a wide margin (the quadratic / unbounded versions took 13-150 s
+ * in a Release build), so a loaded machine or a sanitizer build does not make them fail. */
+static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
 /* icosphere(3) plus one needle triangle whose cotangent weights (~1e19) swamp the lumped masses:
  * the CMCF system loses positive definiteness in floating point and CHOLMOD's factorisation fails. */
 static void test_cmcf_factorisation_failure(void) {
@@ -271,10 +277,10 @@ static void test_geodesic_bounded(void) {
   ss_mesh t = {5, 4, V, F};
   double d[6];
   int src = 0;
-  double t0 = ss_time();
+  double t0 = cpu_seconds();
   CHECK_MSG(ss_geodesic_distances(&t, SS_GEODESIC_EXACT, &src, 1, 0, d, &e) == SS_OK, "%s", e.msg);
-  double dt = ss_time() - t0;
-  CHECK_MSG(dt < 2, "tetrahedron + far vertex: %.2f s", dt);
+  double dt = cpu_seconds() - t0;
+  CHECK_MSG(dt < 10, "tetrahedron + far vertex: %.2f s CPU", dt);
   CHECK_NEAR(d[1], 1, 1e-15);
   CHECK_NEAR(d[3], 1, 1e-15);
   CHECK(isinf(d[4]));
@@ -286,10 +292,10 @@ static void test_geodesic_bounded(void) {
   int G[24] = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
   ss_mesh o = {6, 8, W, G};
   src = 1;
-  t0 = ss_time();
+  t0 = cpu_seconds();
   ss_status st = ss_geodesic_distances(&o, SS_GEODESIC_EXACT, &src, 1, 0, d, &e);
-  dt = ss_time() - t0;
-  CHECK_MSG(dt < 2, "octahedron with a vertex at 1e9: %.2f s", dt);
+  dt = cpu_seconds() - t0;
+  CHECK_MSG(dt < 10, "octahedron with a vertex at 1e9: %.2f s CPU", dt);
   if (st) CHECK(strstr(e.msg, "sliver") != NULL);
   else CHECK(d[0] > 1e9 && d[0] < 1e9 + 2);
   printf("D3 octahedron with a vertex at 1e9: %.4f s, %s\n", dt, st ? e.msg : "ok");
@@ -306,18 +312,18 @@ static void test_big_fans(void) {
   memcpy(m.V, V, sizeof V);
   for (int f = 0; f < NDUP; f++) m.F[3 * f] = 0, m.F[3 * f + 1] = 1, m.F[3 * f + 2] = 2;
   ss_mesh_report r;
-  double t0 = ss_time();
+  double t0 = cpu_seconds();
   CHECK(ss_mesh_check(&m, &r, &e) == SS_OK);
-  double dt = ss_time() - t0;
+  double dt = cpu_seconds() - t0;
   CHECK(r.duplicate_faces == NDUP - 1);
-  CHECK_MSG(dt < 2, "check of 200,000 copies of a face: %.2f s", dt);
+  CHECK_MSG(dt < 10, "check of 200,000 copies of a face: %.2f s CPU", dt);
   printf("D4 200,000 copies of a face: check %.3f s", dt);
   double d[3];
   int src = 0;
-  t0 = ss_time();
+  t0 = cpu_seconds();
   CHECK(ss_geodesic_distances(&m, SS_GEODESIC_EDGE, &src, 1, 0, d, &e) == SS_OK);
-  dt = ss_time() - t0;
-  CHECK_MSG(dt < 2, "edge graph of 200,000 copies of a face: %.2f s", dt);
+  dt = cpu_seconds() - t0;
+  CHECK_MSG(dt < 10, "edge graph of 200,000 copies of a face: %.2f s CPU", dt);
   CHECK(d[1] == 1 && d[2] == 1);
   printf(", edge geodesics %.3f s\n", dt);
   ss_mesh_free(&m);
@@ -333,15 +339,15 @@ static void test_big_fans(void) {
     m.F[3 * f + 1] = NPOLY - 2 - f;
     m.F[3 * f + 2] = NPOLY - 3 - f;
   }
-  t0 = ss_time();
+  t0 = cpu_seconds();
   CHECK(ss_mesh_check(&m, &r, &e) == SS_OK);
-  double dc = ss_time() - t0;
+  double dc = cpu_seconds() - t0;
   CHECK(r.boundary_loops == 1 && r.duplicate_faces == 0 && r.components == 1);
   double *dd = malloc(sizeof(double) * NPOLY);
   src = NPOLY - 1;
-  t0 = ss_time();
+  t0 = cpu_seconds();
   CHECK(ss_geodesic_distances(&m, SS_GEODESIC_EDGE, &src, 1, 0, dd, &e) == SS_OK);
-  double dg = ss_time() - t0;
+  double dg = cpu_seconds() - t0;
   CHECK_MSG(dc < 3 && dg < 3, "300,000-corner fan: check %.2f s, edge geodesics %.2f s", dc, dg);
   printf("D4 300,000-corner fan: check %.3f s, edge geodesics %.3f s\n", dc, dg);
   free(dd);
