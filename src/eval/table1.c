@@ -79,7 +79,7 @@ static void report(const ss_table1_options *o, double t0, long done, long total,
 static void say(const ss_table1_options *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void say(const ss_table1_options *o, const char *fmt, ...) {
   if (!o->log) return;
-  char line[512];
+  char line[1200];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(line, sizeof line, fmt, ap);
@@ -231,7 +231,13 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   for (int i = 0; i < nneed; i++) {
     if (failed) continue;
     ss_error e;
-    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e);
+    char note[1024];
+    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], note, sizeof note, &e);
+    if (note[0]) {
+      omp_set_lock(&locks->progress);
+      say(o, "%s", note);
+      omp_unset_lock(&locks->progress);
+    }
     if (!ws) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
     if (ws) {
       omp_set_lock(&locks->err);
