@@ -398,7 +398,33 @@ static void test_pinched_match(void) {
   ss_mesh_free(&h);
 }
 
+/* Item 7: ×1e300 (and ×1e-300) meshes: area, bounding-box diagonal and the degenerate-face test are
+ * computed without overflow / underflow (was "area: -nan" and 80 "degenerate" faces at ×1e300). */
+static void test_extreme_scale_measures(void) {
+  ss_mesh s = {0}, b = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_icosphere(3, &s, &e) == SS_OK);
+  ss_mesh_report r0, r;
+  CHECK(ss_mesh_check(&s, &r0, &e) == SS_OK);
+  const double scales[] = {1e300, 1e150, 1e-150, 1e-300};
+  for (int i = 0; i < 4; i++) {
+    double k = scales[i];
+    CHECK(ss_mesh_copy(&s, &b, &e) == SS_OK);
+    for (int j = 0; j < 3 * b.nv; j++) b.V[j] *= k;
+    CHECK(ss_mesh_check(&b, &r, &e) == SS_OK);
+    CHECK_MSG(r.degenerate_faces == 0, "x%g: %d degenerate faces", k, r.degenerate_faces);
+    CHECK_MSG(fabs(r.bbox_diagonal / (k * r0.bbox_diagonal) - 1) < 1e-12, "x%g: diagonal %g", k, r.bbox_diagonal);
+    double want = r0.area * k * k; /* inf at 1e300, 0 at 1e-300: the true value is out of range */
+    if (isinf(want) || want == 0) CHECK_MSG(r.area == want, "x%g: area %g, want %g", k, r.area, want);
+    else CHECK_MSG(fabs(r.area / want - 1) < 1e-12, "x%g: area %g, want %g", k, r.area, want);
+    CHECK(ss_mesh_area(&b) == r.area);
+    ss_mesh_free(&b);
+  }
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_extreme_scale_measures();
   test_pinched_match();
   test_big_fans();
   test_geodesic_bounded();

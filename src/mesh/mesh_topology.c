@@ -1,3 +1,4 @@
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 
 #include <math.h>
@@ -7,12 +8,9 @@
 int topo_face_degenerate(const ss_mesh *m, int f) {
   const int *t = m->F + 3 * (size_t)f;
   if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return 1;
-  const double *p = m->V + 3 * (size_t)t[0], *q = m->V + 3 * (size_t)t[1], *r = m->V + 3 * (size_t)t[2];
-  double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-  double w[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
-  double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  double l2 = fmax(u[0] * u[0] + u[1] * u[1] + u[2] * u[2], fmax(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
-  double a2 = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]); /* twice the area */
+  double a2, l2; /* twice the area, squared longest edge (of the triangle scaled by 2^-e at extreme sizes) */
+  int e;
+  ssi_triangle_measures(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2], &a2, &l2, &e);
   /* height / longest edge below 1e-14: zero up to rounding of the coordinates */
   if (a2 <= 1e-14 * l2) return 2;
   return 0;
