@@ -423,7 +423,54 @@ static void test_extreme_scale_measures(void) {
   ss_mesh_free(&s);
 }
 
+/* Item 7: a NaN vertex and coordinates beyond the supported range (±1e70, extent >= 1e-70) are
+ * errors naming the vertex and what to do in every numerical stage (a NaN vertex was a zero-area
+ * warning, then success; x1e300 gave inf distances, "zero area" or "mass ... is inf"). */
+static void test_coordinate_range(void) {
+  ss_mesh s = {0}, b = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_icosphere(2, &s, &e) == SS_OK);
+  double *d = malloc(sizeof(double) * (size_t)s.nv), ev[3];
+  int src = 0;
+  for (int c = 0; c < 3; c++) {
+    CHECK(ss_mesh_copy(&s, &b, &e) == SS_OK);
+    const char *want = c == 0 ? "vertex 5 has a non-finite coordinate" : c == 1 ? "scale the mesh down" : "scale the mesh up";
+    if (c == 0) b.V[3 * 5 + 1] = NAN;
+    for (int j = 0; c > 0 && j < 3 * b.nv; j++) b.V[j] *= c == 1 ? 1e300 : 1e-100;
+    ss_mesh out = {0};
+    ss_segmentation seg = {0};
+    ss_status st[5] = {ss_mesh_eigs(&b, 3, ev, NULL, &e), SS_OK, SS_OK, SS_OK, SS_OK};
+    CHECK_MSG(st[0] == SS_ERR_INVALID && strstr(e.msg, want), "case %d eigs: %s", c, e.msg);
+    st[1] = ss_geodesic_distances(&b, SS_GEODESIC_EXACT, &src, 1, INFINITY, d, &e);
+    CHECK_MSG(st[1] == SS_ERR_INVALID && strstr(e.msg, want), "case %d geodesic: %s", c, e.msg);
+    st[2] = ss_cmcf_smooth(&b, NULL, &out, &e);
+    CHECK_MSG(st[2] == SS_ERR_INVALID && strstr(e.msg, want), "case %d cmcf: %s", c, e.msg);
+    ss_mesh_free(&out);
+    st[3] = ss_remesh(&b, NULL, &out, &e);
+    CHECK_MSG(st[3] == SS_ERR_INVALID && strstr(e.msg, want), "case %d remesh: %s", c, e.msg);
+    ss_mesh_free(&out);
+    st[4] = ss_segment(&b, NULL, &seg, &e);
+    CHECK_MSG(st[4] == SS_ERR_INVALID && strstr(e.msg, want), "case %d segment: %s", c, e.msg);
+    ss_segmentation_free(&seg);
+    ss_mesh_free(&b);
+  }
+  /* the edges of the range still work: x1e60 and x1e-60 give the scaled eigenvalues */
+  double ev0[3], ev1[3];
+  CHECK(ss_mesh_eigs(&s, 3, ev0, NULL, &e) == SS_OK);
+  for (int c = 0; c < 2; c++) {
+    double k = c ? 1e-60 : 1e60;
+    CHECK(ss_mesh_copy(&s, &b, &e) == SS_OK);
+    for (int j = 0; j < 3 * b.nv; j++) b.V[j] *= k;
+    CHECK_MSG(ss_mesh_eigs(&b, 3, ev1, NULL, &e) == SS_OK, "x%g: %s", k, e.msg);
+    CHECK_MSG(fabs(ev1[1] * k * k / ev0[1] - 1) < 1e-9, "x%g: %.17g vs %.17g", k, ev1[1] * k * k, ev0[1]);
+    ss_mesh_free(&b);
+  }
+  free(d);
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_coordinate_range();
   test_extreme_scale_measures();
   test_pinched_match();
   test_big_fans();

@@ -1,7 +1,9 @@
-/* Triangle measures robust to the scale of the coordinates (see mesh_geometry.h). */
+/* Triangle measures robust to the scale of the coordinates, and the coordinate range check (see
+ * mesh_geometry.h). */
 #include "mesh/mesh_geometry.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 /* plain squared quantities are trusted in [2^-900, 2^900]: far from overflow and the subnormals */
@@ -84,4 +86,38 @@ double ssi_box_diagonal(const double *lo, const double *hi) {
   frexp(mx, &k);
   for (int d = 0; d < 3; d++) e[d] = ldexp(e[d], -k);
   return ldexp(sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]), k + shift);
+}
+
+ss_status ssi_mesh_check_coordinates(const ss_mesh *m, const char *what_in, ss_error *err) {
+  if (!m || m->nv <= 0 || m->nf <= 0 || !m->V || !m->F) return SS_OK; /* the callers' own checks */
+  char what[64] = "";
+  if (what_in) snprintf(what, sizeof what, "%.60s: ", what_in);
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, big = 0;
+  int ibig = -1;
+  for (size_t c = 0; c < 3 * (size_t)m->nf; c++) {
+    int i = m->F[c];
+    if (i < 0 || i >= m->nv) continue; /* index errors are the callers' */
+    const double *p = m->V + 3 * (size_t)i;
+    if (!finite3(p))
+      return ss_fail(err, SS_ERR_INVALID,
+                     "%svertex %d has a non-finite coordinate (%g, %g, %g); fix or remove it (`specseg info` "
+                     "counts such vertices)",
+                     what, i, p[0], p[1], p[2]);
+    for (int d = 0; d < 3; d++) {
+      lo[d] = fmin(lo[d], p[d]), hi[d] = fmax(hi[d], p[d]);
+      if (fabs(p[d]) > big) big = fabs(p[d]), ibig = i;
+    }
+  }
+  if (big > SSI_COORD_MAX)
+    return ss_fail(err, SS_ERR_INVALID,
+                   "%svertex %d has a coordinate of magnitude %.3g, beyond the supported %.0e (squared lengths and "
+                   "areas would overflow a double); scale the mesh down (results scale exactly with it)",
+                   what, ibig, big, SSI_COORD_MAX);
+  double diag = ssi_box_diagonal(lo, hi);
+  if (diag > 0 && diag < SSI_EXTENT_MIN)
+    return ss_fail(err, SS_ERR_INVALID,
+                   "%sthe mesh spans only %.3g (bounding-box diagonal), below the supported %.0e (squared lengths "
+                   "and areas would underflow); scale the mesh up (results scale exactly with it)",
+                   what, diag, SSI_EXTENT_MIN);
+  return SS_OK;
 }

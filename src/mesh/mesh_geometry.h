@@ -1,4 +1,5 @@
-/* Internal: triangle measures that neither overflow nor underflow. Not public API. */
+/* Internal: triangle measures that neither overflow nor underflow, and the coordinate range the
+ * numerical stages accept. Not public API. */
 #ifndef SS_MESH_GEOMETRY_H
 #define SS_MESH_GEOMETRY_H
 
@@ -16,5 +17,15 @@ void ssi_triangle_measures(const double *p, const double *q, const double *r, do
 
 /* Diagonal of the box [lo, hi] without overflow or underflow (plain formula when it is safe). */
 double ssi_box_diagonal(const double *lo, const double *hi);
+
+/* The largest magnitude of a coordinate the numerical stages accept (squared lengths, areas and
+ * their products stay finite): 1e70; and the smallest bounding-box diagonal: 1e-70. */
+#define SSI_COORD_MAX 1e70
+#define SSI_EXTENT_MIN 1e-70
+
+/* Checks the vertices the faces use: finite, |coordinate| <= SSI_COORD_MAX, and a bounding-box
+ * diagonal of 0 (left to the callers' zero-area messages) or >= SSI_EXTENT_MIN. SS_ERR_INVALID
+ * naming the vertex and what to do, prefixed "what: " (what may be NULL). Unreferenced vertices are not looked at. */
+ss_status ssi_mesh_check_coordinates(const ss_mesh *m, const char *what, ss_error *err);
 
 #endif
