@@ -74,6 +74,13 @@ if [ -d "$TESTS/data/malformed" ]; then
   done
 fi
 
+# k too close to n: the message says so and gives a k that works (was "ARPACK converged 638 of 640 ...
+# (increase ncv)" / "cannot compute 1 more eigenpairs in a space of dimension 1")
+expect 1 "$TMP/ico.off" -k 11
+grep -q "ico.off: eigs: k = 11 is too close to the number of vertices (12).*use k <= 6" "$TMP/err" && ok ||
+  bad "k = n - 1: $(cat "$TMP/err")"
+"$BIN" eigs "$TMP/ico.off" -k 6 > /dev/null 2>&1 && ok || bad "the advised k = 6 fails"
+
 # a NaN vertex is an error naming it (was: a zero-area warning, then success); coordinates beyond
 # 1e70 (x1e300) or a mesh spanning less than 1e-70 are refused with what to do
 expect 1 "$TESTS/data/info/nan_vertex.off" -k 2
