@@ -469,7 +469,39 @@ static void test_coordinate_range(void) {
   ss_mesh_free(&s);
 }
 
+/* Item 7: a vertex without mass names its cause (was "eigs: mass of vertex 1 is 0 ... (unreferenced
+ * or degenerate vertices?)"): an unreferenced vertex in the middle, a vertex only a zero-area face uses. */
+static void test_massless_vertex_message(void) {
+  ss_mesh s = {0}, m = {0};
+  ss_error e = {{0}};
+  double ev[3];
+  CHECK(ss_synth_icosphere(2, &s, &e) == SS_OK);
+  /* vertex 1 unreferenced: the sphere's vertices from index 2 on */
+  CHECK(ss_mesh_alloc(&m, s.nv + 1, s.nf, &e) == SS_OK);
+  memcpy(m.V, s.V, sizeof(double) * 3);
+  m.V[3] = m.V[4] = m.V[5] = 0;
+  memcpy(m.V + 6, s.V + 3, sizeof(double) * 3 * (size_t)(s.nv - 1));
+  for (int c = 0; c < 3 * s.nf; c++) m.F[c] = s.F[c] + (s.F[c] >= 1);
+  CHECK(ss_mesh_eigs(&m, 3, ev, NULL, &e) == SS_ERR_INVALID);
+  CHECK_MSG(strstr(e.msg, "vertex 1 is used by no face (unreferenced)") != NULL, "%s", e.msg);
+  ss_mesh_free(&m);
+  /* a new vertex at the midpoint of an edge, used by one zero-area face with that edge */
+  CHECK(ss_mesh_alloc(&m, s.nv + 1, s.nf + 1, &e) == SS_OK);
+  memcpy(m.V, s.V, sizeof(double) * 3 * (size_t)s.nv);
+  memcpy(m.F, s.F, sizeof(int) * 3 * (size_t)s.nf);
+  int a = s.F[0], b = s.F[1];
+  for (int d = 0; d < 3; d++) m.V[3 * (size_t)s.nv + d] = 0.5 * (s.V[3 * a + d] + s.V[3 * b + d]);
+  m.F[3 * s.nf] = a, m.F[3 * s.nf + 1] = b, m.F[3 * s.nf + 2] = s.nv;
+  CHECK(ss_mesh_eigs(&m, 3, ev, NULL, &e) == SS_ERR_INVALID);
+  char want[64];
+  snprintf(want, sizeof want, "vertex %d is only in zero-area faces", s.nv);
+  CHECK_MSG(strstr(e.msg, want) != NULL, "%s", e.msg);
+  ss_mesh_free(&m);
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_massless_vertex_message();
   test_coordinate_range();
   test_extreme_scale_measures();
   test_pinched_match();

@@ -82,8 +82,9 @@ static ss_status validate(const ss_sparse *W, const double *M, int k, ss_error *
   for (int i = 0; i < n; i++)
     if (!(M[i] > 0) || !isfinite(M[i]))
       return ss_fail(err, SS_ERR_INVALID,
-                     "eigs: mass of vertex %d is %g; all masses must be positive and finite "
-                     "(unreferenced or degenerate vertices?)",
+                     "eigs: mass of vertex %d is %g; all masses must be positive and finite: a vertex no face uses "
+                     "(unreferenced) or only zero-area faces use has none; drop such vertices first "
+                     "(ss_mesh_sanitize does)",
                      i, M[i]);
   return SS_OK;
 }
@@ -577,6 +578,19 @@ ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss
   if (!M) return ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory");
   ss_status st = ss_cotan_stiffness(m, &W, err);
   if (!st) st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, M, err);
+  /* a vertex without mass makes the problem singular: say why it has none */
+  for (int i = 0; !st && i < m->nv; i++) {
+    if (M[i] > 0) continue;
+    int used = 0;
+    for (size_t c = 0; c < 3 * (size_t)m->nf && !used; c++) used = m->F[c] == i;
+    st = ss_fail(err, SS_ERR_INVALID,
+                 used ? "eigs: vertex %d is only in zero-area faces, so it has no mass and the eigenproblem is "
+                        "singular; drop degenerate faces and the vertices they leave unused first (ss_mesh_sanitize "
+                        "does; `specseg info` counts them)"
+                      : "eigs: vertex %d is used by no face (unreferenced), so it has no mass and the eigenproblem is "
+                        "singular; drop unreferenced vertices first (ss_mesh_sanitize does; `specseg info` counts them)",
+                 i);
+  }
   if (!st) st = ss_eigs(&W, M, k, NULL, evals, evecs, err);
   ss_sparse_free(&W);
   free(M);
