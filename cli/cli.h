@@ -78,6 +78,7 @@ const char *cli_out_name(const char *path); /* "<stdout>" for "-", else path */
 int cli_count_std(const char *const *paths, int n);
 ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err);
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
+ss_status cli_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err); /* + line numbers */
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);
 ss_status cli_write_ints(const char *path, const int *v, int n, ss_error *err);
