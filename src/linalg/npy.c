@@ -58,8 +58,9 @@ ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss
       ok = fwrite(buf, sizeof(double), (size_t)nb, f) == (size_t)nb;
     }
   }
-  if (fclose(f) != 0) ok = 0;
-  if (!ok) return ss_fail(err, SS_ERR_IO, "%s: write failed", path);
+  int e = ok ? 0 : errno;
+  if (fclose(f) != 0 && ok) ok = 0, e = errno;
+  if (!ok) return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e));
   return SS_OK;
 }
 
