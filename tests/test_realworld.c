@@ -500,7 +500,28 @@ static void test_massless_vertex_message(void) {
   ss_mesh_free(&s);
 }
 
+/* Item 7: inconsistent orientation reaching the hole filling (only with sanitize off: the default
+ * re-orients first) says what is wrong and what to do (was "fill holes: edge 0-164 is used twice in
+ * one direction"); with the default options the same mesh is segmented. */
+static void test_fill_holes_orientation_message(void) {
+  ss_mesh clean = {0}, rev = {0};
+  ss_error e = {{0}};
+  reversed_sphere(&clean, &rev);
+  ss_segment_options o;
+  ss_segment_default_options(&o);
+  o.sanitize = 0;
+  ss_segmentation seg = {0};
+  CHECK(ss_segment(&rev, &o, &seg, &e) == SS_ERR_UNSUPPORTED);
+  CHECK_MSG(strstr(e.msg, "not consistently oriented") && strstr(e.msg, "sanitize"), "%s", e.msg);
+  ss_segmentation_free(&seg);
+  CHECK_MSG(ss_segment(&rev, NULL, &seg, &e) == SS_OK, "%s", e.msg);
+  ss_segmentation_free(&seg);
+  ss_mesh_free(&clean);
+  ss_mesh_free(&rev);
+}
+
 int main(void) {
+  test_fill_holes_orientation_message();
   test_massless_vertex_message();
   test_coordinate_range();
   test_extreme_scale_measures();
