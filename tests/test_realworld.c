@@ -520,7 +520,34 @@ static void test_fill_holes_orientation_message(void) {
   ss_mesh_free(&rev);
 }
 
+/* Item 7: what ss_match refuses names the mesh (X / Y) and says what is wrong (a single triangle was
+ * "match: empty mesh"; a too small mesh for the basis "50 eigenpairs requested on 12 vertices"). */
+static void test_match_small_messages(void) {
+  ss_mesh tri = {0}, s = {0};
+  ss_error e = {{0}};
+  CHECK(ss_mesh_alloc(&tri, 3, 1, &e) == SS_OK);
+  double V[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  int F[3] = {0, 1, 2}, lm = 0;
+  memcpy(tri.V, V, sizeof V), memcpy(tri.F, F, sizeof F);
+  CHECK(ss_synth_icosphere(1, &s, &e) == SS_OK); /* 42 vertices */
+  ss_match_result r = {0};
+  CHECK(ss_match(&tri, &s, 1, &lm, &lm, NULL, &r, &e) == SS_ERR_INVALID);
+  CHECK_MSG(strstr(e.msg, "X (the first mesh): the mesh has 3 vertices and 1 face: too small to match"), "%s", e.msg);
+  ss_match_options o;
+  ss_match_default_options(&o);
+  o.fmap.k = 10;
+  CHECK(ss_match(&s, &tri, 1, &lm, &lm, &o, &r, &e) == SS_ERR_INVALID);
+  CHECK_MSG(strstr(e.msg, "match: Y (the second mesh): the mesh has 3 vertices and 1 face"), "%s", e.msg);
+  CHECK(ss_match(&s, &s, 1, &lm, &lm, NULL, &r, &e) == SS_ERR_INVALID);
+  CHECK_MSG(strstr(e.msg, "X (the first mesh): the basis needs 50 eigenpairs but the mesh has only 42 vertices; use a "
+                          "basis size (k, ZoomOut's kmax) below 42"),
+            "%s", e.msg);
+  ss_mesh_free(&tri);
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_match_small_messages();
   test_fill_holes_orientation_message();
   test_massless_vertex_message();
   test_coordinate_range();

@@ -3,6 +3,7 @@
 #include "specseg/match.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -118,6 +119,16 @@ fail:
   return st;
 }
 
+/* "match: what" -> "match: SHAPE: what" (every message of a shape's preparation is about one mesh) */
+static void name_shape(ss_error *err, const char *shape) {
+  if (!err) return;
+  char tmp[sizeof err->msg];
+  const char *m = err->msg;
+  if (!strncmp(m, "match: ", 7)) m += 7;
+  snprintf(tmp, sizeof tmp, "match: %s: %.900s", shape, m);
+  memcpy(err->msg, tmp, sizeof tmp);
+}
+
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                    const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
@@ -137,10 +148,10 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
   int kev = o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : o.fmap.k;
   ss_shape_prep pX, pY;
   ss_status st = ss_shape_prep_compute(X, &o.seg, kev, &pX, err);
-  if (st) return st;
+  if (st) return name_shape(err, "X (the first mesh)"), st;
   if ((st = ss_shape_prep_compute(Y, &o.seg, kev, &pY, err))) {
     ss_shape_prep_free(&pX);
-    return st;
+    return name_shape(err, "Y (the second mesh)"), st;
   }
   st = ss_match_prepared(&pX, &pY, nl, lmX, lmY, &o, out, err);
   ss_shape_prep_free(&pX);
