@@ -546,7 +546,33 @@ static void test_match_small_messages(void) {
   ss_mesh_free(&s);
 }
 
+/* Item 7: two spheres matched as prepared shapes: the singular functional-map system says the shapes
+ * have several components and what to do (was "fmap: normal equations not positive definite (dsposv
+ * info 257)"). */
+static void test_two_spheres_match(void) {
+  ss_mesh s = {0}, two = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_icosphere(3, &s, &e) == SS_OK);
+  two_copies(&s, 3, &two);
+  int lm[3] = {0, 100, 300};
+  ss_match_options o;
+  ss_match_default_options(&o);
+  ss_shape_prep p = {0};
+  ss_match_result r = {0};
+  CHECK_MSG(ss_shape_prep_compute(&two, &o.seg, o.fmap.k, &p, &e) == SS_OK, "%s", e.msg);
+  ss_status st = ss_match_prepared(&p, &p, 3, lm, lm, &o, &r, &e);
+  printf("two spheres, prepared: %s\n", st ? e.msg : "ok");
+  CHECK_MSG(st == SS_ERR_NUMERIC && strstr(e.msg, "X has 2 connected components and Y 2") &&
+                strstr(e.msg, "put landmarks on every component"),
+            "%s", e.msg);
+  ss_match_result_free(&r);
+  ss_shape_prep_free(&p);
+  ss_mesh_free(&two);
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_two_spheres_match();
   test_match_small_messages();
   test_fill_holes_orientation_message();
   test_massless_vertex_message();

@@ -1,6 +1,7 @@
 /* The matching pipeline of paper §6 on two shapes: pairing of the segments, their probe functions as
  * extra probes of the functional map (STD / ASA / DIFF), point map, ZoomOut. */
 #include "specseg/match.h"
+#include "mesh/mesh_topology.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,6 +24,33 @@ void ss_match_result_free(ss_match_result *r) {
   free(r->centerY);
   ss_segment_pairs_free(&r->pairs);
   memset(r, 0, sizeof *r);
+}
+
+static int count_components(const ss_mesh *m) {
+  int *comp = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+  int nc = comp ? ssi_mesh_components(m, comp) : -1;
+  free(comp);
+  return nc;
+}
+
+/* The functional-map system could not be solved (normal equations singular: "fmap: ... dsposv info
+ * N"): say why that usually happens and what to do. */
+static void explain_singular(const ss_mesh *X, const ss_mesh *Y, int nl, int npairs, int k, ss_error *err) {
+  if (!err) return;
+  char what[512];
+  snprintf(what, sizeof what, "%.500s", err->msg);
+  int cx = count_components(X), cy = count_components(Y);
+  if (cx > 1 || cy > 1)
+    ss_fail(err, SS_ERR_NUMERIC,
+            "match: the functional-map system is singular (%s): X has %d connected components and Y %d, and the "
+            "probe functions do not determine the map on components without a landmark; match only the components "
+            "that hold landmarks or put landmarks on every component",
+            what, cx, cy);
+  else
+    ss_fail(err, SS_ERR_NUMERIC,
+            "match: the functional-map system is singular (%s): the probe functions (descriptors, %d landmark%s, %d "
+            "paired segment%s) do not determine the %d x %d map; use more landmarks or a smaller basis (k)",
+            what, nl, nl == 1 ? "" : "s", npairs, npairs == 1 ? "" : "s", k, k);
 }
 
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
@@ -86,8 +114,10 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   ss_fmap_match_options fo = o.fmap;
   fo.zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
   if ((st = ss_fmap_match(&sX, &sY, nl, lmX, lmY, nextra, EX, EY,
-                          o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW, &fo, out->map, Ck, err)))
+                          o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW, &fo, out->map, Ck, err))) {
+    if (st == SS_ERR_NUMERIC) explain_singular(X->mesh, Y->mesh, nl, np, k, err);
     goto fail;
+  }
   double t2 = ss_time();
   out->t_fmap = t2 - t1;
 

@@ -258,3 +258,33 @@ void topo_free(topo *T) {
   free(T->loop);
   memset(T, 0, sizeof *T);
 }
+
+/* Connected components of the faces of a (sanitized) mesh through shared vertices: comp[v] for every
+ * vertex (numbered by lowest vertex; -1 for a vertex in no face). Returns the count, -1 on OOM. */
+int ssi_mesh_components(const ss_mesh *m, int *comp) {
+  int *p = malloc(sizeof(int) * (size_t)m->nv);
+  if (!p) return -1;
+  for (int i = 0; i < m->nv; i++) p[i] = i, comp[i] = -1;
+  for (int f = 0; f < m->nf; f++)
+    for (int j = 0; j < 3; j++) {
+      int a = m->F[3 * f + j], b = m->F[3 * f + (j + 1) % 3];
+      while (p[a] != a) a = p[a] = p[p[a]];
+      while (p[b] != b) b = p[b] = p[p[b]];
+      if (a != b) { if (a < b) p[b] = a; else p[a] = b; }
+    }
+  unsigned char *used = calloc((size_t)m->nv, 1);
+  if (!used) { free(p); return -1; }
+  for (int i = 0; i < 3 * m->nf; i++) used[m->F[i]] = 1;
+  int nc = 0;
+  for (int i = 0; i < m->nv; i++) {
+    int r = i;
+    while (p[r] != r) r = p[r];
+    p[i] = r;
+    if (!used[i]) continue;
+    if (comp[r] < 0) comp[r] = nc++;
+    comp[i] = comp[r];
+  }
+  free(p);
+  free(used);
+  return nc;
+}
