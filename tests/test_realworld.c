@@ -546,9 +546,78 @@ static void test_match_small_messages(void) {
   ss_mesh_free(&s);
 }
 
+/* m plus `count` small icospheres ("crumbs" of a scan) of radius r around (cx + i, cy, 0),
+ * appended after m's vertices and faces */
+static void add_crumbs(const ss_mesh *m, int count, double r, double cx, double cy, ss_mesh *out) {
+  ss_mesh c = {0};
+  CHECK(ss_synth_icosphere(1, &c, NULL) == SS_OK);
+  CHECK(ss_mesh_alloc(out, m->nv + count * c.nv, m->nf + count * c.nf, NULL) == SS_OK);
+  memcpy(out->V, m->V, sizeof(double) * 3 * (size_t)m->nv);
+  memcpy(out->F, m->F, sizeof(int) * 3 * (size_t)m->nf);
+  for (int k = 0; k < count; k++) {
+    int v0 = m->nv + k * c.nv, f0 = m->nf + k * c.nf;
+    for (int i = 0; i < c.nv; i++) {
+      out->V[3 * (size_t)(v0 + i)] = cx + k + r * c.V[3 * i];
+      out->V[3 * (size_t)(v0 + i) + 1] = cy + r * c.V[3 * i + 1];
+      out->V[3 * (size_t)(v0 + i) + 2] = r * c.V[3 * i + 2];
+    }
+    for (int j = 0; j < 3 * c.nf; j++) out->F[3 * (size_t)f0 + j] = c.F[j] + v0;
+  }
+  ss_mesh_free(&c);
+}
+
+/* Item 2: match on meshes whose bodies correspond, each with crumbs: the components holding the
+ * landmarks are matched, the body's map is the one without crumbs (bit for bit: the kept part is the
+ * body as it was), crumb vertices of X take the image of their nearest body vertex, no vertex maps
+ * to a crumb of Y, and ss_match_warn says what was dropped (was "fmap: ... dsposv info 258"). */
+static void test_match_components(void) {
+  ss_mesh X = {0}, Y = {0}, Xc = {0}, Yc = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_humanoid(0, &X, &e) == SS_OK);
+  CHECK(ss_synth_humanoid(2, &Y, &e) == SS_OK);
+  add_crumbs(&X, 3, 0.01, 0.8, 0.3, &Xc);
+  add_crumbs(&Y, 2, 0.02, -0.9, 0.1, &Yc);
+  int lm[3] = {0, X.nv / 3, 2 * X.nv / 3}; /* the humanoid's poses share their vertex order */
+  ss_match_options o;
+  ss_match_default_options(&o);
+  o.fmap.k = 30;
+  ss_match_result r0 = {0}, r = {0};
+  char warn[1024];
+  CHECK_MSG(ss_match(&X, &Y, 3, lm, lm, &o, &r0, &e) == SS_OK, "%s", e.msg);
+  CHECK_MSG(ss_match_warn(&Xc, &Yc, 3, lm, lm, &o, &r, warn, sizeof warn, &e) == SS_OK, "%s", e.msg);
+  printf("item 2, match with crumbs: %s\n", warn);
+  CHECK(strstr(warn, "X (the first mesh): matched the 1 of its 4 components that hold a landmark") != NULL);
+  CHECK(strstr(warn, "Y (the second mesh): matched the 1 of its 3 components") != NULL);
+  CHECK(strstr(warn, "dropped 3 components of 126 vertices in all") != NULL);
+  if (r.map && r0.map) {
+    CHECK(r.nX == Xc.nv);
+    CHECK(!memcmp(r.map, r0.map, sizeof(int) * (size_t)X.nv));
+    int crumbs_ok = 1;
+    for (int i = X.nv; i < Xc.nv; i++) crumbs_ok &= r.map[i] >= 0 && r.map[i] < Y.nv;
+    CHECK(crumbs_ok);
+    /* the crumb vertices' nearest body vertex: one query */
+    int near;
+    CHECK(ss_closest_vertices(Xc.V + 3 * (size_t)X.nv, 1, &X, &near, &e) == SS_OK);
+    CHECK(r.map[X.nv] == r0.map[near]);
+    CHECK(r.pairs.n == r0.pairs.n && r.kc == r0.kc && !memcmp(r.C, r0.C, sizeof(double) * (size_t)r.kc * r.kc));
+  }
+  ss_match_result_free(&r);
+  /* a landmark on a crumb keeps that crumb, which has no segmentation of its own: said so (was "source
+   * vertex -1 outside [0,7502)") */
+  int lm2[3] = {lm[0], lm[1], Xc.nv - 1};
+  ss_status st = ss_match(&Xc, &Yc, 3, lm2, lm, &o, &r, &e);
+  printf("item 2, landmark on a crumb: %s\n", st ? e.msg : "ok");
+  char want[96];
+  snprintf(want, sizeof want, "X (the first mesh): landmark 2 (vertex %d) is on no segmented part", Xc.nv - 1);
+  CHECK_MSG(st == SS_ERR_INVALID && strstr(e.msg, want), "%s", e.msg);
+  ss_match_result_free(&r);
+  ss_match_result_free(&r0);
+  ss_mesh_free(&X), ss_mesh_free(&Y), ss_mesh_free(&Xc), ss_mesh_free(&Yc);
+}
+
 /* Item 7: two spheres matched as prepared shapes: the singular functional-map system says the shapes
  * have several components and what to do (was "fmap: normal equations not positive definite (dsposv
- * info 257)"). */
+ * info 257)"); ss_match matches the spheres holding the landmarks, with a warning. */
 static void test_two_spheres_match(void) {
   ss_mesh s = {0}, two = {0};
   ss_error e = {{0}};
@@ -567,12 +636,20 @@ static void test_two_spheres_match(void) {
             "%s", e.msg);
   ss_match_result_free(&r);
   ss_shape_prep_free(&p);
+  char warn[1024];
+  CHECK_MSG(ss_match_warn(&two, &two, 3, lm, lm, &o, &r, warn, sizeof warn, &e) == SS_OK, "%s", e.msg);
+  CHECK(strstr(warn, "matched the 1 of its 2 components") != NULL);
+  int same = 1;
+  for (int i = 0; r.map && i < s.nv; i++) same &= r.map[i] == i; /* a sphere onto itself */
+  CHECK(r.map && r.nX == two.nv && same);
+  ss_match_result_free(&r);
   ss_mesh_free(&two);
   ss_mesh_free(&s);
 }
 
 int main(void) {
   test_two_spheres_match();
+  test_match_components();
   test_match_small_messages();
   test_fill_holes_orientation_message();
   test_massless_vertex_message();
