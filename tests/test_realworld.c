@@ -647,7 +647,30 @@ static void test_two_spheres_match(void) {
   ss_mesh_free(&s);
 }
 
+/* Item 5: the remesher and the segmentation refuse targets beyond SS_REMESH_MAX_FACES at once, with
+ * the bound in the message (remesh --faces 5000000 ran > 400 s; segment accepted 1e8). */
+static void test_remesh_bound(void) {
+  ss_mesh s = {0}, out = {0};
+  ss_error e = {{0}};
+  CHECK(ss_synth_icosphere(1, &s, &e) == SS_OK);
+  ss_remesh_options ro;
+  ss_remesh_default_options(&ro);
+  ro.target_faces = SS_REMESH_MAX_FACES + 1;
+  double t0 = ss_time();
+  CHECK(ss_remesh(&s, &ro, &out, &e) == SS_ERR_INVALID);
+  CHECK_MSG(strstr(e.msg, "outside the supported 4 .. 2000000") != NULL, "%s", e.msg);
+  ss_segment_options so;
+  ss_segment_default_options(&so);
+  so.target_faces = 100000000;
+  ss_segmentation seg = {0};
+  CHECK(ss_segment(&s, &so, &seg, &e) == SS_ERR_INVALID);
+  CHECK_MSG(strstr(e.msg, "outside the supported 4 .. 2000000") != NULL, "%s", e.msg);
+  CHECK(ss_time() - t0 < 1.0);
+  ss_mesh_free(&s);
+}
+
 int main(void) {
+  test_remesh_bound();
   test_two_spheres_match();
   test_match_components();
   test_match_small_messages();

@@ -103,8 +103,11 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (!input || input->nv <= 0 || input->nf <= 0 || !input->V || !input->F)
     return ss_fail(err, SS_ERR_INVALID, "segment: empty mesh");
   if (o.n_eigs < 2) return ss_fail(err, SS_ERR_INVALID, "segment: n_eigs must be at least 2 (got %d)", o.n_eigs);
-  if (!o.no_streamline && o.target_faces < 4)
-    return ss_fail(err, SS_ERR_INVALID, "segment: target face count %d is too small", o.target_faces);
+  if (!o.no_streamline && (o.target_faces < 4 || o.target_faces > SS_REMESH_MAX_FACES))
+    return ss_fail(err, SS_ERR_INVALID,
+                   "segment: target face count %d of the remeshing is outside the supported 4 .. %d (the default "
+                   "15000 is what the paper uses)",
+                   o.target_faces, SS_REMESH_MAX_FACES);
   if (o.cleanup_rings < 0) return ss_fail(err, SS_ERR_INVALID, "segment: negative clean-up radius");
 
   ss_status st = SS_OK;
