@@ -232,6 +232,18 @@ ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err) {
   return ss_read_ints_memory(b, len, cli_in_name(path), out, n, err);
 }
 
+ss_status cli_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err) {
+  const char *b;
+  size_t len;
+  *out = NULL;
+  *lines = NULL;
+  *n = 0;
+  int is;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st || !is) return st ? st : ss_read_ints_lines(path, out, lines, n, err);
+  return ss_read_ints_lines_memory(b, len, cli_in_name(path), out, lines, n, err);
+}
+
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err) {
   const char *b;
   size_t len;

@@ -15,7 +15,8 @@ static const char USAGE[] =
     "in every eigenvector (with a warning).\n"
     "\n"
     "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
-    "  -k K                number of eigenpairs, 1 <= K < vertices (required)\n"
+    "  -k K                number of eigenpairs, 1 <= K < vertices (required); K up to about half the\n"
+    "                      vertices leaves the solver the room it needs\n"
     "  --evecs FILE.npy    also write the eigenvectors, a vertices x K float64 .npy\n"
     "  --mass KIND         barycentric (default) or voronoi (mixed Voronoi areas)\n"
     "  --sigma S           shift: the K eigenvalues nearest S (default -1e-8)\n";

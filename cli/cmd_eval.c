@@ -154,7 +154,7 @@ static int cmd_merge(int argc, char **argv) {
       ss_eval_csv_format_row(&all[i], line, sizeof line);
       fprintf(f, "%s\n", line);
     }
-    if (cli_close_out(f)) { free(all); return cli_error("%s: write failed", cli_out_name(out)); }
+    if (cli_close_out(f)) { free(all); return cli_error("%s: write error: %s", cli_out_name(out), strerror(errno)); }
   }
   ss_table1 t;
   ss_status st = ss_table1_aggregate(all, n, &t, &e);

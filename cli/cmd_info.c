@@ -1,4 +1,5 @@
 /* specseg info MESH: mesh statistics and checks, one "key: value" a line. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -37,6 +38,11 @@ int cmd_info(int argc, char **argv) {
     return cli_error("%s: %s", cli_in_name(path), err.msg);
   }
   ss_mesh_free(&m);
+  /* areas beyond the double range (coordinates ~1e155 and up, or ~1e-155 and down) */
+  if (r.nonfinite_vertices == 0 && (isinf(r.area) || (r.area == 0 && r.faces > r.degenerate_faces)))
+    cli_warn("%s: the area %s a double (bounding-box diagonal %.3g); the other commands accept coordinates up to "
+             "1e70 and extents down to 1e-70: scale the mesh",
+             cli_in_name(path), r.area > 0 ? "overflows" : "underflows", r.bbox_diagonal);
   printf("vertices: %d\n", r.vertices);
   printf("faces: %d\n", r.faces);
   printf("area: %.10g\n", r.area);

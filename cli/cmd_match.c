@@ -133,10 +133,12 @@ int cmd_match(int argc, char **argv) {
         cli_warn("%s: faces not consistently oriented: %d re-oriented internally", s ? yn : xn, rep.reorient_faces);
     }
   }
-  if (ss_match(&X, &Y, nl, lx, ly, &o, &res, &err)) {
+  char dropped[1024];
+  if (ss_match_warn(&X, &Y, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
+  if (dropped[0]) cli_warn("%s -> %s: %s", xn, yn, dropped); /* components without landmarks */
   double t1 = ss_time();
   if (cli_write_ints(outp, res.map, res.nX, &err) ||
       (fmapp && cli_write_npy(fmapp, res.C, res.kc, res.kc, &err))) {

@@ -14,7 +14,7 @@ static const char USAGE[] =
     "\n"
     "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
     "  -o OUT              output mesh, .off or .ply (binary); - writes OFF to standard output\n"
-    "  --faces N           target triangle count, >= 4 (default 15000)\n"
+    "  --faces N           target triangle count, 4..2000000 (default 15000)\n"
     "  --iterations K      remeshing rounds, 1..1000 (default 5)\n";
 
 static const char *const OPTS[] = {"-o=", "--faces=", "--iterations=", NULL};
@@ -33,7 +33,8 @@ int cmd_remesh(int argc, char **argv) {
     } else if (cli_is(&A, "-o")) {
       outp = v;
     } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, 100000000, &opt.target_faces)) return cli_bad(&A, "--faces wants an integer >= 4, got '%s'", v);
+      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &opt.target_faces))
+        return cli_bad(&A, "--faces wants an integer in [4, %d], got '%s'", SS_REMESH_MAX_FACES, v);
     } else if (cli_is(&A, "--iterations")) {
       if (cli_parse_int(v, 1, 1000, &opt.iterations)) return cli_bad(&A, "--iterations wants an integer in [1,1000], got '%s'", v);
     }

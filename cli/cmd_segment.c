@@ -21,7 +21,7 @@ static const char USAGE[] =
     "  --centers FILE      line s = input vertex at the centre of segment s\n"
     "  --ply FILE          the input mesh coloured by segment, binary PLY with an int vertex property\n"
     "                      'label' (the segment) beside red green blue\n"
-    "  --faces N           remeshing target, 4..100000000 triangles (default 15000)\n"
+    "  --faces N           remeshing target, 4..2000000 triangles (default 15000)\n"
     "  --no-streamline     everything straight on the input (no smoothing, no remeshing)\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
     "One of the output files may be - (standard output).\n";
@@ -48,8 +48,8 @@ int cmd_segment(int argc, char **argv) {
     } else if (cli_is(&A, "--ply")) {
       ply_path = v;
     } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, 100000000, &opt.target_faces))
-        return cli_bad(&A, "--faces needs an integer between 4 and 100000000, not '%s'", v);
+      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &opt.target_faces))
+        return cli_bad(&A, "--faces needs an integer between 4 and %d, not '%s'", SS_REMESH_MAX_FACES, v);
     } else if (cli_is(&A, "--no-streamline")) {
       opt.no_streamline = 1;
     } else if (cli_is(&A, "--timings")) {

@@ -14,7 +14,7 @@ static const char USAGE[] =
     "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
     "  -o OUT              output mesh, .off or .ply (binary); - writes OFF to standard output\n"
     "  --steps N           flow steps, 0..100000 (default 12)\n"
-    "  --dt D              time step, > 0 (default 2.2e-5; 1e-5 with --bbox)\n"
+    "  --dt D              time step in (0, 1e6] (default 2.2e-5; 1e-5 with --bbox)\n"
     "  --bbox              scale to unit bounding-box diagonal instead of unit area, as the authors'\n"
     "                      code does\n";
 
@@ -37,7 +37,7 @@ int cmd_smooth(int argc, char **argv) {
     } else if (cli_is(&A, "--steps")) {
       if (cli_parse_int(v, 0, 100000, &opt.steps)) return cli_bad(&A, "--steps wants an integer in [0,100000], got '%s'", v);
     } else if (cli_is(&A, "--dt")) {
-      if (cli_parse_double(v, &opt.dt) || !(opt.dt > 0) || opt.dt > 1e6) return cli_bad(&A, "--dt wants a positive number, got '%s'", v);
+      if (cli_parse_double(v, &opt.dt) || !(opt.dt > 0) || opt.dt > 1e6) return cli_bad(&A, "--dt wants a time step in (0, 1e6], got '%s'", v);
       dt_given = 1;
     } else if (cli_is(&A, "--bbox")) {
       opt.normalization = SS_CMCF_UNIT_BBOX;

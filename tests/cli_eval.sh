@@ -54,4 +54,42 @@ head -c 30 <(sed -n 7p "$TMP/merged.csv") >> "$TMP/cut.csv"
 cut -d, -f1-10,12 "$TMP/cut_sorted.csv" > "$TMP/c"
 cmp -s "$TMP/c" "$TMP/b" && ok || bad "resumed rows differ: $(diff "$TMP/c" "$TMP/b" | head -4)"
 
+# damaged cache entries (D8): two eigenvector columns swapped, bytes flipped, a file cut short, a key
+# line of another version under the same name: each is reported through the log, recomputed (never
+# used) and rewritten; the rows stay those of the intact run, and the next run uses the cache silently
+C=("$TMP"/cache/faust_*.bin)
+if [ ${#C[@]} = 4 ]; then
+  for f in "${C[@]}"; do cp "$f" "$f.orig"; done
+  LOUD=(); for a in "${ARGS[@]}"; do [ "$a" = --quiet ] || LOUD+=("$a"); done   # the log on stderr
+  off=$(head -n 2 "${C[0]}" | wc -c)
+  col=$((8 * 6890)); c3=$((off + 16 + 8 * 20 + 3 * col)); c4=$((c3 + col))   # nv 6890, k 20: columns 3 and 4
+  dd if="${C[0]}" of="$TMP/c3" bs=1 skip=$c3 count=$col status=none
+  dd if="${C[0]}" of="$TMP/c4" bs=1 skip=$c4 count=$col status=none
+  dd if="$TMP/c4" of="${C[0]}" bs=1 seek=$c3 conv=notrunc status=none
+  dd if="$TMP/c3" of="${C[0]}" bs=1 seek=$c4 conv=notrunc status=none
+  cmp -s "${C[0]}" "${C[0]}.orig" && bad "column swap changed nothing"
+  printf '\x5a\xa5\x5a' | dd of="${C[1]}" bs=1 seek=$((off + 500000)) conv=notrunc status=none
+  truncate -s -1000 "${C[2]}"
+  sed -i '1s/ lib [0-9]*\.[0-9]*\.[0-9]* / lib 9.9.9 /' "${C[3]}"
+  "$BIN" "${LOUD[@]}" --out "$TMP/damaged.csv" > /dev/null 2> "$TMP/log" && ok || bad "damaged cache run: $(cat "$TMP/log")"
+  for i in 0 1 2 3; do
+    grep -q "eval cache: ${C[$i]}: .*not used, recomputing" "$TMP/log" && ok || bad "damaged entry ${C[$i]##*/} not reported"
+  done
+  grep -q 'checksum mismatch' "$TMP/log" && grep -q 'truncated' "$TMP/log" && grep -q 'another version' "$TMP/log" && ok ||
+    bad "damage reports do not say what is wrong: $(grep 'eval cache' "$TMP/log")"
+  [ "$(grep -c 'checksum mismatch' "$TMP/log")" = 2 ] && ok || bad "swapped columns and flipped bytes: want 2 checksum reports"
+  "$BIN" eval merge "$TMP/damaged.csv" --out "$TMP/damaged_sorted.csv" > /dev/null 2>&1
+  cut -d, -f1-10,12 "$TMP/damaged_sorted.csv" > "$TMP/d"
+  cmp -s "$TMP/d" "$TMP/b" && ok || bad "rows after recomputing damaged entries differ: $(diff "$TMP/d" "$TMP/b" | head -4)"
+  # rewritten with the same key and contents (the last 24 bytes are the timings, which differ)
+  for f in "${C[@]}"; do
+    cmp -s <(head -n 1 "$f"; tail -n +3 "$f" | head -c -24) <(head -n 1 "$f.orig"; tail -n +3 "$f.orig" | head -c -24) &&
+      ok || bad "${f##*/} not rewritten as it was"
+  done
+  "$BIN" "${LOUD[@]}" --out "$TMP/again.csv" > /dev/null 2> "$TMP/log" && ok || bad "warm run: $(cat "$TMP/log")"
+  grep -q 'eval cache' "$TMP/log" && bad "rewritten entries reported again: $(grep 'eval cache' "$TMP/log")" || ok
+else
+  bad "want 4 cache files, found ${#C[@]}"
+fi
+
 finish

@@ -122,7 +122,9 @@ typedef void (*ss_table1_log_fn)(void *user, const char *line);
 typedef struct ss_table1_options {
   const char *data_dir;   /* folder with faust/tr_reg_NNN.off and faust/landmarks_best.txt */
   const char *out_csv;    /* results file: rows already there are skipped (resume); new rows appended */
-  const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there */
+  const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there, one file
+                             per shape with its key (library version, input mesh hash, options) and
+                             a 64-bit FNV-1a checksum */
   int npairs;             /* per policy (default 100) */
   uint64_t seed;          /* default 1 */
   int jobs;               /* parallel work units (OpenMP threads); 0 = omp default */
@@ -137,7 +139,10 @@ typedef struct ss_table1_options {
   /* Progress and messages go to the caller (the library prints nothing). Both may be NULL (the
    * default); they are called one at a time (from whichever worker thread), with `user`. */
   ss_table1_progress_fn progress; /* after each prepared shape and each finished row */
-  ss_table1_log_fn log;           /* one line per stage (no newline) */
+  ss_table1_log_fn log;           /* one line per stage (no newline), and one for every cache entry found
+                                     damaged (checksum, length) or written for another key (version,
+                                     mesh, options): such an entry is never used, it is recomputed and
+                                     rewritten */
   void *user;
 } ss_table1_options;
 

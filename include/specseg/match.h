@@ -172,9 +172,21 @@ typedef struct ss_match_result {
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);
 
-/* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL. */
+/* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL.
+ * Meshes of several components: the map is only determined on components that hold a landmark, so
+ * on each mesh the components with at least one landmark are kept and matched (the body of a scan,
+ * without its crumbs; every component when each has a landmark); a vertex of X on a dropped
+ * component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X maps to
+ * a dropped vertex of Y. map, centerX and centerY refer to the input meshes' vertices; C, the basis
+ * and pairs (segment indices) to the kept parts. Unreferenced vertices are refused as for one
+ * component. */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                           const ss_match_options *opts, ss_match_result *out, ss_error *err);
+/* The same, with what was dropped in `warnings` (warnings_size bytes, may be NULL; "" when nothing):
+ * per mesh, the components kept, their share of the vertices and the area, and the dropped ones. */
+SS_API ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
+                               const ss_match_options *opts, ss_match_result *out, char *warnings,
+                               size_t warnings_size, ss_error *err);
 SS_API void ss_match_result_free(ss_match_result *r);
 
 #ifdef __cplusplus

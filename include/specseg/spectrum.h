@@ -38,7 +38,9 @@ SS_API void ss_eigs_default_options(ss_eigs_options *o);
  * eigenvalues ascending into evals[k] and M-orthonormal eigenvectors, column-major n x k, into evecs
  * (evecs may be NULL when only eigenvalues are wanted). opts may be NULL for defaults.
  * More precisely: the k eigenvalues nearest sigma (as scipy's eigsh(..., sigma=σ)), which for the
- * default σ just below 0 are the k smallest. Needs 1 <= k < n. Deterministic (fixed start vector).
+ * default σ just below 0 are the k smallest. Needs 1 <= k < n; k up to (n + c − 1) / 2 (c: components)
+ * leaves the Lanczos solver the ~2k vectors it needs, above that it may fail (SS_ERR_NUMERIC, the
+ * message says which k works). Deterministic (fixed start vector).
  * Errors: SS_ERR_INVALID (bad k, sizes, non-positive or non-finite mass, bad options),
  * SS_ERR_NUMERIC (singular shifted matrix, no convergence, ARPACK failure), SS_ERR_NOMEM.
  * For sigma <= 0 the λ = 0 pairs of components on which W annihilates constants (any Laplacian) are

@@ -29,9 +29,11 @@ typedef struct ev_context {
 
 void ev_shape_free(ev_shape *s);
 /* Reads tr_reg_<id>.off, prepares it (segmentation, eigenpairs, FPS landmarks, landmark fields at
- * the critical points), through the cache folder when cache_dir is not NULL. */
+ * the critical points), through the cache folder when cache_dir is not NULL (format and checks in
+ * eval_shape.c). note (nnote bytes, may be NULL) receives one line when a cache entry was there but
+ * not used (damaged, truncated, written for another key): the caller reports it; else "". */
 ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, const ev_context *ctx, ev_shape *s,
-                        ss_error *err);
+                        char *note, size_t nnote, ss_error *err);
 
 /* The same for a shape whose mesh (s->mesh, s->id) is already set: segmentation + eigenpairs
  * (ss_shape_prep_compute), FPS landmarks seeded at vertex 0, landmark fields. On failure s->mesh is

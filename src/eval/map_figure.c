@@ -38,8 +38,8 @@ ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64
   /* the GT set always, as the full Table 1 run has it: the per-shape cache key then matches its files */
   int gt_shape;
   if ((st = ev_gt_landmarks(data_dir, seed, &ctx, ctx.gt, &gt_shape, err))) goto done;
-  if ((st = ev_shape_load(data_dir, cache_dir, x, &ctx, &X, err))) goto done;
-  if ((st = ev_shape_load(data_dir, cache_dir, y, &ctx, &Y, err))) goto done;
+  if ((st = ev_shape_load(data_dir, cache_dir, x, &ctx, &X, NULL, 0, err))) goto done;
+  if ((st = ev_shape_load(data_dir, cache_dir, y, &ctx, &Y, NULL, 0, err))) goto done;
   const int nx = X.mesh.nv, ny = Y.mesh.nv;
   if (nx > ny) { st = ss_fail(err, SS_ERR_INVALID, "figure: tr_reg_%03d has more vertices than tr_reg_%03d", x, y); goto done; }
 

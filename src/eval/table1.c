@@ -8,6 +8,7 @@
 #include "eval_internal.h"
 #include "specseg/io.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -79,7 +80,7 @@ static void report(const ss_table1_options *o, double t0, long done, long total,
 static void say(const ss_table1_options *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void say(const ss_table1_options *o, const char *fmt, ...) {
   if (!o->log) return;
-  char line[512];
+  char line[1200];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(line, sizeof line, fmt, ap);
@@ -231,7 +232,13 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   for (int i = 0; i < nneed; i++) {
     if (failed) continue;
     ss_error e;
-    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e);
+    char note[1024];
+    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], note, sizeof note, &e);
+    if (note[0]) {
+      omp_set_lock(&locks->progress);
+      say(o, "%s", note);
+      omp_unset_lock(&locks->progress);
+    }
     if (!ws) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
     if (ws) {
       omp_set_lock(&locks->err);
@@ -254,7 +261,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
 
   /* 5. the units, in parallel, grouped by target shape */
   out = fopen(o->out_csv, have_header ? "ab" : "wb");
-  if (!out) { st = ss_fail(err, SS_ERR_IO, "%s: cannot write", o->out_csv); goto done; }
+  if (!out) { st = ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", o->out_csv, strerror(errno)); goto done; }
   if (!have_header) fprintf(out, "%s\n", ss_eval_csv_header());
   fflush(out);
   int ngroups = 0, *gstart = malloc(sizeof(int) * ((size_t)nwork + 1));
@@ -366,7 +373,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   say(o, "table1: %ld rows in %.1f s (%.1f s total)", rows_done, ss_time() - t_rows, ss_time() - t_start);
   if (failed) st = ss_fail(err, (ss_status)failed, "table1: %s", perr.msg);
 done:
-  if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write failed", o->out_csv);
+  if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write error: %s", o->out_csv, strerror(errno));
   if (shapes)
     for (int s = 0; s < NSHAPES; s++) ev_shape_free(&shapes[s]);
   free(shapes), free(need), free(U), free(px), free(py), free(lmb), free(sym);

@@ -1,6 +1,9 @@
 /* The matching pipeline of paper §6 on two shapes: pairing of the segments, their probe functions as
  * extra probes of the functional map (STD / ASA / DIFF), point map, ZoomOut. */
 #include "specseg/match.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_topology.h"
+#include "specseg/streamline.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -69,6 +72,33 @@ static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, c
 static void add_note(ss_match_result *r, const char *msg) {
   size_t n = strlen(r->notes);
   snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
+}
+
+static int count_components(const ss_mesh *m) {
+  int *comp = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+  int nc = comp ? ssi_mesh_components(m, comp) : -1;
+  free(comp);
+  return nc;
+}
+
+/* The functional-map system could not be solved (normal equations singular: "fmap: ... dsposv info
+ * N"): say why that usually happens and what to do. */
+static void explain_singular(const ss_mesh *X, const ss_mesh *Y, int nl, int npairs, int k, ss_error *err) {
+  if (!err) return;
+  char what[512];
+  snprintf(what, sizeof what, "%.500s", err->msg);
+  int cx = count_components(X), cy = count_components(Y);
+  if (cx > 1 || cy > 1)
+    ss_fail(err, SS_ERR_NUMERIC,
+            "match: the functional-map system is singular (%s): X has %d connected components and Y %d, and the "
+            "probe functions do not determine the map on components without a landmark; match only the components "
+            "that hold landmarks (ss_match does) or put landmarks on every component",
+            what, cx, cy);
+  else
+    ss_fail(err, SS_ERR_NUMERIC,
+            "match: the functional-map system is singular (%s): the probe functions (descriptors, %d landmark%s, %d "
+            "paired segment%s) do not determine the %d x %d map; use more landmarks or a smaller basis (k)",
+            what, nl, nl == 1 ? "" : "s", npairs, npairs == 1 ? "" : "s", k, k);
 }
 
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
@@ -181,8 +211,10 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
       if ((st = ss_fmap_extra_probes(&sY, nl, np, EY, filt, &fo[1], xops, &xY, err))) goto fail;
     }
     if (!(Ck[c] = malloc(sizeof(double) * (size_t)k * k))) goto nomem;
-    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, Ck[c], err)))
+    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, Ck[c], err))) {
+      if (st == SS_ERR_NUMERIC) explain_singular(X->mesh, Y->mesh, nl, c ? np : 0, k, err);
       goto fail;
+    }
   }
   out->map = malloc(sizeof(int) * (size_t)nX);
   if (!out->map) goto nomem;
@@ -257,8 +289,132 @@ cleanup:
   return st;
 }
 
+/* "match: what" -> "match: SHAPE: what" (every message of a shape's preparation is about one mesh) */
+static void name_shape(ss_error *err, const char *shape) {
+  if (!err) return;
+  char tmp[sizeof err->msg];
+  const char *m = err->msg;
+  if (!strncmp(m, "match: ", 7)) m += 7;
+  snprintf(tmp, sizeof tmp, "match: %s: %.900s", shape, m);
+  memcpy(err->msg, tmp, sizeof tmp);
+}
+
+/* ---- meshes of several components ---------------------------------------------------------------
+ * The functional map is only determined on components that hold a landmark (elsewhere the probes
+ * leave the basis functions free: "dsposv info N"). So ss_match keeps, on each mesh, the components
+ * that hold a landmark — the body of a scan, without its crumbs — and matches those; a vertex of X on
+ * a dropped component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X
+ * maps to a dropped vertex of Y. */
+typedef struct kept {
+  int active;      /* 0: the whole mesh is used */
+  ss_mesh sub;     /* the kept components (vertices in input order) */
+  int *to_in;      /* sub vertex -> input vertex */
+  int *to_sub;     /* input vertex -> sub vertex, -1 when dropped */
+  int nc, nkept;   /* components, kept components */
+  double area, kept_area;
+} kept;
+
+static void kept_free(kept *k) {
+  ss_mesh_free(&k->sub);
+  free(k->to_in);
+  free(k->to_sub);
+  memset(k, 0, sizeof *k);
+}
+
+static ss_status keep_landmark_components(const ss_mesh *m, const char *name, int nl, const int *lm, kept *k,
+                                          ss_error *err) {
+  memset(k, 0, sizeof *k);
+  if (!m->V || !m->F || m->nv < 1 || m->nf < 1) return SS_OK; /* refused by the preparation, with its message */
+  for (size_t c = 0; c < 3 * (size_t)m->nf; c++)
+    if (m->F[c] < 0 || m->F[c] >= m->nv)
+      return ss_fail(err, SS_ERR_INVALID, "match: %s: face %zu has vertex index %d out of range [0, %d)", name, c / 3,
+                     m->F[c], m->nv);
+  int *comp = malloc(sizeof(int) * (size_t)m->nv);
+  unsigned char *has = NULL;
+  double *carea = NULL;
+  ss_status st = SS_OK;
+  int nc = comp ? ssi_mesh_components(m, comp) : -1;
+  if (nc < 0) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  k->nc = nc;
+  if (nc <= 1) goto done;
+  has = calloc((size_t)nc, 1);
+  carea = calloc((size_t)nc, sizeof(double));
+  if (!has || !carea) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  int unref = 0, first_unref = -1;
+  for (int i = 0; i < m->nv; i++)
+    if (comp[i] < 0 && !unref++) first_unref = i;
+  if (unref) {
+    st = ss_fail(err, SS_ERR_INVALID,
+                 "match: %s: the mesh has %d unreferenced vert%s (e.g. vertex %d); remove them first (`specseg info` "
+                 "counts them): landmarks and maps refer to its vertex indices",
+                 name, unref, unref == 1 ? "ex" : "ices", first_unref);
+    goto done;
+  }
+  for (int i = 0; i < nl; i++) has[comp[lm[i]]] = 1;
+  for (int f = 0; f < m->nf; f++) {
+    const int *t = m->F + 3 * (size_t)f;
+    double a = ssi_triangle_area(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2]);
+    if (isfinite(a)) carea[comp[t[0]]] += a, k->area += a;
+  }
+  for (int c = 0; c < nc; c++)
+    if (has[c]) k->nkept++, k->kept_area += carea[c];
+  if (k->nkept == nc) goto done; /* every component has a landmark: matched as it is */
+  k->active = 1;
+  k->to_sub = malloc(sizeof(int) * (size_t)m->nv);
+  k->to_in = malloc(sizeof(int) * (size_t)m->nv);
+  if (!k->to_sub || !k->to_in) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  int nv = 0, nf = 0;
+  for (int i = 0; i < m->nv; i++) {
+    k->to_sub[i] = has[comp[i]] ? nv : -1;
+    if (has[comp[i]]) k->to_in[nv++] = i;
+  }
+  for (int f = 0; f < m->nf; f++) nf += has[comp[m->F[3 * (size_t)f]]];
+  if ((st = ss_mesh_alloc(&k->sub, nv, nf, err))) goto done;
+  for (int i = 0; i < nv; i++) memcpy(k->sub.V + 3 * (size_t)i, m->V + 3 * (size_t)k->to_in[i], sizeof(double) * 3);
+  nf = 0;
+  for (int f = 0; f < m->nf; f++) {
+    const int *t = m->F + 3 * (size_t)f;
+    if (!has[comp[t[0]]]) continue;
+    for (int j = 0; j < 3; j++) k->sub.F[3 * (size_t)nf + j] = k->to_sub[t[j]];
+    nf++;
+  }
+done:
+  free(comp);
+  free(has);
+  free(carea);
+  if (st) kept_free(k);
+  return st;
+}
+
+static void warn_append(char *w, size_t size, const char *what) {
+  if (!w || !size) return;
+  size_t len = strlen(w);
+  if (len + 1 >= size) return;
+  snprintf(w + len, size - len, "%s%s", len ? "; " : "", what);
+}
+
+static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int is_x, char *w, size_t size) {
+  if (!k->active) return;
+  char line[400];
+  int dropped = m->nv - k->sub.nv, nd = k->nc - k->nkept;
+  snprintf(line, sizeof line,
+           "%s: matched the %d of its %d components that hold a landmark (%d of %d vertices, %.1f%% of the area); "
+           "dropped %d component%s of %d vert%s in all, %s",
+           name, k->nkept, k->nc, k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
+           nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
+           is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
+  warn_append(w, size, line);
+}
+
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                    const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+  return ss_match_warn(X, Y, nl, lmX, lmY, opts_in, out, NULL, 0, err);
+}
+
+ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
+                        const ss_match_options *opts_in, ss_match_result *out, char *warnings, size_t warnings_size,
+                        ss_error *err) {
+  if (warnings && warnings_size) warnings[0] = '\0';
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
   ss_match_options o;
@@ -273,16 +429,75 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
     if (lmY[i] < 0 || lmY[i] >= Y->nv)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->nv);
   }
-  int kev = match_kev(&o);
-  ss_shape_prep pX, pY;
-  ss_status st = ss_shape_prep_compute(X, &o.seg, kev, &pX, err);
+  kept kx, ky;
+  ss_status st = keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
   if (st) return st;
-  if ((st = ss_shape_prep_compute(Y, &o.seg, kev, &pY, err))) {
-    ss_shape_prep_free(&pX);
+  if ((st = keep_landmark_components(Y, "Y (the second mesh)", nl, lmY, &ky, err))) {
+    kept_free(&kx);
     return st;
   }
-  st = ss_match_prepared(&pX, &pY, nl, lmX, lmY, &o, out, err);
-  ss_shape_prep_free(&pX);
-  ss_shape_prep_free(&pY);
+  const ss_mesh *PX = kx.active ? &kx.sub : X, *PY = ky.active ? &ky.sub : Y;
+  int *lx = malloc(sizeof(int) * (size_t)nl), *ly = malloc(sizeof(int) * (size_t)nl);
+  ss_shape_prep pX = {0}, pY = {0};
+  int have_x = 0, have_y = 0;
+  if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
+  int kev = match_kev(&o);
+  if ((st = ss_shape_prep_compute(PX, &o.seg, kev, &pX, err))) { name_shape(err, "X (the first mesh)"); goto done; }
+  have_x = 1;
+  if ((st = ss_shape_prep_compute(PY, &o.seg, kev, &pY, err))) { name_shape(err, "Y (the second mesh)"); goto done; }
+  have_y = 1;
+  for (int i = 0; i < 2 * nl; i++) { /* a landmark on a crumb has no place on the segmentation */
+    const ss_shape_prep *p = i < nl ? &pX : &pY;
+    int v = i < nl ? lx[i] : ly[i - nl];
+    if (p->seg.psi && p->seg.psi[v] < 0) {
+      st = ss_fail(err, SS_ERR_INVALID,
+                   "match: %s: landmark %d (vertex %d) is on no segmented part of the shape (a component under 1%% "
+                   "of the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
+                   i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, i < nl ? lmX[i] : lmY[i - nl]);
+      goto done;
+    }
+  }
+  if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
+  if (kx.active || ky.active) { /* back to the input meshes' vertices */
+    int *map = malloc(sizeof(int) * (size_t)X->nv);
+    if (!map) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+    for (int i = 0; i < PX->nv; i++) {
+      int y = out->map[i];
+      map[kx.active ? kx.to_in[i] : i] = ky.active ? ky.to_in[y] : y;
+    }
+    if (kx.active) {
+      int nd = X->nv - PX->nv, *near = malloc(sizeof(int) * (size_t)(nd > 0 ? nd : 1));
+      double *P = malloc(sizeof(double) * 3 * (size_t)(nd > 0 ? nd : 1));
+      if (!near || !P) st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+      int j = 0;
+      for (int i = 0; !st && i < X->nv; i++)
+        if (kx.to_sub[i] < 0) memcpy(P + 3 * (size_t)j++, X->V + 3 * (size_t)i, sizeof(double) * 3);
+      if (!st) st = ss_closest_vertices(P, nd, &kx.sub, near, err);
+      j = 0;
+      for (int i = 0; !st && i < X->nv; i++)
+        if (kx.to_sub[i] < 0) map[i] = map[kx.to_in[near[j++]]];
+      free(near);
+      free(P);
+      if (st) { free(map); goto done; }
+    }
+    for (int p = 0; p < out->pairs.n; p++) {
+      if (kx.active) out->centerX[p] = kx.to_in[out->centerX[p]];
+      if (ky.active) out->centerY[p] = ky.to_in[out->centerY[p]];
+    }
+    free(out->map);
+    out->map = map;
+    out->nX = X->nv;
+  }
+  kept_warning(&kx, X, "X (the first mesh)", 1, warnings, warnings_size);
+  kept_warning(&ky, Y, "Y (the second mesh)", 0, warnings, warnings_size);
+done:
+  if (st) ss_match_result_free(out);
+  if (have_x) ss_shape_prep_free(&pX);
+  if (have_y) ss_shape_prep_free(&pY);
+  free(lx);
+  free(ly);
+  kept_free(&kx);
+  kept_free(&ky);
   return st;
 }

@@ -138,6 +138,13 @@ static ss_status landmark_fields(const ss_segmentation *s, int nl, const int *lm
       goto done;
     }
     src[i] = s->psi[lm_input[i]];
+    if (src[i] < 0) {
+      st = ss_fail(err, SS_ERR_INVALID,
+                   "pairing: landmark %d: vertex %d is on no segmented part of the shape (a component under 1%% of "
+                   "the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
+                   i, lm_input[i]);
+      goto done;
+    }
   }
   if ((st = ss_geodesic_mesh_build(w, &gm, err))) goto done;
   if ((st = ss_geodesic_fields(gm, src, nl, 0.0, field, err))) goto done;

@@ -6,6 +6,7 @@
 #include "specseg/spectrum.h"
 #include "specseg/streamline.h"
 #include "fill_holes.h"
+#include "mesh/mesh_topology.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -126,36 +127,6 @@ static void warn_append(char *w, size_t size, const char *what) {
   snprintf(w + len, size - len, "%s%s", len ? "; " : "", what);
 }
 
-/* Connected components of the faces of a (sanitized) mesh through shared vertices: comp[v] for every
- * vertex (numbered by lowest vertex; -1 for a vertex in no face). Returns the count, -1 on OOM. */
-static int mesh_components(const ss_mesh *m, int *comp) {
-  int *p = malloc(sizeof(int) * (size_t)m->nv);
-  if (!p) return -1;
-  for (int i = 0; i < m->nv; i++) p[i] = i, comp[i] = -1;
-  for (int f = 0; f < m->nf; f++)
-    for (int j = 0; j < 3; j++) {
-      int a = m->F[3 * f + j], b = m->F[3 * f + (j + 1) % 3];
-      while (p[a] != a) a = p[a] = p[p[a]];
-      while (p[b] != b) b = p[b] = p[p[b]];
-      if (a != b) { if (a < b) p[b] = a; else p[a] = b; }
-    }
-  unsigned char *used = calloc((size_t)m->nv, 1);
-  if (!used) { free(p); return -1; }
-  for (int i = 0; i < 3 * m->nf; i++) used[m->F[i]] = 1;
-  int nc = 0;
-  for (int i = 0; i < m->nv; i++) {
-    int r = i;
-    while (p[r] != r) r = p[r];
-    p[i] = r;
-    if (!used[i]) continue;
-    if (comp[r] < 0) comp[r] = nc++;
-    comp[i] = comp[r];
-  }
-  free(p);
-  free(used);
-  return nc;
-}
-
 ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_in, ss_segmentation *out,
                           char *warnings, size_t warnings_size, ss_error *err) {
   double t_start = ss_time();
@@ -168,8 +139,11 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (!input || input->nv <= 0 || input->nf <= 0 || !input->V || !input->F)
     return ss_fail(err, SS_ERR_INVALID, "segment: empty mesh");
   if (o.n_eigs < 2) return ss_fail(err, SS_ERR_INVALID, "segment: n_eigs must be at least 2 (got %d)", o.n_eigs);
-  if (!o.no_streamline && o.target_faces < 4)
-    return ss_fail(err, SS_ERR_INVALID, "segment: target face count %d is too small", o.target_faces);
+  if (!o.no_streamline && (o.target_faces < 4 || o.target_faces > SS_REMESH_MAX_FACES))
+    return ss_fail(err, SS_ERR_INVALID,
+                   "segment: target face count %d of the remeshing is outside the supported 4 .. %d (the default "
+                   "15000 is what the paper uses)",
+                   o.target_faces, SS_REMESH_MAX_FACES);
   if (o.cleanup_rings < 0) return ss_fail(err, SS_ERR_INVALID, "segment: negative clean-up radius");
 
   ss_status st = SS_OK;
@@ -194,7 +168,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   {
     int *comp = malloc(sizeof(int) * (size_t)proc->nv);
     if (!comp) goto nomem;
-    int nc = mesh_components(proc, comp);
+    int nc = ssi_mesh_components(proc, comp);
     if (nc < 0) { free(comp); goto nomem; }
     if (nc > 1) {
       st = segment_components(input, proc, to_input, comp, nc, &o, out, warnings, warnings_size, err);

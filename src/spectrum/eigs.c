@@ -82,8 +82,9 @@ static ss_status validate(const ss_sparse *W, const double *M, int k, ss_error *
   for (int i = 0; i < n; i++)
     if (!(M[i] > 0) || !isfinite(M[i]))
       return ss_fail(err, SS_ERR_INVALID,
-                     "eigs: mass of vertex %d is %g; all masses must be positive and finite "
-                     "(unreferenced or degenerate vertices?)",
+                     "eigs: mass of vertex %d is %g; all masses must be positive and finite: a vertex no face uses "
+                     "(unreferenced) or only zero-area faces use has none; drop such vertices first "
+                     "(ss_mesh_sanitize does)",
                      i, M[i]);
   return SS_OK;
 }
@@ -225,6 +226,7 @@ typedef struct {
   int maxiter, ncv_opt;
   int nops;
   double tsolve;
+  int k; /* the caller's k (messages) */
 } lanczos_ctx;
 
 static void project_all(lanczos_ctx *c, double *x) {
@@ -269,9 +271,12 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
   const int n = c->n;
   const size_t nn = (size_t)n;
   int room = n - c->nnull - c->ndefl; /* dimension of the space OP acts on */
-  if (nev < 1 || nev >= room)
-    return ss_fail(err, SS_ERR_NUMERIC, "eigs: cannot compute %d more eigenpairs in a space of dimension %d", nev,
-                   room);
+  if (nev < 1) return ss_fail(err, SS_ERR_NUMERIC, "eigs: asked for %d eigenpairs", nev);
+  if (nev >= room) /* every vertex but one is an eigenpair already: only ever reached for k ~ n */
+    return ss_fail(err, SS_ERR_NUMERIC,
+                   "eigs: k = %d is too close to the number of vertices (%d): %d eigenpair%s still to be found in a "
+                   "space of dimension %d; use k <= %d, which leaves the Lanczos solver the room it needs",
+                   c->k, n, nev, nev == 1 ? " is" : "s are", room, c->nnull + (n - c->nnull - 1) / 2);
   int ncv = c->ncv_opt ? c->ncv_opt : (2 * nev + 1 > 20 ? 2 * nev + 1 : 20);
   if (ncv > room) ncv = room;
   if (ncv <= nev) ncv = nev + 1;
@@ -310,8 +315,17 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
     goto out;
   }
   if (iparam[4] < nev) {
-    st = ss_fail(err, SS_ERR_NUMERIC, "eigs: ARPACK converged %d of %d eigenpairs (info %d: %s)", (int)iparam[4], nev,
-                 (int)info, info ? arpack_info_msg((int)info) : "no convergence");
+    /* the usual cause: k so close to n that the Krylov space could not get its ~2k vectors */
+    int k = c->k, kmax = c->nnull + (n - c->nnull - 1) / 2;
+    if (!c->ncv_opt && 2 * nev + 1 > room)
+      st = ss_fail(err, SS_ERR_NUMERIC,
+                   "eigs: k = %d is too close to the number of vertices (%d): the Lanczos solver (ARPACK) needs room "
+                   "for about 2k basis vectors and converged only %d of the %d pairs asked (ARPACK info %d); use k "
+                   "<= %d, which leaves it that room",
+                   k, n, (int)iparam[4], nev, (int)info, kmax);
+    else
+      st = ss_fail(err, SS_ERR_NUMERIC, "eigs: ARPACK converged %d of %d eigenpairs (info %d: %s)", (int)iparam[4], nev,
+                   (int)info, info ? arpack_info_msg((int)info) : "no convergence");
     goto out;
   }
   /* Final Lanczos factorisation OP V = V T + f e_ncvᵀ: T's diagonal and subdiagonal sit in workl at
@@ -437,7 +451,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   }
 
   double tt0 = ss_time(), tt1 = tt0, tt2 = tt0;
-  lanczos_ctx lc = {NULL, sqm, mass, label, acc, n, nnull, NULL, 0, NULL, sigma, tol, opscale, maxiter, o.ncv, 0, 0.0};
+  lanczos_ctx lc = {NULL, sqm, mass, label, acc, n, nnull, NULL, 0, NULL, sigma, tol, opscale, maxiter, o.ncv, 0, 0.0, k};
   int recovered = 0;
   if (kk > 0) {
     lam = malloc(sizeof(double) * (size_t)k);
@@ -564,6 +578,19 @@ ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss
   if (!M) return ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory");
   ss_status st = ss_cotan_stiffness(m, &W, err);
   if (!st) st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, M, err);
+  /* a vertex without mass makes the problem singular: say why it has none */
+  for (int i = 0; !st && i < m->nv; i++) {
+    if (M[i] > 0) continue;
+    int used = 0;
+    for (size_t c = 0; c < 3 * (size_t)m->nf && !used; c++) used = m->F[c] == i;
+    st = ss_fail(err, SS_ERR_INVALID,
+                 used ? "eigs: vertex %d is only in zero-area faces, so it has no mass and the eigenproblem is "
+                        "singular; drop degenerate faces and the vertices they leave unused first (ss_mesh_sanitize "
+                        "does; `specseg info` counts them)"
+                      : "eigs: vertex %d is used by no face (unreferenced), so it has no mass and the eigenproblem is "
+                        "singular; drop unreferenced vertices first (ss_mesh_sanitize does; `specseg info` counts them)",
+                 i);
+  }
   if (!st) st = ss_eigs(&W, M, k, NULL, evals, evecs, err);
   ss_sparse_free(&W);
   free(M);
