@@ -238,6 +238,17 @@ ss_status cli_read_ints_lines(const char *path, int **out, int **lines, int *n, 
   *out = NULL;
   *lines = NULL;
   *n = 0;
+  if (wants_npy(path)) { /* "line" i + 1 = entry i, so messages still point at the entry */
+    ss_status st = read_npy_vec(path, 1, (void **)out, n, err);
+    if (st) return st;
+    if (!(*lines = malloc(sizeof(int) * (size_t)(*n > 0 ? *n : 1)))) {
+      free(*out);
+      *out = NULL;
+      return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", cli_in_name(path));
+    }
+    for (int i = 0; i < *n; i++) (*lines)[i] = i + 1;
+    return SS_OK;
+  }
   int is;
   ss_status st = stream_input(path, &is, &b, &len, err);
   if (st || !is) return st ? st : ss_read_ints_lines(path, out, lines, n, err);
