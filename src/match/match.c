@@ -1,5 +1,6 @@
 /* The matching pipeline of paper §6 on two shapes: pairing of the segments, their probe functions as
  * extra probes of the functional map (STD / ASA / DIFF), point map, ZoomOut. */
+#include "util/warnings.h"
 #include "specseg/match.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
@@ -386,12 +387,6 @@ done:
   return st;
 }
 
-static void warn_append(char *w, size_t size, const char *what) {
-  if (!w || !size) return;
-  size_t len = strlen(w);
-  if (len + 1 >= size) return;
-  snprintf(w + len, size - len, "%s%s", len ? "; " : "", what);
-}
 
 static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int is_x, char *w, size_t size) {
   if (!k->active) return;
@@ -403,7 +398,7 @@ static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int 
            name, k->nkept, k->nc, k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
            nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
            is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
-  warn_append(w, size, line);
+  ssi_warn_append(w, size, line);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,

@@ -1,5 +1,6 @@
 /* The segmentation pipeline of paper §4: streamline (CMCF + remesh + Ψ) → Fiedler vector →
  * critical points → iVd on the NPP22 graph → labels and centres back on the input. */
+#include "util/warnings.h"
 #include "specseg/segment.h"
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
@@ -120,12 +121,6 @@ done:
   return st;
 }
 
-static void warn_append(char *w, size_t size, const char *what) {
-  if (!w || !size) return;
-  size_t len = strlen(w);
-  if (len + 1 >= size) return;
-  snprintf(w + len, size - len, "%s%s", len ? "; " : "", what);
-}
 
 ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_in, ss_segmentation *out,
                           char *warnings, size_t warnings_size, ss_error *err) {
@@ -160,7 +155,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (o.sanitize) {
     char sw[512];
     if ((st = ss_mesh_sanitize(input, &clean, &to_input, sw, sizeof sw, err))) goto fail;
-    if (sw[0]) warn_append(warnings, warnings_size, sw);
+    if (sw[0]) ssi_warn_append(warnings, warnings_size, sw);
     proc = &clean;
   }
 
@@ -483,13 +478,13 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
   {
     char w[512];
     snprintf(w, sizeof w, "%d components: %d segmented on their own (%d segments)", ncomp, nsig, m);
-    warn_append(warnings, warnings_size, w);
+    ssi_warn_append(warnings, warnings_size, w);
     if (ntiny) {
       snprintf(w, sizeof w,
                "%d small component%s (under %g%% of the area each; first input vertex %s) got no segment of "
                "their own: their vertices take the segment of the nearest vertex of a larger component",
                ntiny, ntiny > 1 ? "s" : "", 100 * SSI_SIGNIFICANT_AREA, tiny_list);
-      warn_append(warnings, warnings_size, w);
+      ssi_warn_append(warnings, warnings_size, w);
     }
   }
   goto done;
