@@ -207,6 +207,15 @@ static int null_components(const ss_sparse *W, int *label) {
 /* x ← P x, P = I − Σ_c y_c y_cᵀ with y_c = M^{1/2} 1_c / ‖M^{1/2} 1_c‖ (mass[c] = Σ_{i∈c} M_i). */
 static void project_out(double *x, int n, const int *label, const double *sqm, const double *mass, double *acc,
                         int nc) {
+  if (nc == 1) { /* one component (the usual case): the same sums without the scatter */
+    double a = 0;
+    for (int i = 0; i < n; i++)
+      if (label[i] >= 0) a += sqm[i] * x[i];
+    a /= mass[0];
+    for (int i = 0; i < n; i++)
+      if (label[i] >= 0) x[i] -= sqm[i] * a;
+    return;
+  }
   memset(acc, 0, sizeof(double) * (size_t)nc);
   for (int i = 0; i < n; i++)
     if (label[i] >= 0) acc[label[i]] += sqm[i] * x[i];
