@@ -4,21 +4,19 @@
  * positive definite matrices solved against blocks of many columns at once. */
 #include "linalg/cholmod_wrap.h"
 
-#include <cblas.h>
 #include <math.h>
-#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
-/* one solve workspace per extra OpenMP thread of ssi_chol_solve_par */
+/* a solve workspace of ssi_chol_solve_slot (slots 1..; slot 0 is the factor's own common) */
 typedef struct {
   cholmod_common cc;
   cholmod_dense *X, *Y, *E;
   int started;
 } chol_ws;
 
-#define CHOL_MAX_WS 16
+#define CHOL_MAX_WS SSI_CHOL_SLOTS
 
 struct ssi_chol {
   cholmod_common cc;
@@ -181,38 +179,20 @@ static int solve_block(const cholmod_factor *L, int n, const double *B, double *
   return 1;
 }
 
-ss_status ssi_chol_solve_par(ssi_chol *c, const double *B, double *X, int nrhs, ss_error *err) {
+ss_status ssi_chol_solve_slot(ssi_chol *c, int slot, const double *B, double *X, int nrhs, ss_error *err) {
   if (nrhs < 1) return SS_OK;
-  int nt = omp_in_parallel() || openblas_get_num_threads() > 1 ? 1 : omp_get_max_threads();
-  if (nt > CHOL_MAX_WS) nt = CHOL_MAX_WS;
-  /* at least 4 columns a thread: CHOLMOD's simplicial kernels take 4 at a time */
-  if (nt > nrhs / 4) nt = nrhs / 4;
-  if (nt <= 1) return ssi_chol_solve(c, B, X, nrhs, err);
-  for (int t = 1; t < nt; t++)
-    if (!c->ws[t].started) {
-      cholmod_start(&c->ws[t].cc);
-      c->ws[t].cc.print = 0;
-      c->ws[t].cc.error_handler = NULL;
-      c->ws[t].started = 1;
-    }
-  const size_t n = (size_t)c->n;
-  int bad = 0, nomem = 0;
-#pragma omp parallel num_threads(nt) reduction(| : bad, nomem)
-  {
-    int t = omp_get_thread_num(), T = omp_get_num_threads();
-    int j0 = (int)((long)nrhs * t / T), j1 = (int)((long)nrhs * (t + 1) / T);
-    if (j1 > j0) {
-      cholmod_common *cc = t ? &c->ws[t].cc : &c->cc;
-      cholmod_dense **Xw = t ? &c->ws[t].X : &c->X, **Yw = t ? &c->ws[t].Y : &c->Y, **Ew = t ? &c->ws[t].E : &c->E;
-      if (!solve_block(c->L, c->n, B + n * (size_t)j0, X + n * (size_t)j0, j1 - j0, cc, Xw, Yw, Ew)) {
-        bad = 1;
-        nomem = cc->status == CHOLMOD_OUT_OF_MEMORY;
-      }
-    }
+  if (slot <= 0) return ssi_chol_solve(c, B, X, nrhs, err);
+  if (slot >= CHOL_MAX_WS) return ss_fail(err, SS_ERR_INVALID, "CHOLMOD solve: no workspace slot %d", slot);
+  chol_ws *w = &c->ws[slot];
+  if (!w->started) {
+    cholmod_start(&w->cc);
+    w->cc.print = 0;
+    w->cc.error_handler = NULL;
+    w->started = 1;
   }
-  if (bad)
-    return ss_fail(err, nomem ? SS_ERR_NOMEM : SS_ERR_NUMERIC, "CHOLMOD solve failed%s",
-                   nomem ? " (out of memory)" : "");
+  if (!solve_block(c->L, c->n, B, X, nrhs, &w->cc, &w->X, &w->Y, &w->E))
+    return ss_fail(err, w->cc.status == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                   "CHOLMOD solve failed (status %d)", w->cc.status);
   return SS_OK;
 }
 

@@ -22,10 +22,11 @@ ss_status ssi_chol_factor_super(const ss_sparse *A, double alpha, const double *
 /* X = (A + alpha D)^{-1} B for nrhs column-major right-hand sides of length n. X may alias B. */
 ss_status ssi_chol_solve(ssi_chol *c, const double *B, double *X, int nrhs, ss_error *err);
 
-/* The same, with the columns shared among the OpenMP threads (each with its own CHOLMOD workspace)
- * when OpenBLAS runs single-threaded and there are enough columns; otherwise one ssi_chol_solve.
- * Each column's result does not depend on how the columns are shared. Call it from one thread. */
-ss_status ssi_chol_solve_par(ssi_chol *c, const double *B, double *X, int nrhs, ss_error *err);
+/* The same through solve workspace `slot` (0 .. SSI_CHOL_SLOTS-1; slot 0 is ssi_chol_solve's own):
+ * calls on distinct slots may run at the same time from different threads (the factor is only
+ * read). Each column's result does not depend on the slot or on how columns are grouped. */
+#define SSI_CHOL_SLOTS 16
+ss_status ssi_chol_solve_slot(ssi_chol *c, int slot, const double *B, double *X, int nrhs, ss_error *err);
 
 /* Number of negative pivots of the LDLᵀ factorisation of A + alpha*diag(d) (same pattern and
  * ordering as the factored matrix: refactored without a new analysis, or, for a supernodal factor,
