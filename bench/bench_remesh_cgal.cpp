@@ -1,11 +1,12 @@
-/* Benchmark: isotropic remeshing to 15,000 faces, specseg's ss_remesh against CGAL's
- * Polygon_mesh_processing::isotropic_remeshing on the same meshes in one process, interleaved
+/* Benchmark: streamlining against CGAL. Isotropic remeshing to 15,000 faces, specseg's ss_remesh
+ * against CGAL's Polygon_mesh_processing::isotropic_remeshing, and (when CGAL has Eigen) CMCF,
+ * ss_cmcf_smooth against PMP::smooth_shape, on the same meshes in one process, interleaved
  * (ours, CGAL, ours, CGAL, ... per shape), timed in CPU seconds of this process (single-threaded:
  * OpenMP and OpenBLAS are set to one thread, CGAL's remeshing is sequential), with the quality of
  * both outputs measured by the same code (ss_remesh_quality_measure).
  *
  *   bench_remesh_cgal [--data DIR] [--count N] [--first I] [--rounds R] [--raw] [--threads T]
- *                     [--cgal-iterations I]
+ *                     [--cgal-iterations I] [--cmcf-count N] [--cgal-time T]
  *
  * Input: the pipeline's remeshing input, FAUST tr_reg_I.. smoothed by ss_cmcf_smooth (defaults), or
  * the raw scans with --raw. CGAL's settings: target edge length L = 1.08 · the edge of an equilateral
@@ -16,6 +17,13 @@
  * CGAL's timing covers the isotropic_remeshing call only (the Surface_mesh is copied beforehand);
  * ours covers the whole ss_remesh call (conversion in and out included).
  *
+ * CMCF (--cmcf-count N shapes first, default 10, 0 skips): ours with its defaults (12 steps, δ = 2.2e-5
+ * at unit area) on the raw scans; CGAL's smooth_shape (the curvature flow of Kazhdan et al. too) with
+ * 12 iterations and time 1e-5 (--cgal-time; the authors' step, here in metres: it moves the vertices
+ * about as far as ours, mean 0.020 vs 0.026 of the bbox diagonal on tr_reg_000; 2.2e-5 · area moved
+ * them 0.060) and its default solver (Eigen BiCGSTAB with incomplete LU). Printed: both CPU medians,
+ * the ratio, and the mean vertex displacement / bbox diagonal of both.
+ *
  * Prints per shape the median CPU times and their ratio, then the median over shapes of both, the
  * ratio CGAL / specseg (> 1: specseg faster), and the quality figures of both (median and worst over
  * shapes: fraction of triangles with min angle >= 30°, fraction of valence-6 vertices, face count,
@@ -23,6 +31,9 @@
  * (Debian: libcgal-dev). */
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
+#ifdef SS_HAVE_CGAL_EIGEN
+#include <CGAL/Polygon_mesh_processing/smooth_shape.h>
+#endif
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
@@ -117,9 +128,88 @@ struct quality_stats {
   }
 };
 
+/* mean |x_out - x_in| / bbox diagonal of the input */
+static double mean_displacement(const ss_mesh &in, const double *out) {
+  double s = 0;
+  for (int v = 0; v < in.nv; v++) {
+    double dx = out[3 * v] - in.V[3 * v], dy = out[3 * v + 1] - in.V[3 * v + 1], dz = out[3 * v + 2] - in.V[3 * v + 2];
+    s += std::sqrt(dx * dx + dy * dy + dz * dz);
+  }
+  return s / in.nv / ss_mesh_bbox_diagonal(&in);
+}
+
+/* CMCF: ss_cmcf_smooth vs CGAL's smooth_shape; 77 when the data is missing, 1 on failure */
+static int run_cmcf(const char *data, int first, int count, int rounds, double cgal_time) {
+#ifndef SS_HAVE_CGAL_EIGEN
+  (void)data; (void)first; (void)count; (void)rounds; (void)cgal_time;
+  std::printf("CMCF: CGAL's smooth_shape needs Eigen (Debian libeigen3-dev): not compared\n");
+  return 0;
+#else
+  std::vector<double> ours, cgal, dvo, dvc;
+  std::printf("CMCF, 12 steps: specseg ss_cmcf_smooth vs CGAL smooth_shape (raw FAUST, %d rounds interleaved, CPU seconds)\n",
+              rounds);
+  int n = 0;
+  for (int i = first; i < first + count; i++) {
+    char path[4096];
+    std::snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", data, i);
+    ss_mesh m;
+    ss_error e;
+    if (ss_read_mesh(path, &m, &e) != SS_OK) {
+      if (n == 0) {
+        std::fprintf(stderr, "SKIP: %s\n", e.msg);
+        return 77;
+      }
+      break;
+    }
+    const Mesh input = to_cgal(m);
+    const double time = cgal_time > 0 ? cgal_time : 1e-5;
+    std::vector<double> to, tc;
+    std::vector<double> cout_pts(3 * (size_t)m.nv);
+    ss_mesh s = {0, 0, NULL, NULL};
+    for (int r = 0; r < rounds; r++) {
+      ss_mesh_free(&s);
+      double c0 = cpu_time();
+      if (ss_cmcf_smooth(&m, NULL, &s, &e) != SS_OK) {
+        std::fprintf(stderr, "%s: %s\n", path, e.msg);
+        return 1;
+      }
+      to.push_back(cpu_time() - c0);
+      Mesh cm = input;
+      c0 = cpu_time();
+      PMP::smooth_shape(faces(cm), cm, time, CGAL::parameters::number_of_iterations(12));
+      tc.push_back(cpu_time() - c0);
+      int v = 0;
+      for (auto vd : cm.vertices()) {
+        const K::Point_3 &p = cm.point(vd);
+        cout_pts[3 * (size_t)v] = p.x();
+        cout_pts[3 * (size_t)v + 1] = p.y();
+        cout_pts[3 * (size_t)v + 2] = p.z();
+        v++;
+      }
+    }
+    double mo = median(to), mc = median(tc);
+    ours.push_back(mo);
+    cgal.push_back(mc);
+    dvo.push_back(mean_displacement(m, s.V));
+    dvc.push_back(mean_displacement(m, cout_pts.data()));
+    std::printf("tr_reg_%03d: specseg %.1f ms  CGAL %.1f ms  ratio %.2fx | mean displacement / diag %.4f vs %.4f\n", i,
+                1e3 * mo, 1e3 * mc, mc / mo, dvo.back(), dvc.back());
+    std::fflush(stdout);
+    ss_mesh_free(&s);
+    ss_mesh_free(&m);
+    n++;
+  }
+  std::printf("RESULT cmcf FAUST shapes=%d: specseg median %.1f ms CPU, CGAL smooth_shape median %.1f ms CPU, ratio "
+              "CGAL/specseg %.2fx\n",
+              n, 1e3 * median(ours), 1e3 * median(cgal), median(cgal) / median(ours));
+  return 0;
+#endif
+}
+
 int main(int argc, char **argv) {
   const char *data = std::getenv("SS_DATA_DIR") ? std::getenv("SS_DATA_DIR") : SS_DATA_DIR_DEFAULT;
-  int count = 20, first = 0, rounds = 3, raw = 0, threads = 1, cgal_iter = 5;
+  int count = 20, first = 0, rounds = 3, raw = 0, threads = 1, cgal_iter = 5, cmcf_count = 10;
+  double cgal_time = 0;
   for (int i = 1; i < argc; i++) {
     if (!std::strcmp(argv[i], "--data") && i + 1 < argc) data = argv[++i];
     else if (!std::strcmp(argv[i], "--count") && i + 1 < argc) count = std::atoi(argv[++i]);
@@ -127,11 +217,13 @@ int main(int argc, char **argv) {
     else if (!std::strcmp(argv[i], "--rounds") && i + 1 < argc) rounds = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--cgal-iterations") && i + 1 < argc) cgal_iter = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--cmcf-count") && i + 1 < argc) cmcf_count = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--cgal-time") && i + 1 < argc) cgal_time = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--raw")) raw = 1;
     else {
       std::fprintf(stderr,
                    "usage: bench_remesh_cgal [--data DIR] [--count N] [--first I] [--rounds R] [--raw] [--threads T]\n"
-                   "                         [--cgal-iterations I]\n");
+                   "                         [--cgal-iterations I] [--cmcf-count N] [--cgal-time T]\n");
       return 2;
     }
   }
@@ -141,6 +233,7 @@ int main(int argc, char **argv) {
   if (cgal_iter < 1) cgal_iter = 1;
   omp_set_num_threads(threads);
   openblas_set_num_threads(1);
+  if (cmcf_count > 0 && run_cmcf(data, first, cmcf_count, rounds, cgal_time) == 77) return 77;
   ss_remesh_options ro;
   ss_remesh_default_options(&ro);
   const int target = ro.target_faces;
