@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
-# Remeshing benchmark: specseg's ss_remesh vs CGAL's isotropic_remeshing on FAUST, in one process.
-# Installs Debian's CGAL (header-only, with GMP/MPFR) and a C++ compiler when missing, then builds the
-# optional bench_remesh_cgal target.
+# Streamlining benchmark: ss_remesh vs CGAL isotropic_remeshing and ss_cmcf_smooth vs CGAL smooth_shape
+# on FAUST, in one process.
+# Installs Debian's CGAL (header-only, with GMP/MPFR; Eigen for smooth_shape) and a C++ compiler when
+# missing, then builds the optional bench_remesh_cgal target.
 #   scripts/bench_remesh_cgal.sh [BUILD_DIR] [bench_remesh_cgal args, e.g. --count 100 --rounds 3 --raw]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 shift || true
 
-pkgs=(g++ libcgal-dev libgmp-dev libmpfr-dev)
+pkgs=(g++ libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
