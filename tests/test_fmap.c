@@ -418,6 +418,102 @@ static void test_zoomout_exact(void) {
   ss_mesh_free(&Y);
 }
 
+/* ss_zoomout_sampled with every vertex its own sample (in order, the masses as weights) is ss_zoomout
+ * bit for bit: on 2,562 vertices (the sampled loop's cluster search) and on 642 (its brute-force
+ * search, while ss_zoomout searches by clusters); with FPS samples it stays close to ss_zoomout. And
+ * ss_zoomout_samples: farthest-point order from vertex 0, nearest samples, Voronoi areas. */
+static void test_zoomout_sampled(void) {
+  for (int sub = 3; sub <= 4; sub++) {
+    ss_mesh X, Y;
+    bumpy_sphere(sub, 0.3, 1.0, &X);
+    bumpy_sphere(sub, 0.4, STRETCH, &Y);
+    int n = X.nv, k0 = 15, kmax = 40;
+    double *evX = malloc(sizeof(double) * kmax), *phX = malloc(sizeof(double) * n * kmax);
+    double *evY = malloc(sizeof(double) * kmax), *phY = malloc(sizeof(double) * n * kmax), *MX = malloc(sizeof(double) * n);
+    ss_error e;
+    if (ss_mesh_eigs(&X, kmax, evX, phX, &e) || ss_mesh_eigs(&Y, kmax, evY, phY, &e) ||
+        ss_mass_lumped(&X, SS_MASS_BARYCENTRIC, MX, &e)) {
+      SKIP("eigenpairs: %s", e.msg);
+    } else {
+      double *C0 = calloc((size_t)k0 * k0, sizeof(double)), *C1 = malloc(sizeof(double) * kmax * kmax);
+      double *C2 = malloc(sizeof(double) * kmax * kmax);
+      for (int i = 0; i < k0; i++) {
+        double s = 0;
+        for (int x = 0; x < n; x++) s += MX[x] * phX[x + (size_t)n * i] * phY[x + (size_t)n * i];
+        C0[i + k0 * i] = s < 0 ? -1 : 1;
+      }
+      int *m1 = malloc(sizeof(int) * n), *m2 = malloc(sizeof(int) * n), *id = malloc(sizeof(int) * n);
+      for (int x = 0; x < n; x++) id[x] = x;
+      for (int step = 1; step <= 4; step += 3) {
+        CHECK(ss_zoomout(n, n, phY, phX, MX, k0, C0, kmax, step, m1, C1, NULL) == SS_OK);
+        ss_zoomout_sample all = {n, n, id, id, MX, NULL, NULL};
+        CHECK(ss_zoomout_sampled(n, n, phY, phX, k0, C0, kmax, step, &all, m2, C2, NULL) == SS_OK);
+        int same = 0;
+        for (int x = 0; x < n; x++) same += m1[x] == m2[x];
+        printf("sampled zoomout, every vertex (%d), step %d: %d of %d map entries as ss_zoomout, C %s\n", n, step,
+               same, n, memcmp(C1, C2, sizeof(double) * kmax * kmax) ? "differs" : "identical");
+        CHECK(same == n);
+        CHECK(memcmp(C1, C2, sizeof(double) * kmax * kmax) == 0);
+      }
+      /* FPS samples */
+      const int ns = n / 4;
+      int *sX = malloc(sizeof(int) * ns), *sY = malloc(sizeof(int) * ns), *nX = malloc(sizeof(int) * n);
+      int *nY = malloc(sizeof(int) * n), *part = malloc(sizeof(int) * n);
+      double *wX = malloc(sizeof(double) * ns);
+      CHECK(ss_zoomout_samples(&X, MX, ns, sX, wX, nX, NULL) == SS_OK);
+      CHECK(ss_zoomout_samples(&Y, NULL, ns, sY, NULL, nY, NULL) == SS_OK);
+      CHECK(sX[0] == 0 && sY[0] == 0);
+      int bad = 0;
+      double wsum = 0, area = 0, *wchk = calloc((size_t)ns, sizeof(double));
+      char *seen = calloc((size_t)n, 1);
+      for (int i = 0; i < ns; i++) bad += seen[sX[i]]++ != 0; /* distinct (the vertices are) */
+      for (int x = 0; x < n; x++) {
+        const double *p = X.V + 3 * x;
+        double bd = INFINITY;
+        int bi = -1;
+        for (int i = 0; i < ns; i++) {
+          const double *q = X.V + 3 * sX[i];
+          double d = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+          if (d < bd) bd = d, bi = i;
+        }
+        bad += nX[x] != bi;
+        wchk[nX[x]] += MX[x];
+        area += MX[x];
+      }
+      for (int i = 0; i < ns; i++) bad += wchk[i] != wX[i], wsum += wX[i];
+      CHECK_MSG(bad == 0, "%d sample / nearest-sample / weight mismatches", bad);
+      CHECK_NEAR(wsum, area, 1e-12 * area);
+      CHECK(ss_nn_partition(n, kmax, phY, n, 0, part, NULL) == SS_OK);
+      ss_zoomout_sample smp = {ns, ns, sY, sX, wX, nX, part};
+      CHECK(ss_zoomout(n, n, phY, phX, MX, k0, C0, kmax, 1, m1, NULL, NULL) == SS_OK);
+      CHECK(ss_zoomout_sampled(n, n, phY, phX, k0, C0, kmax, 1, &smp, m2, C2, NULL) == SS_OK);
+      /* the same without the guess and the partition (they only speed the final search up) */
+      int *m3 = malloc(sizeof(int) * n);
+      ss_zoomout_sample bare = {ns, ns, sY, sX, wX, NULL, NULL};
+      CHECK(ss_zoomout_sampled(n, n, phY, phX, k0, C0, kmax, 1, &bare, m3, NULL, NULL) == SS_OK);
+      CHECK(memcmp(m2, m3, sizeof(int) * n) == 0);
+      double e1 = 0, e2 = 0; /* mean Euclidean error on Y (ground truth identity) */
+      for (int x = 0; x < n; x++) {
+        const double *p = Y.V + 3 * x, *a = Y.V + 3 * m1[x], *b = Y.V + 3 * m2[x];
+        e1 += sqrt((a[0] - p[0]) * (a[0] - p[0]) + (a[1] - p[1]) * (a[1] - p[1]) + (a[2] - p[2]) * (a[2] - p[2]));
+        e2 += sqrt((b[0] - p[0]) * (b[0] - p[0]) + (b[1] - p[1]) * (b[1] - p[1]) + (b[2] - p[2]) * (b[2] - p[2]));
+      }
+      e1 /= n * sqrt(ss_mesh_area(&Y)), e2 /= n * sqrt(ss_mesh_area(&Y));
+      printf("sampled zoomout, %d of %d samples: error %.4f (every vertex: %.4f)\n", ns, n, e2, e1);
+      CHECK(e2 <= 1.3 * e1 + 0.002);
+      ss_zoomout_sample badsmp = {ns, ns, sY, sX, wX, nX, part};
+      badsmp.ns_S = n + 1;
+      CHECK(ss_zoomout_sampled(n, n, phY, phX, k0, C0, kmax, 1, &badsmp, m2, NULL, NULL) == SS_ERR_INVALID);
+      CHECK(ss_zoomout_samples(&X, MX, n + 1, sX, wX, nX, NULL) == SS_ERR_INVALID);
+      free(sX), free(sY), free(nX), free(nY), free(part), free(wX), free(wchk), free(seen), free(m3);
+      free(C0), free(C1), free(C2), free(m1), free(m2), free(id);
+    }
+    free(evX), free(phX), free(evY), free(phY), free(MX);
+    ss_mesh_free(&X);
+    ss_mesh_free(&Y);
+  }
+}
+
 static double mean_error(const ss_mesh *Y, const int *map) {
   double s = 0;
   for (int i = 0; i < Y->nv; i++) {
@@ -569,6 +665,7 @@ int main(void) {
   test_nn_guided();
   test_match();
   test_zoomout_exact();
+  test_zoomout_sampled();
   test_humanoid();
   test_faust_self();
   TEST_MAIN_END();

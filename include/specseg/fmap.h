@@ -162,6 +162,34 @@ SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const doub
 SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                             const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
+/* ZoomOut on vertex samples (as ZoomOut's authors run it): the iterations above on the sampled rows
+ * of Φ_S and Φ_T only, the spectral up-sampling weighted by the target samples' areas,
+ * C ← Φ_T[sub_T]ᵀ diag(w_T) Π Φ_S[sub_S], then one point map of every target vertex from the final
+ * C (kmax x kmax) among all source vertices. Its cost per iteration scales with the samples, not
+ * the vertices. With every vertex as its own sample (sub = 0..n−1 in order, w_T = M_T) it is
+ * ss_zoomout bit for bit (tests/test_fmap.c). */
+typedef struct ss_zoomout_sample {
+  int ns_S, ns_T;       /* samples on each shape (1 ≤ ns ≤ n) */
+  const int *sub_S;     /* ns_S source vertices */
+  const int *sub_T;     /* ns_T target vertices */
+  const double *w_T;    /* ns_T weights of the target samples (e.g. their Voronoi areas) */
+  const int *near_T;    /* may be NULL: n_T entries, a sample (index into sub_T) near each target
+                           vertex; its image is the final search's starting guess (speed only) */
+  const int *part_S;    /* may be NULL: a partition of the source's full Φ_S (kmax columns) for the
+                           final search (ss_nn_exact_guided; speed only, e.g. shared by two calls) */
+} ss_zoomout_sample;
+
+SS_API ss_status ss_zoomout_sampled(int n_S, int n_T, const double *evecs_S, const double *evecs_T, int k0,
+                                    const double *C0, int kmax, int step, const ss_zoomout_sample *smp, int *map,
+                                    double *C_out, ss_error *err);
+
+/* Samples for ss_zoomout_sampled: ns vertices of m by Euclidean farthest-point sampling from vertex
+ * 0 (sub[0] = 0), each vertex's nearest sample in R³ (near, n entries; ties to the earlier sample)
+ * and each sample's weight w = Σ M over the vertices nearest to it (its Voronoi area; M: lumped
+ * masses, n entries; w and M may both be NULL). ns ≤ m->nv. */
+SS_API ss_status ss_zoomout_samples(const ss_mesh *m, const double *M, int ns, int *sub, double *w, int *near,
+                                    ss_error *err);
+
 /* An unsupervised energy of a point map π : T -> S (map[n_T]), no ground truth: with C the functional
  * map of π at size K (ss_fmap_from_p2p: C = Φ_Tᵀ M_T Π Φ_S) and C_k its leading k x k block,
  *   E_orth = mean over k = k0, k0+step, …, K of ‖C_kᵀ C_k − I_k‖²_F / k
@@ -224,6 +252,10 @@ typedef struct ss_fmap_match_options {
    * from the first descr_k eigenpairs, then projected onto the first k. 0 = k (NO17 and the paper:
    * what specseg eval's Table 1 uses). Must be 0 or >= k; the shapes need that many eigenpairs. */
   int descr_k;
+  /* ZoomOut on this many vertex samples per shape (ss_zoomout_samples, ss_zoomout_sampled), then one
+   * point map of every vertex; 0 (default) or at least either shape's vertex count: on every vertex
+   * (ss_zoomout). */
+  int zoomout_samples;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);

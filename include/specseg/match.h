@@ -140,6 +140,9 @@ typedef struct ss_match_options {
   /* fmap.descr_k of the segment-aided (ASA / DIFF) map; fmap.descr_k is the STD map's. Default 0
    * (= k, the paper's probes): with descriptors from 100 eigenpairs DIFF got worse (docs/tuning.md). */
   int seg_descr_k;
+  /* SS_REFINE_BEST: refine only the start with the lower selection energy (the other start stays a
+   * candidate unrefined); 0: refine every start */
+  int refine_single;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);
