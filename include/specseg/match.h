@@ -175,6 +175,14 @@ typedef struct ss_match_result {
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);
 
+/* The same with the pairing given instead of computed (e.g. by ss_pair_critical_points_conf from
+ * landmark fields cached per shape, as specseg eval does; opts->pairing is then not used, except
+ * min_landmarks): pairs (sx < X->seg.m, sy < Y->seg.m) is copied into out->pairs. With the pairing
+ * ss_match_prepared would compute, the result is the same. */
+SS_API ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                         const int *lmY, const ss_segment_pairs *pairs, const ss_match_options *opts,
+                                         ss_match_result *out, ss_error *err);
+
 /* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL. */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                           const ss_match_options *opts, ss_match_result *out, ss_error *err);

@@ -3,6 +3,7 @@
  * sets — all of it depends on the shape only, so it is computed once and optionally cached on disk. */
 #include "eval_internal.h"
 #include "specseg/io.h"
+#include "specseg/spectrum.h"
 #include "specseg/streamline.h"
 
 #include <math.h>
@@ -13,6 +14,7 @@
 
 void ev_shape_free(ev_shape *s) {
   if (!s) return;
+  free(s->rprep.evals), free(s->rprep.evecs); /* the rest of rprep is prep's */
   ss_shape_prep_free(&s->prep);
   ss_mesh_free(&s->mesh);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), ss_fmap_probes_free(&s->base[i]);
@@ -74,12 +76,32 @@ static ss_status landmark_fields(ev_shape *s, const ev_context *ctx, ss_error *e
   return st;
 }
 
-/* ---- disk cache: a text key line (everything the content depends on), then raw arrays ---------- */
+ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
+  if (ctx->kref <= 0 || s->rprep.evecs) return SS_OK;
+  const int nv = s->mesh.nv, kr = ctx->kref;
+  if (kr < 3 || kr >= nv) return ss_fail(err, SS_ERR_INVALID, "eval: %d eigenpairs on %d vertices", kr, nv);
+  double t0 = ss_time(), *ev = malloc(sizeof(double) * (size_t)kr), *ph = malloc(sizeof(double) * (size_t)nv * kr);
+  ss_status st = ev && ph ? ss_mesh_eigs(&s->mesh, kr, ev, ph, err) : ss_fail(err, SS_ERR_NOMEM, "eval: out of memory");
+  if (st) {
+    free(ev), free(ph);
+    return st;
+  }
+  s->rprep = s->prep;
+  s->rprep.mesh = &s->mesh;
+  s->rprep.kev = kr, s->rprep.evals = ev, s->rprep.evecs = ph;
+  s->rprep.t_segment = 0, s->rprep.t_eigs = ss_time() - t0;
+  return SS_OK;
+}
+
+/* ---- disk cache: a text key line (everything the content depends on), then raw arrays ----------
+ * v3: after v2's content, the refined method's eigenpairs (their count, 0 when absent; the
+ * eigenvalues, the eigenvectors and their seconds): an entry written without them is completed by a
+ * run that needs them, and a run that does not skips them. */
 
 static void cache_key(const ev_context *c, int id, char *key, size_t n) {
   const ss_segment_options *o = &c->mopt.seg;
   snprintf(key, n,
-           "specseg-eval-v2 faust %03d kev %d faces %d nostream %d cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d "
+           "specseg-eval-v3 faust %03d kev %d faces %d nostream %d cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d "
            "gt %d %d %d %d %d\n",
            id, c->kev, o->target_faces, o->no_streamline, o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt,
            c->best[0], c->best[1], c->best[2], c->best[3], c->best[4], c->gt[0], c->gt[1], c->gt[2], c->gt[3], c->gt[4]);
@@ -94,7 +116,7 @@ static void cache_path(const char *dir, const char *key, int id, char *path, siz
 #define RD(ptr, cnt) (fread((ptr), sizeof *(ptr), (size_t)(cnt), f) == (size_t)(cnt))
 #define WR(ptr, cnt) (fwrite((ptr), sizeof *(ptr), (size_t)(cnt), f) == (size_t)(cnt))
 
-static int cache_load(const char *path, const char *key, ev_shape *s) {
+static int cache_load(const char *path, const char *key, const ev_context *ctx, ev_shape *s) {
   FILE *f = fopen(path, "rb");
   if (!f) return 0;
   char line[1024];
@@ -122,6 +144,15 @@ static int cache_load(const char *path, const char *key, ev_shape *s) {
                                             p->seg.psi[i] < wn;
     for (int i = 0; ok && i < EV_NL; i++) ok = s->fps[i] >= 0 && s->fps[i] < nv;
   }
+  /* the refined method's eigenpairs, when this run needs them and the entry has them */
+  int kr = 0;
+  double *rev = NULL, *rph = NULL, rt = 0;
+  ok = ok && RD(&kr, 1) && kr >= 0 && kr < nv;
+  if (ok && kr > 0 && kr == ctx->kref) {
+    rev = malloc(sizeof(double) * (size_t)kr), rph = malloc(sizeof(double) * (size_t)nv * kr);
+    ok = rev && rph && RD(rev, kr) && RD(rph, (size_t)nv * kr) && RD(&rt, 1);
+    if (!ok) free(rev), free(rph), rev = rph = NULL;
+  }
   fclose(f);
   if (!ok) {
     ss_shape_prep_free(p);
@@ -135,6 +166,11 @@ static int cache_load(const char *path, const char *key, ev_shape *s) {
   p->area = 0;
   for (int i = 0; i < nv; i++) p->area += p->M[i];
   s->from_cache = 1;
+  if (rev) {
+    s->rprep = s->prep;
+    s->rprep.kev = kr, s->rprep.evals = rev, s->rprep.evecs = rph;
+    s->rprep.t_segment = 0, s->rprep.t_eigs = rt;
+  }
   return 1;
 }
 
@@ -150,6 +186,10 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
            WR(p->seg.labels, nv) && WR(p->seg.centers, m) && WR(p->seg.psi, nv) && WR(p->seg.work_dist, wn) &&
            WR(s->fps, EV_NL) && WR(s->lmd[0], m * EV_NL) && WR(s->lmd[1], m * EV_NL) && WR(s->lmd[2], m * EV_NL) &&
            WR(&s->t_prep, 1) && WR(&p->t_segment, 1) && WR(&p->t_eigs, 1);
+  const ss_shape_prep *r = &s->rprep;
+  int kr = r->evecs ? r->kev : 0;
+  ok = ok && WR(&kr, 1);
+  if (kr > 0) ok = ok && WR(r->evals, kr) && WR(r->evecs, (size_t)nv * kr) && WR(&r->t_eigs, 1);
   ok = !fclose(f) && ok;
   /* rename is atomic: concurrent shards never see a half-written file */
   if (!ok || rename(tmp, path)) remove(tmp);
@@ -166,7 +206,13 @@ ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, con
   if (cache_dir) {
     cache_key(ctx, id, key, sizeof key);
     cache_path(cache_dir, key, id, cpath, sizeof cpath);
-    if (cache_load(cpath, key, s)) return SS_OK;
+    if (cache_load(cpath, key, ctx, s)) {
+      if (ctx->kref <= 0 || s->rprep.evecs) return SS_OK;
+      /* an entry without this run's refined eigenpairs: add them */
+      if ((st = ev_shape_refined(s, ctx, err))) goto fail;
+      cache_store(cpath, key, s);
+      return SS_OK;
+    }
   }
   if ((st = ev_shape_prepare(s, ctx, err))) goto fail;
   if (cache_dir) cache_store(cpath, key, s);
@@ -184,8 +230,11 @@ ss_status ev_shape_prepare(ev_shape *s, const ev_context *ctx, ss_error *err) {
   if ((st = ev_fps_landmarks(&s->mesh, &s->prep.seg, &ctx->mopt.seg, 0, s->fps, err))) goto fail;
   if ((st = landmark_fields(s, ctx, err))) goto fail;
   s->t_prep = ss_time() - t0;
+  if ((st = ev_shape_refined(s, ctx, err))) goto fail;
   return SS_OK;
 fail:
+  free(s->rprep.evals), free(s->rprep.evecs);
+  memset(&s->rprep, 0, sizeof s->rprep);
   ss_shape_prep_free(&s->prep);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), s->lmd[i] = NULL;
   return st;

@@ -73,8 +73,36 @@ static void add_note(ss_match_result *r, const char *msg) {
   snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
 }
 
-ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+/* a copy of the given pairing, checked against the segmentations */
+static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, const ss_shape_prep *Y, ss_segment_pairs *out,
+                            ss_error *err) {
+  memset(out, 0, sizeof *out);
+  if (in->n < 0 || (in->n > 0 && (!in->sx || !in->sy)))
+    return ss_fail(err, SS_ERR_INVALID, "match: bad segment pairs (%d)", in->n);
+  for (int p = 0; p < in->n; p++)
+    if (in->sx[p] < 0 || in->sx[p] >= X->seg.m || in->sy[p] < 0 || in->sy[p] >= Y->seg.m)
+      return ss_fail(err, SS_ERR_INVALID, "match: segment pair %d (%d, %d) out of range (%d, %d segments)", p, in->sx[p],
+                     in->sy[p], X->seg.m, Y->seg.m);
+  const size_t n = (size_t)(in->n > 0 ? in->n : 1);
+  out->sx = malloc(sizeof(int) * n), out->sy = malloc(sizeof(int) * n), out->energy = malloc(sizeof(double) * n);
+  if (!out->sx || !out->sy || !out->energy) {
+    ss_segment_pairs_free(out);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  out->n = in->n, out->nx = in->nx, out->ny = in->ny;
+  if (in->n > 0) {
+    memcpy(out->sx, in->sx, sizeof(int) * (size_t)in->n);
+    memcpy(out->sy, in->sy, sizeof(int) * (size_t)in->n);
+    if (in->energy) memcpy(out->energy, in->energy, sizeof(double) * (size_t)in->n);
+    else
+      for (int p = 0; p < in->n; p++) out->energy[p] = NAN;
+  }
+  return SS_OK;
+}
+
+static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
+                            ss_error *err) {
   double t_start = ss_time();
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
@@ -124,7 +152,9 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
 
   /* 1. pairing of the segments (reported for every probe set) */
   double t0 = ss_time();
-  if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  if (pairs_in) {
+    if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
+  } else if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -278,6 +308,21 @@ cleanup:
   free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(zmap);
   free(smap[0]), free(smap[1]);
   return st;
+}
+
+ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+}
+
+ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                                  const ss_segment_pairs *pairs, const ss_match_options *opts, ss_match_result *out,
+                                  ss_error *err) {
+  if (!pairs) {
+    if (out) memset(out, 0, sizeof *out);
+    return ss_fail(err, SS_ERR_INVALID, "match: NULL segment pairs");
+  }
+  return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
