@@ -162,21 +162,33 @@ SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const doub
 SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                             const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
-/* ZoomOut on vertex samples (as ZoomOut's authors run it): the iterations above on the sampled rows
- * of Φ_S and Φ_T only, the spectral up-sampling weighted by the target samples' areas,
- * C ← Φ_T[sub_T]ᵀ diag(w_T) Π Φ_S[sub_S], then one point map of every target vertex from the final
- * C (kmax x kmax) among all source vertices. Its cost per iteration scales with the samples, not
- * the vertices. With every vertex as its own sample (sub = 0..n−1 in order, w_T = M_T) it is
- * ss_zoomout bit for bit (tests/test_fmap.c). */
+/* ZoomOut on vertex samples (as ZoomOut's authors run it): the iterations above for the sampled
+ * target rows of Φ_T only, their images among the sampled source rows of Φ_S or (sub_S = NULL) among
+ * every source vertex, then one point map of every target vertex from the final C (kmax x kmax)
+ * among all source vertices, then `polish` iterations at kmax on every vertex (C ← Φ_Tᵀ M_T Π Φ_S,
+ * point map). Images among source samples are quantised to the samples' spacing, which limits the
+ * accuracy (FAUST, 1,000 samples: ~10% worse maps than among every vertex, docs/tuning.md). The
+ * spectral up-sampling on the samples is the weighted sum
+ * B = Φ_T[sub_T]ᵀ diag(w_T) Π Φ_S[sub_S] (lstsq 0), or its weighted least-squares version
+ * C = G⁻¹ B with G = Φ_T[sub_T]ᵀ diag(w_T) Φ_T[sub_T] (lstsq 1: the coefficients on T that best fit
+ * the pulled-back functions at the samples; corrects the samples' quadrature error, which the
+ * weighted sum leaves at high frequencies; G's Cholesky factor is made once at kmax and its leading
+ * blocks serve every size; a G that is not positive definite falls back to the weighted sum). Its
+ * cost per iteration scales with the samples, not the vertices. With every vertex its own sample
+ * (sub = 0..n−1 in order, w_T = M_T), lstsq 0 and polish 0 it is ss_zoomout bit for bit
+ * (tests/test_fmap.c). */
 typedef struct ss_zoomout_sample {
-  int ns_S, ns_T;       /* samples on each shape (1 ≤ ns ≤ n) */
-  const int *sub_S;     /* ns_S source vertices */
+  int ns_S, ns_T;       /* samples on each shape (1 ≤ ns ≤ n; ns_S unused without sub_S) */
+  const int *sub_S;     /* ns_S source vertices, or NULL: every source vertex */
   const int *sub_T;     /* ns_T target vertices */
   const double *w_T;    /* ns_T weights of the target samples (e.g. their Voronoi areas) */
   const int *near_T;    /* may be NULL: n_T entries, a sample (index into sub_T) near each target
                            vertex; its image is the final search's starting guess (speed only) */
   const int *part_S;    /* may be NULL: a partition of the source's full Φ_S (kmax columns) for the
-                           final search (ss_nn_exact_guided; speed only, e.g. shared by two calls) */
+                           final searches (ss_nn_exact_guided; speed only, e.g. shared by two calls) */
+  int lstsq;            /* 0: weighted sum, 1: weighted least squares (see above) */
+  int polish;           /* iterations at kmax on every vertex after the sampled ones (>= 0) */
+  const double *M_T;    /* n_T lumped masses of the target (needed when polish > 0) */
 } ss_zoomout_sample;
 
 SS_API ss_status ss_zoomout_sampled(int n_S, int n_T, const double *evecs_S, const double *evecs_T, int k0,
@@ -252,8 +264,9 @@ typedef struct ss_fmap_match_options {
    * from the first descr_k eigenpairs, then projected onto the first k. 0 = k (NO17 and the paper:
    * what specseg eval's Table 1 uses). Must be 0 or >= k; the shapes need that many eigenpairs. */
   int descr_k;
-  /* ZoomOut on this many vertex samples per shape (ss_zoomout_samples, ss_zoomout_sampled), then one
-   * point map of every vertex; 0 (default) or at least either shape's vertex count: on every vertex
+  /* ZoomOut on this many vertex samples of the target (X; ss_zoomout_samples), their images among
+   * every vertex of the other shape (ss_zoomout_sampled with the least-squares up-sampling and one
+   * iteration on every vertex at the end); 0 (default) or at least X's vertex count: on every vertex
    * (ss_zoomout). */
   int zoomout_samples;
 } ss_fmap_match_options;

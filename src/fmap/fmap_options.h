@@ -18,12 +18,13 @@ int ssi_fmap_basis_needed(const ss_fmap_match_options *o);
 /* Eigenpairs the probe functions are synthesised from: max(k, descr_k). */
 int ssi_fmap_descr_k(const ss_fmap_match_options *o);
 
-/* ZoomOut of a pair as the options ask (zoomout_samples): plain, or on vertex samples of both shapes
- * (ss_zoomout_samples, ss_zoomout_sampled) with the source's partition made once, so that several
- * starts of one pair share them. ns <= 0 or ns >= either shape's vertex count: plain ZoomOut. */
+/* ZoomOut of a pair as the options ask (zoomout_samples): plain, or on ns samples of the target
+ * against every source vertex (ss_zoomout_samples, ss_zoomout_sampled: least squares, one iteration
+ * on every vertex at the end) with the source's partition made once, so that several starts of one
+ * pair share them. ns <= 0 or ns >= the target's vertex count: plain ZoomOut. */
 typedef struct ssi_zoomout_plan {
   int n_S, n_T;
-  ss_zoomout_sample smp; /* ns_S = 0: plain */
+  ss_zoomout_sample smp; /* sub_T = NULL: plain */
   int *sub_S, *sub_T, *near_T, *near_S, *part_S;
   double *w_T, *w_S;
 } ssi_zoomout_plan;

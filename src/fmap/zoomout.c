@@ -11,6 +11,7 @@
 #include "fmap/fmap_options.h"
 
 #include <cblas.h>
+#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,17 +19,19 @@
 /* The iterations; brute: every point map by ss_nn_brute (the same maps: both searches are exact), else
  * by the guided cluster search */
 static ss_status zoomout_loop(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
-                              const double *C0, int kmax, int step, int brute, int *map, double *C_out, ss_error *err) {
+                              const double *C0, int kmax, int step, int brute, const int *part_in, const double *L, int ldl,
+                              int *map, double *C_out, ss_error *err) {
   if (n_S < 1 || n_T < 1 || k0 < 1 || kmax < k0 || step < 1)
     return ss_fail(err, SS_ERR_INVALID, "zoomout: need 1 <= k0 <= kmax and step >= 1 (k0 %d, kmax %d, step %d)", k0,
                    kmax, step);
   double *C = malloc(sizeof(double) * (size_t)kmax * kmax), *E = malloc(sizeof(double) * (size_t)n_S * kmax);
-  int *part = brute ? NULL : malloc(sizeof(int) * n_S);
+  int *own = brute || part_in ? NULL : malloc(sizeof(int) * n_S);
+  const int *part = part_in ? part_in : own;
   if (!C || !E || (!brute && !part)) {
-    free(C); free(E); free(part);
+    free(C); free(E); free(own);
     return ss_fail(err, SS_ERR_NOMEM, "zoomout: out of memory");
   }
-  ss_status st = brute ? SS_OK : ss_nn_partition(n_S, kmax, evecs_S, n_S, 0, part, err);
+  ss_status st = own ? ss_nn_partition(n_S, kmax, evecs_S, n_S, 0, own, err) : SS_OK;
   memcpy(C, C0, sizeof(double) * (size_t)k0 * k0);
   int k = k0;
   for (int it = 0; !st; it++) {
@@ -40,17 +43,21 @@ static ss_status zoomout_loop(int n_S, int n_T, const double *evecs_S, const dou
     if (st || k == kmax) break;
     k = k + step < kmax ? k + step : kmax;
     st = ss_fmap_from_p2p(n_S, n_T, k, k, evecs_S, evecs_T, M_T, map, C, err);
+    if (!st && L) { /* least squares: C ← G_k⁻¹ C, G_k = L_k L_kᵀ (the leading block of G's factor) */
+      cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, k, k, 1.0, L, ldl, C, k);
+      cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasTrans, CblasNonUnit, k, k, 1.0, L, ldl, C, k);
+    }
   }
   if (!st && C_out) memcpy(C_out, C, sizeof(double) * (size_t)k * k);
   free(C);
   free(E);
-  free(part);
+  free(own);
   return st;
 }
 
 ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                      const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err) {
-  return zoomout_loop(n_S, n_T, evecs_S, evecs_T, M_T, k0, C0, kmax, step, 0, map, C_out, err);
+  return zoomout_loop(n_S, n_T, evecs_S, evecs_T, M_T, k0, C0, kmax, step, 0, NULL, NULL, 0, map, C_out, err);
 }
 
 /* Sampled iterations search by brute force up to this many source samples: among sparse samples a
@@ -65,38 +72,62 @@ ss_status ss_zoomout_sampled(int n_S, int n_T, const double *evecs_S, const doub
   if (n_S < 1 || n_T < 1 || k0 < 1 || kmax < k0 || step < 1 || !smp || !C0 || !map)
     return ss_fail(err, SS_ERR_INVALID, "zoomout: need 1 <= k0 <= kmax and step >= 1 (k0 %d, kmax %d, step %d)", k0,
                    kmax, step);
-  const int mS = smp->ns_S, mT = smp->ns_T;
-  if (mS < 1 || mS > n_S || mT < 1 || mT > n_T || !smp->sub_S || !smp->sub_T || !smp->w_T)
+  const int full_S = !smp->sub_S, mS = full_S ? n_S : smp->ns_S, mT = smp->ns_T;
+  if (mS < 1 || mS > n_S || mT < 1 || mT > n_T || !smp->sub_T || !smp->w_T)
     return ss_fail(err, SS_ERR_INVALID, "zoomout: bad samples (%d of %d, %d of %d)", mS, n_S, mT, n_T);
-  for (int i = 0; i < mS; i++)
+  for (int i = 0; i < mS && !full_S; i++)
     if (smp->sub_S[i] < 0 || smp->sub_S[i] >= n_S) return ss_fail(err, SS_ERR_INVALID, "zoomout: source sample %d out of range", i);
+  if (smp->part_S)
+    for (int b = 0; b < n_S; b++)
+      if (smp->part_S[b] < 0 || smp->part_S[b] >= n_S) return ss_fail(err, SS_ERR_INVALID, "zoomout: part_S[%d] out of range", b);
   for (int i = 0; i < mT; i++)
     if (smp->sub_T[i] < 0 || smp->sub_T[i] >= n_T) return ss_fail(err, SS_ERR_INVALID, "zoomout: target sample %d out of range", i);
   if (smp->near_T)
     for (int t = 0; t < n_T; t++)
       if (smp->near_T[t] < 0 || smp->near_T[t] >= mT) return ss_fail(err, SS_ERR_INVALID, "zoomout: near_T[%d] out of range", t);
-  double *PS = malloc(sizeof(double) * (size_t)mS * kmax), *PT = malloc(sizeof(double) * (size_t)mT * kmax);
+  if (smp->polish < 0 || (smp->polish > 0 && !smp->M_T) || (smp->lstsq != 0 && smp->lstsq != 1))
+    return ss_fail(err, SS_ERR_INVALID, "zoomout: bad polish %d / lstsq %d (or no target masses)", smp->polish, smp->lstsq);
+  double *PS = full_S ? NULL : malloc(sizeof(double) * (size_t)mS * kmax), *PT = malloc(sizeof(double) * (size_t)mT * kmax);
   double *C = malloc(sizeof(double) * (size_t)kmax * kmax), *E = malloc(sizeof(double) * (size_t)n_S * kmax);
+  double *L = smp->lstsq ? malloc(sizeof(double) * (size_t)kmax * kmax) : NULL, *WP = NULL;
   int *smap = malloc(sizeof(int) * (size_t)mT), *guess = smp->near_T ? malloc(sizeof(int) * (size_t)n_T) : NULL;
   ss_status st = SS_OK;
-  if (!PS || !PT || !C || !E || !smap || (smp->near_T && !guess)) {
+  if ((!full_S && !PS) || !PT || !C || !E || !smap || (smp->near_T && !guess) || (smp->lstsq && !L)) {
     st = ss_fail(err, SS_ERR_NOMEM, "zoomout: out of memory");
     goto done;
   }
   /* the sampled rows, then ZoomOut on them (the target samples' weights as its masses) */
   for (int c = 0; c < kmax; c++) {
-    for (int i = 0; i < mS; i++) PS[i + (size_t)mS * c] = evecs_S[smp->sub_S[i] + (size_t)n_S * c];
+    for (int i = 0; i < mS && !full_S; i++) PS[i + (size_t)mS * c] = evecs_S[smp->sub_S[i] + (size_t)n_S * c];
     for (int i = 0; i < mT; i++) PT[i + (size_t)mT * c] = evecs_T[smp->sub_T[i] + (size_t)n_T * c];
   }
-  if ((st = zoomout_loop(mS, mT, PS, PT, smp->w_T, k0, C0, kmax, step, mS <= ZOOMOUT_BRUTE_MAX, smap, C, err))) goto done;
-  /* the point map of every target vertex from the final C */
-  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, n_S, kmax, kmax, 1.0, evecs_S, n_S, C, kmax, 0.0, E, n_S);
+  if (L) { /* G = PTᵀ diag(w) PT at kmax and its Cholesky factor (lower) */
+    if (!(WP = malloc(sizeof(double) * (size_t)mT * kmax))) {
+      st = ss_fail(err, SS_ERR_NOMEM, "zoomout: out of memory");
+      goto done;
+    }
+    for (int c = 0; c < kmax; c++)
+      for (int i = 0; i < mT; i++) WP[i + (size_t)mT * c] = smp->w_T[i] * PT[i + (size_t)mT * c];
+    cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, kmax, kmax, mT, 1.0, PT, mT, WP, mT, 0.0, L, kmax);
+    if (LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', kmax, L, kmax) != 0) free(L), L = NULL; /* the weighted sum */
+  }
+  /* among every source vertex: the cluster search on the given (or its own) partition; among source
+   * samples: brute force up to ZOOMOUT_BRUTE_MAX of them */
+  if (full_S) st = zoomout_loop(n_S, mT, evecs_S, PT, smp->w_T, k0, C0, kmax, step, 0, smp->part_S, L, kmax, smap, C, err);
+  else st = zoomout_loop(mS, mT, PS, PT, smp->w_T, k0, C0, kmax, step, mS <= ZOOMOUT_BRUTE_MAX, NULL, L, kmax, smap, C, err);
+  if (st) goto done;
+  /* the point map of every target vertex from the final C, then the iterations on every vertex */
   if (guess)
-    for (int t = 0; t < n_T; t++) guess[t] = smp->sub_S[smap[smp->near_T[t]]];
-  if ((st = ss_nn_exact_guided(n_S, n_T, kmax, E, n_S, evecs_T, n_T, smp->part_S, guess, map, NULL, err))) goto done;
+    for (int t = 0; t < n_T; t++) guess[t] = full_S ? smap[smp->near_T[t]] : smp->sub_S[smap[smp->near_T[t]]];
+  for (int it = 0; it <= smp->polish; it++) {
+    if (it > 0 && (st = ss_fmap_from_p2p(n_S, n_T, kmax, kmax, evecs_S, evecs_T, smp->M_T, map, C, err))) goto done;
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, n_S, kmax, kmax, 1.0, evecs_S, n_S, C, kmax, 0.0, E, n_S);
+    if ((st = ss_nn_exact_guided(n_S, n_T, kmax, E, n_S, evecs_T, n_T, smp->part_S, it > 0 ? map : guess, map, NULL, err)))
+      goto done;
+  }
   if (C_out) memcpy(C_out, C, sizeof(double) * (size_t)kmax * kmax);
 done:
-  free(PS), free(PT), free(C), free(E), free(smap), free(guess);
+  free(PS), free(PT), free(C), free(E), free(smap), free(guess), free(L), free(WP);
   return st;
 }
 
@@ -219,28 +250,27 @@ ss_status ssi_zoomout_plan_new(const ss_mesh *mS, const double *M_S, const doubl
                                const double *M_T, int ns, int kmax, ssi_zoomout_plan *p, ss_error *err) {
   memset(p, 0, sizeof *p);
   p->n_S = mS->nv, p->n_T = mT->nv;
-  if (ns <= 0 || ns >= mS->nv || ns >= mT->nv) return SS_OK; /* plain */
-  p->sub_S = malloc(sizeof(int) * (size_t)ns), p->sub_T = malloc(sizeof(int) * (size_t)ns);
-  p->w_S = malloc(sizeof(double) * (size_t)ns), p->w_T = malloc(sizeof(double) * (size_t)ns);
-  p->near_S = malloc(sizeof(int) * (size_t)mS->nv), p->near_T = malloc(sizeof(int) * (size_t)mT->nv);
-  p->part_S = malloc(sizeof(int) * (size_t)mS->nv);
+  if (ns <= 0 || ns >= mT->nv) return SS_OK; /* plain */
+  (void)M_S;
+  p->sub_T = malloc(sizeof(int) * (size_t)ns), p->w_T = malloc(sizeof(double) * (size_t)ns);
+  p->near_T = malloc(sizeof(int) * (size_t)mT->nv), p->part_S = malloc(sizeof(int) * (size_t)mS->nv);
   ss_status st = SS_OK;
-  if (!p->sub_S || !p->sub_T || !p->w_S || !p->w_T || !p->near_S || !p->near_T || !p->part_S)
-    st = ss_fail(err, SS_ERR_NOMEM, "zoomout: out of memory");
-  if (!st) st = ss_zoomout_samples(mS, M_S, ns, p->sub_S, M_S ? p->w_S : NULL, p->near_S, err);
+  if (!p->sub_T || !p->w_T || !p->near_T || !p->part_S) st = ss_fail(err, SS_ERR_NOMEM, "zoomout: out of memory");
   if (!st) st = ss_zoomout_samples(mT, M_T, ns, p->sub_T, p->w_T, p->near_T, err);
   if (!st) st = ss_nn_partition(mS->nv, kmax, evecs_S, mS->nv, 0, p->part_S, err);
   if (st) {
     ssi_zoomout_plan_free(p);
     return st;
   }
-  ss_zoomout_sample smp = {ns, ns, p->sub_S, p->sub_T, p->w_T, p->near_T, p->part_S};
+  /* target samples against every source vertex, least squares, one iteration on every vertex at the
+   * end (docs/tuning.md) */
+  ss_zoomout_sample smp = {0, ns, NULL, p->sub_T, p->w_T, p->near_T, p->part_S, 1, 1, M_T};
   p->smp = smp;
   return SS_OK;
 }
 
 ss_status ssi_zoomout_plan_run(const ssi_zoomout_plan *p, const double *evecs_S, const double *evecs_T, const double *M_T,
                                int k0, const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err) {
-  if (p->smp.ns_S <= 0) return ss_zoomout(p->n_S, p->n_T, evecs_S, evecs_T, M_T, k0, C0, kmax, step, map, C_out, err);
+  if (!p->smp.sub_T) return ss_zoomout(p->n_S, p->n_T, evecs_S, evecs_T, M_T, k0, C0, kmax, step, map, C_out, err);
   return ss_zoomout_sampled(p->n_S, p->n_T, evecs_S, evecs_T, k0, C0, kmax, step, &p->smp, map, C_out, err);
 }
