@@ -118,7 +118,9 @@ typedef enum ss_refine_mode {
                             STD / ASA / DIFF maps) */
   SS_REFINE_ZOOMOUT = 1, /* ZoomOut of that map up to fmap.zoomout_kmax */
   SS_REFINE_BEST = 2     /* default: the starts STD and, with ASA / DIFF probes and segments paired,
-                            the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax; of
+                            the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax
+                            (default 120, step fmap.zoomout_step 5, on fmap.zoomout_samples 2,000
+                            samples of X then once on every vertex: docs/tuning.md); of
                             the starts and their refinements the map with the lowest selection energy
                             ss_p2p_energy (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap =
                             refine_w_lap) + refine_w_descr · ss_p2p_descr_residual (the base probes,

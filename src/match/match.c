@@ -12,6 +12,8 @@
 #define SS_DEFAULT_DESCR_K 100
 #define SS_DEFAULT_REFINE_KMAX 120
 #define SS_DEFAULT_REFINE_W_DESCR 1.0
+#define SS_DEFAULT_REFINE_STEP 5
+#define SS_DEFAULT_REFINE_SAMPLES 2000
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);
@@ -19,6 +21,8 @@ void ss_match_default_options(ss_match_options *o) {
   ss_fmap_match_default_options(&o->fmap);
   o->fmap.descr_k = SS_DEFAULT_DESCR_K;
   o->fmap.zoomout_kmax = SS_DEFAULT_REFINE_KMAX;
+  o->fmap.zoomout_step = SS_DEFAULT_REFINE_STEP;
+  o->fmap.zoomout_samples = SS_DEFAULT_REFINE_SAMPLES;
   ss_segment_default_options(&o->seg);
   o->segment_profile = SS_PROFILE_TENT;
   ss_pairing_default_options(&o->pairing);
