@@ -1,5 +1,6 @@
 /* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] [--no-refine]
- *                   [--descr-k K] -o MAP.txt [--fmap C.npy] [--pairs PAIRS.txt] [--timings] */
+ *                   [--zoomout-step S] [--zoomout-samples N] [--descr-k K] -o MAP.txt [--fmap C.npy]
+ *                   [--pairs PAIRS.txt] [--timings] */
 #include "cli.h"
 #include "specseg/match.h"
 
@@ -11,12 +12,14 @@
 static const char USAGE[] =
     "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
-    "                     [--no-refine] [--descr-k K] [--pairs PAIRS.txt] [--timings]\n"
+    "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K]\n"
+    "                     [--pairs PAIRS.txt] [--timings]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
     "the paired coherent segments as extra probe functions. The output is refined: ZoomOut up to KMAX\n"
-    "eigenfunctions from the STD map and from the segment-aided one, keeping the map of lowest\n"
-    "unsupervised energy (orthonormality of its functional map + preservation of the descriptors).\n"
+    "eigenfunctions (on vertex samples of X, then once on every vertex) from the STD map and from the\n"
+    "segment-aided one, keeping the map of lowest unsupervised energy (orthonormality of its\n"
+    "functional map + preservation of the descriptors).\n"
     "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
     "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
@@ -30,6 +33,9 @@ static const char USAGE[] =
     "  --k K               basis size, 3..10000 (default 50)\n"
     "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 120)\n"
     "  --no-refine         the unrefined map of --probes at size K (the paper's variants)\n"
+    "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
+    "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 2000; 0 or at least\n"
+    "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
     "  --descr-k K         eigenpairs the descriptors are computed from (default 100; = K for the\n"
     "                      paper's construction)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
@@ -39,7 +45,7 @@ static const char USAGE[] =
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
                                    "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
-                                   "--timings", NULL};
+                                   "--zoomout-step=", "--zoomout-samples=", "--timings", NULL};
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
@@ -80,6 +86,12 @@ int cmd_match(int argc, char **argv) {
         return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--no-refine")) {
       o.refine = SS_REFINE_NONE;
+    } else if (cli_is(&A, "--zoomout-step")) {
+      if (cli_parse_int(v, 1, 10000, &o.fmap.zoomout_step))
+        return cli_bad(&A, "--zoomout-step needs an integer between 1 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--zoomout-samples")) {
+      if (cli_parse_int(v, 0, 1000000000, &o.fmap.zoomout_samples))
+        return cli_bad(&A, "--zoomout-samples needs an integer between 0 and 1000000000, not '%s'", v);
     } else if (cli_is(&A, "--descr-k")) {
       if (cli_parse_int(v, 3, 10000, &o.fmap.descr_k))
         return cli_bad(&A, "--descr-k needs an integer between 3 and 10000, not '%s'", v);

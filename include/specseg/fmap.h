@@ -162,6 +162,46 @@ SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const doub
 SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                             const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
+/* ZoomOut on vertex samples (as ZoomOut's authors run it): the iterations above for the sampled
+ * target rows of Φ_T only, their images among the sampled source rows of Φ_S or (sub_S = NULL) among
+ * every source vertex, then one point map of every target vertex from the final C (kmax x kmax)
+ * among all source vertices, then `polish` iterations at kmax on every vertex (C ← Φ_Tᵀ M_T Π Φ_S,
+ * point map). Images among source samples are quantised to the samples' spacing, which limits the
+ * accuracy (FAUST, 1,000 samples: ~10% worse maps than among every vertex, docs/tuning.md). The
+ * spectral up-sampling on the samples is the weighted sum
+ * B = Φ_T[sub_T]ᵀ diag(w_T) Π Φ_S[sub_S] (lstsq 0), or its weighted least-squares version
+ * C = G⁻¹ B with G = Φ_T[sub_T]ᵀ diag(w_T) Φ_T[sub_T] (lstsq 1: the coefficients on T that best fit
+ * the pulled-back functions at the samples; corrects the samples' quadrature error, which the
+ * weighted sum leaves at high frequencies; G's Cholesky factor is made once at kmax and its leading
+ * blocks serve every size; a G that is not positive definite falls back to the weighted sum). Its
+ * cost per iteration scales with the samples, not the vertices. With every vertex its own sample
+ * (sub = 0..n−1 in order, w_T = M_T), lstsq 0 and polish 0 it is ss_zoomout bit for bit
+ * (tests/test_fmap.c). */
+typedef struct ss_zoomout_sample {
+  int ns_S, ns_T;       /* samples on each shape (1 ≤ ns ≤ n; ns_S unused without sub_S) */
+  const int *sub_S;     /* ns_S source vertices, or NULL: every source vertex */
+  const int *sub_T;     /* ns_T target vertices */
+  const double *w_T;    /* ns_T weights of the target samples (e.g. their Voronoi areas) */
+  const int *near_T;    /* may be NULL: n_T entries, a sample (index into sub_T) near each target
+                           vertex; its image is the final search's starting guess (speed only) */
+  const int *part_S;    /* may be NULL: a partition of the source's full Φ_S (kmax columns) for the
+                           final searches (ss_nn_exact_guided; speed only, e.g. shared by two calls) */
+  int lstsq;            /* 0: weighted sum, 1: weighted least squares (see above) */
+  int polish;           /* iterations at kmax on every vertex after the sampled ones (>= 0) */
+  const double *M_T;    /* n_T lumped masses of the target (needed when polish > 0) */
+} ss_zoomout_sample;
+
+SS_API ss_status ss_zoomout_sampled(int n_S, int n_T, const double *evecs_S, const double *evecs_T, int k0,
+                                    const double *C0, int kmax, int step, const ss_zoomout_sample *smp, int *map,
+                                    double *C_out, ss_error *err);
+
+/* Samples for ss_zoomout_sampled: ns vertices of m by Euclidean farthest-point sampling from vertex
+ * 0 (sub[0] = 0), each vertex's nearest sample in R³ (near, n entries; ties to the earlier sample)
+ * and each sample's weight w = Σ M over the vertices nearest to it (its Voronoi area; M: lumped
+ * masses, n entries; w and M may both be NULL). ns ≤ m->nv. */
+SS_API ss_status ss_zoomout_samples(const ss_mesh *m, const double *M, int ns, int *sub, double *w, int *near,
+                                    ss_error *err);
+
 /* An unsupervised energy of a point map π : T -> S (map[n_T]), no ground truth: with C the functional
  * map of π at size K (ss_fmap_from_p2p: C = Φ_Tᵀ M_T Π Φ_S) and C_k its leading k x k block,
  *   E_orth = mean over k = k0, k0+step, …, K of ‖C_kᵀ C_k − I_k‖²_F / k
@@ -224,6 +264,11 @@ typedef struct ss_fmap_match_options {
    * from the first descr_k eigenpairs, then projected onto the first k. 0 = k (NO17 and the paper:
    * what specseg eval's Table 1 uses). Must be 0 or >= k; the shapes need that many eigenpairs. */
   int descr_k;
+  /* ZoomOut on this many vertex samples of the target (X; ss_zoomout_samples), their images among
+   * every vertex of the other shape (ss_zoomout_sampled with the least-squares up-sampling and one
+   * iteration on every vertex at the end); 0 (default) or at least X's vertex count: on every vertex
+   * (ss_zoomout). */
+  int zoomout_samples;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);

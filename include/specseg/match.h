@@ -118,7 +118,9 @@ typedef enum ss_refine_mode {
                             STD / ASA / DIFF maps) */
   SS_REFINE_ZOOMOUT = 1, /* ZoomOut of that map up to fmap.zoomout_kmax */
   SS_REFINE_BEST = 2     /* default: the starts STD and, with ASA / DIFF probes and segments paired,
-                            the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax; of
+                            the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax
+                            (default 120, step fmap.zoomout_step 5, on fmap.zoomout_samples 2,000
+                            samples of X then once on every vertex: docs/tuning.md); of
                             the starts and their refinements the map with the lowest selection energy
                             ss_p2p_energy (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap =
                             refine_w_lap) + refine_w_descr · ss_p2p_descr_residual (the base probes,
@@ -140,6 +142,9 @@ typedef struct ss_match_options {
   /* fmap.descr_k of the segment-aided (ASA / DIFF) map; fmap.descr_k is the STD map's. Default 0
    * (= k, the paper's probes): with descriptors from 100 eigenpairs DIFF got worse (docs/tuning.md). */
   int seg_descr_k;
+  /* SS_REFINE_BEST: refine only the start with the lower selection energy (the other start stays a
+   * candidate unrefined); 0: refine every start */
+  int refine_single;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);
@@ -171,6 +176,14 @@ typedef struct ss_match_result {
  * and DIFF fall back to STD and say so in notes. */
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);
+
+/* The same with the pairing given instead of computed (e.g. by ss_pair_critical_points_conf from
+ * landmark fields cached per shape, as specseg eval does; opts->pairing is then not used, except
+ * min_landmarks): pairs (sx < X->seg.m, sy < Y->seg.m) is copied into out->pairs. With the pairing
+ * ss_match_prepared would compute, the result is the same. */
+SS_API ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                         const int *lmY, const ss_segment_pairs *pairs, const ss_match_options *opts,
+                                         ss_match_result *out, ss_error *err);
 
 /* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL.
  * Meshes of several components: the map is only determined on components that hold a landmark, so

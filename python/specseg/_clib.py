@@ -105,7 +105,8 @@ class ss_fmap_match_options(C.Structure):
     _fields_ = [("k", C.c_int), ("n_energies", C.c_int), ("sigma_factor", C.c_double), ("descr_step", C.c_int),
                 ("w_descr", C.c_double), ("w_lap", C.c_double), ("w_dcomm", C.c_double), ("fix_constant", C.c_int),
                 ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int),
-                ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("descr_k", C.c_int)]
+                ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("descr_k", C.c_int),
+                ("zoomout_samples", C.c_int)]
 
 
 class ss_pairing_options(C.Structure):
@@ -117,7 +118,7 @@ class ss_match_options(C.Structure):
     _fields_ = [("probes", C.c_int), ("fmap", ss_fmap_match_options), ("seg", ss_segment_options),
                 ("segment_profile", C.c_int), ("pairing", ss_pairing_options), ("refine", C.c_int),
                 ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double),
-                ("seg_descr_k", C.c_int)]
+                ("seg_descr_k", C.c_int), ("refine_single", C.c_int)]
 
 
 class ss_segment_pairs(C.Structure):

@@ -3,6 +3,7 @@
  * sets — all of it depends on the shape only, so it is computed once and optionally cached on disk. */
 #include "eval_internal.h"
 #include "specseg/io.h"
+#include "specseg/spectrum.h"
 #include "specseg/streamline.h"
 
 #include <math.h>
@@ -13,6 +14,7 @@
 
 void ev_shape_free(ev_shape *s) {
   if (!s) return;
+  free(s->rprep.evals), free(s->rprep.evecs); /* the rest of rprep is prep's */
   ss_shape_prep_free(&s->prep);
   ss_mesh_free(&s->mesh);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), ss_fmap_probes_free(&s->base[i]);
@@ -74,6 +76,23 @@ static ss_status landmark_fields(ev_shape *s, const ev_context *ctx, ss_error *e
   return st;
 }
 
+ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
+  if (ctx->kref <= 0 || s->rprep.evecs) return SS_OK;
+  const int nv = s->mesh.nv, kr = ctx->kref;
+  if (kr < 3 || kr >= nv) return ss_fail(err, SS_ERR_INVALID, "eval: %d eigenpairs on %d vertices", kr, nv);
+  double t0 = ss_time(), *ev = malloc(sizeof(double) * (size_t)kr), *ph = malloc(sizeof(double) * (size_t)nv * kr);
+  ss_status st = ev && ph ? ss_mesh_eigs(&s->mesh, kr, ev, ph, err) : ss_fail(err, SS_ERR_NOMEM, "eval: out of memory");
+  if (st) {
+    free(ev), free(ph);
+    return st;
+  }
+  s->rprep = s->prep;
+  s->rprep.mesh = &s->mesh;
+  s->rprep.kev = kr, s->rprep.evals = ev, s->rprep.evecs = ph;
+  s->rprep.t_segment = 0, s->rprep.t_eigs = ss_time() - t0;
+  return SS_OK;
+}
+
 /* ---- disk cache ---------------------------------------------------------------------------------
  * One file per shape and key, DIR/faust_NNN_<FNV-1a of the key>.bin:
  *   line 1: the key, everything the content depends on: the format tag, the library version, the
@@ -87,9 +106,12 @@ static ss_status landmark_fields(ev_shape *s, const ev_context *ctx, ss_error *e
  * An entry is used only when its key equals the current one, its length is exact and its checksum
  * matches (then its contents are range-checked once more); anything else — bytes flipped, a file
  * cut short, columns swapped, written by another version or for another mesh — is reported and
- * recomputed, and the file rewritten. A change to what the preparation computes must bump the tag. */
+ * recomputed, and the file rewritten. A change to what the preparation computes must bump the tag.
+ * The payload ends with the refined method's eigenpairs (their count, 0 when absent; the eigenvalues,
+ * the eigenvectors and their seconds): an entry written without them is completed (rewritten) by a
+ * run that needs them, and a run that does not skips them. */
 
-#define CACHE_TAG "specseg-eval-v3"
+#define CACHE_TAG "specseg-eval-v4"
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t n) {
   const unsigned char *p = data;
@@ -152,7 +174,8 @@ static int get(cbuf *b, void *data, size_t n) {
 #define GET(ptr, cnt) get(&b, (ptr), sizeof *(ptr) * (size_t)(cnt))
 
 /* 1: loaded; 0: no file (nothing said); -1: the file is there but not usable (why: in note) */
-static int cache_load(const char *path, const char *key, ev_shape *s, char *note, size_t nnote) {
+static int cache_load(const char *path, const char *key, const ev_context *ctx, ev_shape *s, char *note,
+                      size_t nnote) {
   FILE *f = fopen(path, "rb");
   if (!f) return 0;
   char line[1024], head[128];
@@ -204,12 +227,26 @@ static int cache_load(const char *path, const char *key, ev_shape *s, char *note
     ok = ok && GET(p->evals, kev) && GET(p->evecs, (size_t)nv * kev) && GET(p->M, nv) && GET(p->seg.labels, nv) &&
          GET(p->seg.centers, m) && GET(p->seg.psi, nv) && GET(p->seg.work_dist, wn) && GET(s->fps, EV_NL) &&
          GET(s->lmd[0], m * EV_NL) && GET(s->lmd[1], m * EV_NL) && GET(s->lmd[2], m * EV_NL) && GET(&s->t_prep, 1) &&
-         GET(&p->t_segment, 1) && GET(&p->t_eigs, 1) && b.pos == b.n;
+         GET(&p->t_segment, 1) && GET(&p->t_eigs, 1);
     for (int i = 0; ok && i < nv; i++) ok = p->seg.labels[i] >= 0 && p->seg.labels[i] < m && p->seg.psi[i] >= 0 &&
                                             p->seg.psi[i] < wn;
     for (int i = 0; ok && i < m; i++) ok = p->seg.centers[i] >= 0 && p->seg.centers[i] < nv;
     for (int i = 0; ok && i < EV_NL; i++) ok = s->fps[i] >= 0 && s->fps[i] < nv;
   }
+  /* the refined method's eigenpairs, when this run needs them and the entry has them */
+  int kr = 0;
+  double *rev = NULL, *rph = NULL, rt = 0;
+  ok = ok && GET(&kr, 1) && kr >= 0 && kr < nv;
+  if (ok && kr > 0 && kr == ctx->kref) {
+    rev = malloc(sizeof(double) * (size_t)kr), rph = malloc(sizeof(double) * (size_t)nv * kr);
+    ok = rev && rph && GET(rev, kr) && GET(rph, (size_t)nv * kr) && GET(&rt, 1);
+    if (!ok) free(rev), free(rph), rev = rph = NULL;
+  } else if (ok && kr > 0) { /* another run's refined eigenpairs: skipped */
+    size_t skip = sizeof(double) * ((size_t)kr + (size_t)nv * kr + 1);
+    ok = skip <= b.n - b.pos;
+    b.pos += ok ? skip : 0;
+  }
+  ok = ok && b.pos == b.n;
   free(b.p);
   if (!ok) {
     snprintf(note, nnote, "checksum right but contents out of range (%d vertices, %d eigenpairs, %d segments)", nv, kev, m);
@@ -224,6 +261,11 @@ static int cache_load(const char *path, const char *key, ev_shape *s, char *note
   p->area = 0;
   for (int i = 0; i < nv; i++) p->area += p->M[i];
   s->from_cache = 1;
+  if (rev) {
+    s->rprep = s->prep;
+    s->rprep.kev = kr, s->rprep.evals = rev, s->rprep.evecs = rph;
+    s->rprep.t_segment = 0, s->rprep.t_eigs = rt;
+  }
   return 1;
 }
 
@@ -237,6 +279,10 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
   PUT(p->seg.centers, m), PUT(p->seg.psi, nv), PUT(p->seg.work_dist, wn), PUT(s->fps, EV_NL);
   PUT(s->lmd[0], m * EV_NL), PUT(s->lmd[1], m * EV_NL), PUT(s->lmd[2], m * EV_NL);
   PUT(&s->t_prep, 1), PUT(&p->t_segment, 1), PUT(&p->t_eigs, 1);
+  const ss_shape_prep *r = &s->rprep;
+  int kr = r->evecs ? r->kev : 0;
+  PUT(&kr, 1);
+  if (kr > 0) PUT(r->evals, kr), PUT(r->evecs, (size_t)nv * kr), PUT(&r->t_eigs, 1);
   char tmp[4300];
   snprintf(tmp, sizeof tmp, "%.4200s.tmp%ld", path, (long)getpid());
   FILE *f = b.bad ? NULL : fopen(tmp, "wb");
@@ -262,8 +308,14 @@ ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, con
   if (cache_dir) {
     cache_key(ctx, id, &s->mesh, key, sizeof key);
     cache_path(cache_dir, key, id, cpath, sizeof cpath);
-    int r = cache_load(cpath, key, s, why, sizeof why);
-    if (r > 0) return SS_OK;
+    int r = cache_load(cpath, key, ctx, s, why, sizeof why);
+    if (r > 0) {
+      if (ctx->kref <= 0 || s->rprep.evecs) return SS_OK;
+      /* an entry without this run's refined eigenpairs: add them */
+      if ((st = ev_shape_refined(s, ctx, err))) goto fail;
+      cache_store(cpath, key, s);
+      return SS_OK;
+    }
     if (r < 0 && note && nnote)
       snprintf(note, nnote, "eval cache: %s: %s; not used, recomputing tr_reg_%03d and rewriting the entry", cpath, why, id);
   }
@@ -283,8 +335,11 @@ ss_status ev_shape_prepare(ev_shape *s, const ev_context *ctx, ss_error *err) {
   if ((st = ev_fps_landmarks(&s->mesh, &s->prep.seg, &ctx->mopt.seg, 0, s->fps, err))) goto fail;
   if ((st = landmark_fields(s, ctx, err))) goto fail;
   s->t_prep = ss_time() - t0;
+  if ((st = ev_shape_refined(s, ctx, err))) goto fail;
   return SS_OK;
 fail:
+  free(s->rprep.evals), free(s->rprep.evecs);
+  memset(&s->rprep, 0, sizeof s->rprep);
   ss_shape_prep_free(&s->prep);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), s->lmd[i] = NULL;
   return st;

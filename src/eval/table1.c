@@ -48,9 +48,10 @@ static int unit_cmp(const void *pa, const void *pb) {
   return 0;
 }
 
-/* done[key]: rows already in the CSV; key = ((policy*3+lm)*3+method)*NSHAPES² + x*NSHAPES + y */
+/* done[key]: rows already in the CSV; key = ((policy*3+lm)*NM+method)*NSHAPES² + x*NSHAPES + y */
+#define NM SS_EVAL_NMETHODS
 static size_t row_key(int policy, int lm, int method, int x, int y) {
-  return ((size_t)((policy * 3 + lm) * 3 + method) * NSHAPES + x) * NSHAPES + y;
+  return ((size_t)((policy * 3 + lm) * NM + method) * NSHAPES + x) * NSHAPES + y;
 }
 
 /* Drops a partial last line left by an interrupted run, so appended rows start on a fresh line.
@@ -137,6 +138,14 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   ss_match_paper_options(&ctx.mopt); /* Table 1: the paper's STD / ASA / DIFF */
   ctx.mopt.fmap.k = o->k;
   ctx.kev = o->k;
+  if (o->methods_mask >> SS_METHOD_REFINED & 1) { /* and the library's default output, at the same k */
+    ss_match_default_options(&ctx.ropt);
+    ctx.ropt.fmap.k = o->k;
+    if (ctx.ropt.fmap.zoomout_kmax < o->k) ctx.ropt.fmap.zoomout_kmax = o->k;
+    if (ctx.ropt.fmap.descr_k < o->k) ctx.ropt.fmap.descr_k = 0;
+    ctx.kref = ctx.ropt.fmap.zoomout_kmax > ctx.ropt.fmap.descr_k ? ctx.ropt.fmap.zoomout_kmax : ctx.ropt.fmap.descr_k;
+    if (ctx.kref < o->k) ctx.kref = o->k;
+  }
   unit *U = NULL;
   int *px = NULL, *py = NULL, *lmb = NULL, *sym = NULL, *need = NULL;
   unsigned char *done = NULL;
@@ -155,7 +164,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   px = malloc(sizeof(int) * (size_t)o->npairs);
   py = malloc(sizeof(int) * (size_t)o->npairs);
   U = malloc(sizeof(unit) * (size_t)o->npairs * 9);
-  done = calloc(row_key(2, 2, 2, NSHAPES - 1, NSHAPES - 1) + 1, 1);
+  done = calloc(row_key(2, 2, NM - 1, NSHAPES - 1, NSHAPES - 1) + 1, 1);
   if (!px || !py || !U || !done) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
   int nu = 0;
   for (int p = 0; p < 3; p++) {
@@ -180,7 +189,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   long total_rows = 0;
   for (int u = u0; u < u1; u++) {
     int todo = 0;
-    for (int mth = 0; mth < 3; mth++)
+    for (int mth = 0; mth < NM; mth++)
       if ((o->methods_mask >> mth & 1) && !done[row_key(U[u].policy, U[u].lmset, mth, U[u].x, U[u].y)]) todo++;
     if (todo) U[nwork++] = U[u], total_rows += todo;
   }
@@ -239,7 +248,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
       say(o, "%s", note);
       omp_unset_lock(&locks->progress);
     }
-    if (!ws) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
+    if (!ws && (o->methods_mask & 7)) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
     if (ws) {
       omp_set_lock(&locks->err);
       if (!failed) failed = ws, perr = e;
@@ -276,7 +285,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
 #pragma omp parallel num_threads(nthreads)
   {
     int S = o->error_samples < nv ? o->error_samples : nv, ns = 0;
-    int maxrows = 3 * (maxgroup > 0 ? maxgroup : 1);
+    int maxrows = NM * (maxgroup > 0 ? maxgroup : 1);
     int *mapbuf = malloc(sizeof(int) * (size_t)maxrows * nv), *scratch = malloc(sizeof(int) * (size_t)nv);
     int *samples = malloc(sizeof(int) * (2 * (size_t)S + 1)), *sympos = malloc(sizeof(int) * (2 * (size_t)S + 1));
     double *fields = malloc(sizeof(double) * (size_t)nv * (2 * (size_t)S + 1));
@@ -303,22 +312,23 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
       for (int u = gstart[g]; u < gstart[g + 1] && !s2; u++) {
         const unit *w = &U[u];
         const ev_shape *X = &shapes[w->x];
-        int mask = 0, paired = 0;
-        for (int mth = 0; mth < 3; mth++)
+        int mask = 0, paired[NM] = {0};
+        for (int mth = 0; mth < NM; mth++)
           if ((o->methods_mask >> mth & 1) && !done[row_key(w->policy, w->lmset, mth, w->x, w->y)]) mask |= 1 << mth;
         if (!mask) continue;
-        int *maps[3] = {mapbuf + (size_t)nv * nr, mapbuf + (size_t)nv * (nr + 1), mapbuf + (size_t)nv * (nr + 2)};
-        double cpu[3], t0 = ss_time();
-        if ((s2 = ev_match_methods(&ctx, X, Y, w->lmset, mask, maps, cpu, &paired, &e))) break;
+        int *maps[NM];
+        for (int mth = 0; mth < NM; mth++) maps[mth] = mapbuf + (size_t)nv * (nr + mth);
+        double cpu[NM], t0 = ss_time();
+        if ((s2 = ev_match_methods(&ctx, X, Y, w->lmset, mask, maps, cpu, paired, &e))) break;
         const double wall = (ss_time() - t0) / __builtin_popcount(mask);
         int slot = 0;
-        for (int mth = 0; mth < 3; mth++) {
+        for (int mth = 0; mth < NM; mth++) {
           if (!(mask >> mth & 1)) continue;
           if (maps[mth] != mapbuf + (size_t)nv * (nr + slot))
             memcpy(mapbuf + (size_t)nv * (nr + slot), maps[mth], sizeof(int) * (size_t)nv);
           ss_eval_row *r = &rows[nr + slot];
           memset(r, 0, sizeof *r);
-          r->paired = paired, r->seconds = wall, r->cpu_seconds = cpu[mth];
+          r->paired = paired[mth], r->seconds = wall, r->cpu_seconds = cpu[mth];
           r->policy = w->policy, r->landmarks = w->lmset, r->method = mth, r->x = w->x, r->y = w->y;
           r->segments_x = X->prep.seg.m, r->segments_y = Y->prep.seg.m;
           rmap[nr + slot] = mapbuf + (size_t)nv * (nr + slot);

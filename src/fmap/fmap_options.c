@@ -19,6 +19,7 @@ void ss_fmap_match_default_options(ss_fmap_match_options *o) {
   o->w_extra = 0.5; /* tuned on FAUST; see docs/tuning.md */
   o->extra_dcomm = 0;
   o->descr_k = 0;
+  o->zoomout_samples = 0;
 }
 
 ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) {
@@ -31,6 +32,7 @@ ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) 
                    o->w_lap, o->w_dcomm);
   if (!(o->w_extra >= 0) || !isfinite(o->w_extra))
     return ss_fail(err, SS_ERR_INVALID, "match: negative extra-probe weight %g", o->w_extra);
+  if (o->zoomout_samples < 0) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut samples %d below 0", o->zoomout_samples);
   if (o->zoomout_step < 1) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut step %d below 1", o->zoomout_step);
   if (o->zoomout_kmax != 0 && o->zoomout_kmax < o->k)
     return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut size %d below k = %d", o->zoomout_kmax, o->k);

@@ -5,6 +5,7 @@
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "specseg/streamline.h"
+#include "fmap/fmap_options.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,6 +16,8 @@
 #define SS_DEFAULT_DESCR_K 100
 #define SS_DEFAULT_REFINE_KMAX 120
 #define SS_DEFAULT_REFINE_W_DESCR 1.0
+#define SS_DEFAULT_REFINE_STEP 5
+#define SS_DEFAULT_REFINE_SAMPLES 2000
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);
@@ -22,6 +25,8 @@ void ss_match_default_options(ss_match_options *o) {
   ss_fmap_match_default_options(&o->fmap);
   o->fmap.descr_k = SS_DEFAULT_DESCR_K;
   o->fmap.zoomout_kmax = SS_DEFAULT_REFINE_KMAX;
+  o->fmap.zoomout_step = SS_DEFAULT_REFINE_STEP;
+  o->fmap.zoomout_samples = SS_DEFAULT_REFINE_SAMPLES;
   ss_segment_default_options(&o->seg);
   o->segment_profile = SS_PROFILE_TENT;
   ss_pairing_default_options(&o->pairing);
@@ -61,6 +66,7 @@ static int match_kev(const ss_match_options *o) {
 /* the selection energy of SS_REFINE_BEST for the point map X -> Y (see match.h) */
 static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o, int k, int kz,
                                const ss_fmap_probes *bX, const ss_fmap_probes *bY, const int *map, double *E, ss_error *err) {
+  *E = NAN;
   ss_status st = ss_p2p_energy(Y->mesh->nv, X->mesh->nv, Y->evals, X->evals, Y->evecs, X->evecs, X->M, map, k, kz, 1,
                                o->refine_w_lap, E, NULL, NULL, err);
   if (st || !(o->refine_w_descr > 0)) return st;
@@ -102,8 +108,36 @@ static void explain_singular(const ss_mesh *X, const ss_mesh *Y, int nl, int npa
             what, nl, nl == 1 ? "" : "s", npairs, npairs == 1 ? "" : "s", k, k);
 }
 
-ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+/* a copy of the given pairing, checked against the segmentations */
+static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, const ss_shape_prep *Y, ss_segment_pairs *out,
+                            ss_error *err) {
+  memset(out, 0, sizeof *out);
+  if (in->n < 0 || (in->n > 0 && (!in->sx || !in->sy)))
+    return ss_fail(err, SS_ERR_INVALID, "match: bad segment pairs (%d)", in->n);
+  for (int p = 0; p < in->n; p++)
+    if (in->sx[p] < 0 || in->sx[p] >= X->seg.m || in->sy[p] < 0 || in->sy[p] >= Y->seg.m)
+      return ss_fail(err, SS_ERR_INVALID, "match: segment pair %d (%d, %d) out of range (%d, %d segments)", p, in->sx[p],
+                     in->sy[p], X->seg.m, Y->seg.m);
+  const size_t n = (size_t)(in->n > 0 ? in->n : 1);
+  out->sx = malloc(sizeof(int) * n), out->sy = malloc(sizeof(int) * n), out->energy = malloc(sizeof(double) * n);
+  if (!out->sx || !out->sy || !out->energy) {
+    ss_segment_pairs_free(out);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  out->n = in->n, out->nx = in->nx, out->ny = in->ny;
+  if (in->n > 0) {
+    memcpy(out->sx, in->sx, sizeof(int) * (size_t)in->n);
+    memcpy(out->sy, in->sy, sizeof(int) * (size_t)in->n);
+    if (in->energy) memcpy(out->energy, in->energy, sizeof(double) * (size_t)in->n);
+    else
+      for (int p = 0; p < in->n; p++) out->energy[p] = NAN;
+  }
+  return SS_OK;
+}
+
+static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
+                            ss_error *err) {
   double t_start = ss_time();
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
@@ -143,16 +177,19 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
 
   ss_status st = SS_OK;
   double *EX = NULL, *EY = NULL, *Ck[2] = {NULL, NULL}, *Cz = NULL, *Cbest = NULL;
-  int *cand = NULL, *zmap = NULL;
-  ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0}, sbX = {0}, sbY = {0}; /* sb: STD's base, no operators */
+  int *zmap = NULL, *smap[2] = {NULL, NULL};
+  ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0}, sbX = {0}, sbY = {0}; /* sb: STD's base (selection energy) */
   ss_fmap_system *sys = NULL;
+  ssi_zoomout_plan plan = {0};
   out->nX = nX;
   out->t_segment = X->t_segment + Y->t_segment;
   out->t_eigs = X->t_eigs + Y->t_eigs;
 
   /* 1. pairing of the segments (reported for every probe set) */
   double t0 = ss_time();
-  if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  if (pairs_in) {
+    if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
+  } else if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -192,6 +229,11 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   for (int c = 0; c < 2; c++) {
     if (!(c ? want_seg : want_std)) continue;
     if (c == 0 || own1) {
+      if (c == 1 && want_std) {
+        /* STD's base probes are kept for the selection energy (it reads their coefficients only) */
+        sbX = bX, sbY = bY;
+        memset(&bX, 0, sizeof bX), memset(&bY, 0, sizeof bY);
+      }
       ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
       ss_fmap_system_free(sys);
       sys = NULL;
@@ -199,10 +241,6 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
       if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[c], ops, &bY, err))) goto fail;
       /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
       if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto fail;
-      if (c == 0 && o.refine == SS_REFINE_BEST && o.refine_w_descr > 0) { /* for the selection energy */
-        if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo[0], 0, &sbX, err))) goto fail;
-        if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[0], 0, &sbY, err))) goto fail;
-      }
     }
     if (c == 1) {
       ss_probe_filter filt = o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
@@ -229,7 +267,10 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
       out->kc = kz;
       if (!(out->C = malloc(sizeof(double) * (size_t)kz * kz))) goto nomem;
       int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-      if ((st = ss_zoomout(nY, nX, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step, out->map, out->C, err))) goto fail;
+      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
+        goto fail;
+      if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step, out->map, out->C, err)))
+        goto fail;
       out->t_zoomout = ss_time() - t2;
     } else {
       if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[main_c], out->map, err))) goto fail;
@@ -239,31 +280,45 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     }
   } else {
     /* candidates 2c (start c at size k) and 2c+1 (its ZoomOut to kz), selection energy at size kz */
-    cand = malloc(sizeof(int) * (size_t)nX);
     zmap = malloc(sizeof(int) * (size_t)nX);
     Cz = malloc(sizeof(double) * (size_t)kz * kz);
     Cbest = malloc(sizeof(double) * (size_t)kz * kz);
-    if (!cand || !zmap || !Cz || !Cbest) goto nomem;
+    if (!zmap || !Cz || !Cbest) goto nomem;
     const int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
+    /* the STD base probes of the selection energy: kept apart when the segment-aided map had its own */
+    const ss_fmap_probes *qX = sbX.A ? &sbX : &bX, *qY = sbY.A ? &sbY : &bY;
     double best = INFINITY;
     int kbest = k;
+    /* the starts' energies first (with refine_single only the lower one is refined) */
     for (int c = 0; c < 2; c++) {
       if (!Ck[c]) continue;
-      if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], cand, err))) goto fail;
-      double e0, e1 = INFINITY;
-      if ((st = select_energy(X, Y, &o, k, kz, &sbX, &sbY, cand, &e0, err))) goto fail;
-      out->refine_energy[2 * c] = e0;
-      if (kz > k) {
+      if (!(smap[c] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
+      if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], smap[c], err))) goto fail;
+      if ((st = select_energy(X, Y, &o, k, kz, qX, qY, smap[c], &out->refine_energy[2 * c], err))) goto fail;
+    }
+    if (kz > k) {
+      double tz = ss_time();
+      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
+        goto fail;
+      out->t_zoomout += ss_time() - tz;
+    }
+    for (int c = 0; c < 2; c++) {
+      if (!Ck[c]) continue;
+      double e0 = out->refine_energy[2 * c], e1 = INFINITY;
+      /* refine_single: the other start has the lower energy (ties: STD's is refined) */
+      const double eo = out->refine_energy[2 * (1 - c)];
+      const int skip = o.refine_single && Ck[1 - c] && (eo < e0 || (eo == e0 && c == 1));
+      if (kz > k && !skip) {
         double tz = ss_time();
-        if ((st = ss_zoomout(nY, nX, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
+        if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
         out->t_zoomout += ss_time() - tz;
-        if ((st = select_energy(X, Y, &o, k, kz, &sbX, &sbY, zmap, &e1, err))) goto fail;
+        if ((st = select_energy(X, Y, &o, k, kz, qX, qY, zmap, &e1, err))) goto fail;
         out->refine_energy[2 * c + 1] = e1;
       }
       /* the start, then its refinement only when it lowers the energy (ties keep the earlier one) */
       if (e0 < best) {
         best = e0, out->refine_choice = 2 * c, kbest = k;
-        memcpy(out->map, cand, sizeof(int) * (size_t)nX);
+        memcpy(out->map, smap[c], sizeof(int) * (size_t)nX);
         memcpy(Cbest, Ck[c], sizeof(double) * (size_t)k * k);
       }
       if (e1 < best && e1 <= e0) {
@@ -284,9 +339,11 @@ fail:
   ss_match_result_free(out);
 cleanup:
   ss_fmap_system_free(sys);
+  ssi_zoomout_plan_free(&plan);
   ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
   ss_fmap_probes_free(&sbX), ss_fmap_probes_free(&sbY);
-  free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(cand), free(zmap);
+  free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(zmap);
+  free(smap[0]), free(smap[1]);
   return st;
 }
 
@@ -399,6 +456,21 @@ static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int 
            nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
            is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
   ssi_warn_append(w, size, line);
+}
+
+ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+}
+
+ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                                  const ss_segment_pairs *pairs, const ss_match_options *opts, ss_match_result *out,
+                                  ss_error *err) {
+  if (!pairs) {
+    if (out) memset(out, 0, sizeof *out);
+    return ss_fail(err, SS_ERR_INVALID, "match: NULL segment pairs");
+  }
+  return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
