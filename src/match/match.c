@@ -24,6 +24,7 @@ void ss_match_default_options(ss_match_options *o) {
   o->refine = SS_REFINE_BEST;
   o->refine_w_lap = 0.0;
   o->refine_w_descr = SS_DEFAULT_REFINE_W_DESCR;
+  ss_autopair_default_options(&o->autopair);
 }
 
 void ss_match_paper_options(ss_match_options *o) {
@@ -71,11 +72,31 @@ static void add_note(ss_match_result *r, const char *msg) {
   snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
 }
 
-ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
-  double t_start = ss_time();
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+static ss_status copy_pairs(const ss_segment_pairs *in, ss_segment_pairs *out, ss_error *err) {
   memset(out, 0, sizeof *out);
+  const int n = in->n;
+  out->sx = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+  out->sy = malloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+  out->energy = malloc(sizeof(double) * (size_t)(n > 0 ? n : 1));
+  if (!out->sx || !out->sy || !out->energy) {
+    ss_segment_pairs_free(out);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  if (n > 0) {
+    memcpy(out->sx, in->sx, sizeof(int) * (size_t)n);
+    memcpy(out->sy, in->sy, sizeof(int) * (size_t)n);
+    memcpy(out->energy, in->energy, sizeof(double) * (size_t)n);
+  }
+  out->n = n, out->nx = in->nx, out->ny = in->ny;
+  return SS_OK;
+}
+
+/* The pipeline; given (may be NULL): a pairing of the segments to use instead of the landmark one
+ * (the landmark-free path, whose landmarks are the paired centres). */
+static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_segment_pairs *given, const ss_match_options *opts_in, ss_match_result *out,
+                            ss_error *err) {
+  double t_start = ss_time();
   out->refine_choice = -1;
   for (int i = 0; i < 4; i++) out->refine_energy[i] = NAN;
   ss_match_options o;
@@ -121,7 +142,9 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
 
   /* 1. pairing of the segments (reported for every probe set) */
   double t0 = ss_time();
-  if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  if (given) {
+    if ((st = copy_pairs(given, &out->pairs, err))) goto fail;
+  } else if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -257,6 +280,58 @@ cleanup:
   return st;
 }
 
+ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  if (nl == 0) return ss_match_prepared_auto(X, Y, NULL, NULL, opts, out, err);
+  memset(out, 0, sizeof *out);
+  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+}
+
+ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                 const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
+                                 ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_match_options o;
+  if (opts_in) o = *opts_in;
+  else ss_match_default_options(&o);
+  if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
+    return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
+  ss_centre_signature own[2];
+  memset(own, 0, sizeof own);
+  ss_segment_pairs pr = {0};
+  ss_autopair_info info;
+  int *lx = NULL, *ly = NULL;
+  ss_status st = SS_OK;
+  double t0 = ss_time();
+  if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
+  if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
+  if ((st = ss_pair_centres_auto(sigX ? sigX : &own[0], sigY ? sigY : &own[1], &o.autopair, &pr, &info, err))) goto done;
+  double t_pair = ss_time() - t0;
+  lx = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
+  ly = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
+  if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  for (int p = 0; p < pr.n; p++) lx[p] = X->seg.centers[pr.sx[p]], ly[p] = Y->seg.centers[pr.sy[p]];
+  /* the paired centres are the landmarks; the pairing is the segments' */
+  o.pairing.min_landmarks = 1;
+  if ((st = match_core(X, Y, pr.n, lx, ly, &pr, &o, out, err))) goto done;
+  out->t_pair += t_pair;
+  out->autopair = info;
+  if (!info.confident) {
+    char msg[200];
+    snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation %.2f, min %.2f): the "
+             "map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror, o.autopair.min_mirror);
+    add_note(out, msg);
+  }
+done:
+  ss_centre_signature_free(&own[0]);
+  ss_centre_signature_free(&own[1]);
+  ss_segment_pairs_free(&pr);
+  free(lx), free(ly);
+  return st;
+}
+
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                    const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
@@ -266,7 +341,7 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
   else ss_match_default_options(&o);
   if (!X || !Y) return ss_fail(err, SS_ERR_INVALID, "match: NULL mesh");
   /* check the landmarks before the expensive part */
-  if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
+  if (nl < 0 || (nl > 0 && (!lmX || !lmY))) return ss_fail(err, SS_ERR_INVALID, "match: bad landmarks");
   for (int i = 0; i < nl; i++) {
     if (lmX[i] < 0 || lmX[i] >= X->nv)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on X [0,%d)", i, lmX[i], X->nv);
