@@ -11,7 +11,7 @@
 #include <time.h>
 
 const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset) {
-  return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : s->fps;
+  return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : lmset == SS_LM_FPS ? s->fps : NULL;
 }
 
 static ss_fmap_shape fmap_shape(const ev_shape *s) {
@@ -44,28 +44,49 @@ static double thread_cpu(void) {
 
 ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
                            int *const maps[3], double cpu[3], int *paired, ss_error *err) {
+  return ev_match_methods_pairs(ctx, X, Y, lmset, methods_mask, maps, cpu, paired, NULL, err);
+}
+
+ss_status ev_match_methods_pairs(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                                 int *const maps[3], double cpu[3], int *paired, ss_segment_pairs *pairs_out,
+                                 ss_error *err) {
   const ss_shape_prep *pX = &X->prep, *pY = &Y->prep;
   const double c_start = thread_cpu();
   ss_fmap_shape sX = fmap_shape(X), sY = fmap_shape(Y);
   ss_fmap_match_options fo = fmap_options(ctx);
   const int k = fo.k, ops = fo.w_dcomm > 0, xops = ops && fo.extra_dcomm;
   const int *lmX = ev_landmarks(ctx, X, lmset), *lmY = ev_landmarks(ctx, Y, lmset);
+  int nl = EV_NL, *autoX = NULL, *autoY = NULL;
   ss_segment_pairs pr;
-  ss_status st = ss_pair_critical_points(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &pr, err);
-  if (st) return st;
+  ss_status st;
+  if (lmset == SS_LM_NONE) { /* landmark-free: the automatic pairing, its centres as the landmarks */
+    if (X->sig.m < 1 || Y->sig.m < 1) return ss_fail(err, SS_ERR_INVALID, "eval: landmark-free rows need signatures");
+    if ((st = ss_pair_centres_auto(&X->sig, &Y->sig, &ctx->mopt.autopair, &pr, NULL, err))) return st;
+    autoX = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
+    autoY = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
+    if (!autoX || !autoY) {
+      free(autoX), free(autoY), ss_segment_pairs_free(&pr);
+      return ss_fail(err, SS_ERR_NOMEM, "eval: out of memory");
+    }
+    for (int q = 0; q < pr.n; q++) autoX[q] = pX->seg.centers[pr.sx[q]], autoY[q] = pY->seg.centers[pr.sy[q]];
+    lmX = autoX, lmY = autoY, nl = pr.n;
+  } else if ((st = ss_pair_critical_points(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &pr, err))) {
+    return st;
+  }
   *paired = pr.n;
   ss_fmap_probes ownX = {0}, ownY = {0}, xX = {0}, xY = {0};
   ss_fmap_system *sys = NULL;
   double *EX = NULL, *EY = NULL, *Ck = malloc(sizeof(double) * (size_t)k * k), c_method[3] = {0};
   if (!Ck) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
   /* base probes: the shapes' own (ev_shape_probes), else built here */
-  const ss_fmap_probes *bX = &X->base[lmset], *bY = &Y->base[lmset];
+  static const ss_fmap_probes none = {0};
+  const ss_fmap_probes *bX = lmset < 3 ? &X->base[lmset] : &none, *bY = lmset < 3 ? &Y->base[lmset] : &none;
   if (bX->p == 0) {
-    if ((st = ss_fmap_base_probes(&sX, EV_NL, lmX, &fo, ops, &ownX, err))) goto done;
+    if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo, ops, &ownX, err))) goto done;
     bX = &ownX;
   }
   if (bY->p == 0) {
-    if ((st = ss_fmap_base_probes(&sY, EV_NL, lmY, &fo, ops, &ownY, err))) goto done;
+    if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo, ops, &ownY, err))) goto done;
     bY = &ownY;
   }
   /* source S = Y, target T = X (see ss_fmap_match) */
@@ -86,8 +107,8 @@ ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_sh
     int nextra = mth == SS_METHOD_STD ? 0 : pr.n;
     if (nextra > 0) {
       ss_probe_filter f = mth == SS_METHOD_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
-      if ((st = ss_fmap_extra_probes(&sX, EV_NL, nextra, EX, f, &fo, xops, &xX, err))) goto done;
-      if ((st = ss_fmap_extra_probes(&sY, EV_NL, nextra, EY, f, &fo, xops, &xY, err))) goto done;
+      if ((st = ss_fmap_extra_probes(&sX, nl, nextra, EX, f, &fo, xops, &xX, err))) goto done;
+      if ((st = ss_fmap_extra_probes(&sY, nl, nextra, EY, f, &fo, xops, &xY, err))) goto done;
     }
     st = ss_fmap_system_solve(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, fo.w_extra, fo.extra_dcomm, Ck, err);
     ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
@@ -101,8 +122,9 @@ ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_sh
 done:
   ss_fmap_system_free(sys);
   ss_fmap_probes_free(&ownX), ss_fmap_probes_free(&ownY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
-  free(EX), free(EY), free(Ck);
-  ss_segment_pairs_free(&pr);
+  free(EX), free(EY), free(Ck), free(autoX), free(autoY);
+  if (pairs_out && !st) *pairs_out = pr;
+  else ss_segment_pairs_free(&pr);
   return st;
 }
 
