@@ -272,6 +272,13 @@ SS_API ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_p
                                         const ss_centre_signature *sigY, const ss_match_options *opts,
                                         ss_match_result *out, ss_error *err);
 
+/* The landmark-free pairing from two meshes: prepare both (opts->seg, max(autopair.descr_k,
+ * autopair.orient_k) eigenpairs), their signatures, ss_pair_centres_auto (opts->autopair). opts may
+ * be NULL. centerX / centerY (may be NULL): malloc'd pairs->n input vertices at the paired centres
+ * (free()). */
+SS_API ss_status ss_pair_auto(const ss_mesh *X, const ss_mesh *Y, const ss_match_options *opts, ss_segment_pairs *pairs,
+                              int **centerX, int **centerY, ss_autopair_info *info, ss_error *err);
+
 /* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL. */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                           const ss_match_options *opts, ss_match_result *out, ss_error *err);

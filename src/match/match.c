@@ -361,3 +361,45 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
   ss_shape_prep_free(&pY);
   return st;
 }
+
+ss_status ss_pair_auto(const ss_mesh *X, const ss_mesh *Y, const ss_match_options *opts_in, ss_segment_pairs *pairs,
+                       int **centerX, int **centerY, ss_autopair_info *info, ss_error *err) {
+  if (!pairs) return ss_fail(err, SS_ERR_INVALID, "pair: NULL output");
+  memset(pairs, 0, sizeof *pairs);
+  if (centerX) *centerX = NULL;
+  if (centerY) *centerY = NULL;
+  if (!X || !Y) return ss_fail(err, SS_ERR_INVALID, "pair: NULL mesh");
+  ss_match_options o;
+  if (opts_in) o = *opts_in;
+  else ss_match_default_options(&o);
+  int kev = o.autopair.descr_k > o.autopair.orient_k ? o.autopair.descr_k : o.autopair.orient_k;
+  const int nmin = X->nv < Y->nv ? X->nv : Y->nv;
+  if (kev >= nmin) kev = nmin - 1;
+  ss_shape_prep pX = {0}, pY = {0};
+  ss_centre_signature sX = {0}, sY = {0};
+  ss_status st = ss_shape_prep_compute(X, &o.seg, kev, &pX, err);
+  if (!st) st = ss_shape_prep_compute(Y, &o.seg, kev, &pY, err);
+  if (!st) st = ss_centre_signature_compute(&pX, &o.autopair, &sX, err);
+  if (!st) st = ss_centre_signature_compute(&pY, &o.autopair, &sY, err);
+  if (!st) st = ss_pair_centres_auto(&sX, &sY, &o.autopair, pairs, info, err);
+  if (!st && (centerX || centerY)) {
+    int *cx = malloc(sizeof(int) * (size_t)(pairs->n > 0 ? pairs->n : 1));
+    int *cy = malloc(sizeof(int) * (size_t)(pairs->n > 0 ? pairs->n : 1));
+    if (!cx || !cy) {
+      free(cx), free(cy);
+      ss_segment_pairs_free(pairs);
+      st = ss_fail(err, SS_ERR_NOMEM, "pair: out of memory");
+    } else {
+      for (int p = 0; p < pairs->n; p++) cx[p] = pX.seg.centers[pairs->sx[p]], cy[p] = pY.seg.centers[pairs->sy[p]];
+      if (centerX) *centerX = cx;
+      else free(cx);
+      if (centerY) *centerY = cy;
+      else free(cy);
+    }
+  }
+  ss_centre_signature_free(&sX);
+  ss_centre_signature_free(&sY);
+  ss_shape_prep_free(&pX);
+  ss_shape_prep_free(&pY);
+  return st;
+}
