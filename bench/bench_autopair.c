@@ -113,8 +113,8 @@ static void next_pair(unsigned *r, int lo, int n, int *a, int *b) {
 }
 
 int main(int argc, char **argv) {
-  const char *data = SS_DATA_DIR_DEFAULT, *cache = "/tmp/specseg_autopair_cache", *split = "tune", *dump = NULL;
-  int selftest = 0, npairs = 20, allpairs = 0, verbose = 0, nmatch = 0, gtrho = 0, n_gt = 0, n_gtok = 0;
+  const char *tosca_class = NULL, *data = SS_DATA_DIR_DEFAULT, *cache = "/tmp/specseg_autopair_cache", *split = "tune", *dump = NULL;
+  int tosca = 0, selftest = 0, npairs = 20, allpairs = 0, verbose = 0, nmatch = 0, gtrho = 0, n_gt = 0, n_gtok = 0;
   double gt_margin = 0;
   unsigned seed = 1;
   ss_autopair_options ao;
@@ -131,6 +131,8 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--wg") && v) ao.w_geo = atof(v), i++;
     else if (!strcmp(a, "--gtrho")) gtrho = 1;
     else if (!strcmp(a, "--self")) selftest = 1;
+    else if (!strcmp(a, "--tosca")) tosca = 1;
+    else if (!strcmp(a, "--tosca-class") && v) tosca = 1, tosca_class = v, i++;
     else if (!strcmp(a, "--radius") && v) ao.descr_radius = atof(v), i++;
     else if (!strcmp(a, "--energies") && v) ao.n_energies = atoi(v), i++;
     else if (!strcmp(a, "--ok") && v) ao.orient_k = atoi(v), i++;
@@ -140,6 +142,54 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--dump") && v) dump = v, i++;
     else if (!strcmp(a, "--verbose")) verbose = 1;
     else { fprintf(stderr, "bench_autopair: bad argument %s (see the source's header)\n", a); return 2; }
+  }
+  if (tosca) { /* each class: its first shape against every other of the same vertex count (GT = identity) */
+    static const char *classes[] = {"cat", "centaur", "david", "dog", "horse", "michael", "victoria", "wolf"};
+    static const int counts[] = {11, 6, 14, 11, 18, 20, 26, 3};
+    for (int c = 0; c < 8; c++) {
+      if (tosca_class && strcmp(tosca_class, classes[c])) continue;
+      shape X0 = {0};
+      int have0 = 0, np = 0, nright = 0, nconf = 0, nconfw = 0, nsame = 0;
+      double cpu = 0;
+      char segs[512] = "";
+      for (int i = 0; i < counts[c] + 12; i++) {
+        char path[4096];
+        snprintf(path, sizeof path, "%s/tosca/%s%d.off", data, classes[c], i);
+        FILE *t = fopen(path, "r");
+        if (!t) continue;
+        fclose(t);
+        shape Y = {0};
+        ss_error e2;
+        if (ss_read_mesh(path, &Y.m, &e2) || ss_shape_prep_compute(&Y.m, NULL, KEV, &Y.prep, &e2) ||
+            ss_centre_signature_compute(&Y.prep, &ao, &Y.sig, &e2)) {
+          printf("%s: %s\n", path, e2.msg);
+          continue;
+        }
+        size_t L = strlen(segs);
+        snprintf(segs + L, sizeof segs - L, " %d", Y.sig.m);
+        if (!have0) { X0 = Y; have0 = 1; continue; }
+        if (Y.m.nv == X0.m.nv) {
+          ss_segment_pairs pr;
+          ss_autopair_info info;
+          if (!ss_pair_centres_auto(&X0.sig, &Y.sig, &ao, &pr, &info, &e2)) {
+            int right = 0;
+            for (int p = 0; p < pr.n; p++) right += Y.prep.seg.labels[X0.prep.seg.centers[pr.sx[p]]] == pr.sy[p];
+            np++, nsame += X0.sig.m == Y.sig.m, nright += right == pr.n && X0.sig.m == Y.sig.m;
+            nconf += info.confident, nconfw += info.confident && !(right == pr.n && X0.sig.m == Y.sig.m);
+            cpu += info.cpu;
+            if (verbose) printf("  %s%d: m %d/%d right %d/%d gap %.3f margin %.3f %s\n", classes[c], i, X0.sig.m, Y.sig.m, right, pr.n, info.gap, (info.mirror - info.mirror_other) / 2, info.confident ? "confident" : "");
+            ss_segment_pairs_free(&pr);
+          }
+        }
+        ss_centre_signature_free(&Y.sig), ss_shape_prep_free(&Y.prep), ss_mesh_free(&Y.m);
+      }
+      printf("tosca %s: segments%s; %d pairs with the first shape (same vertex count), %d with equal segment counts: "
+             "all right %d, confident %d (wrong among them %d), search CPU mean %.3f s\n",
+             classes[c], segs, np, nsame, nright, nconf, nconfw, np ? cpu / np : 0);
+      fflush(stdout);
+      if (have0) ss_centre_signature_free(&X0.sig), ss_shape_prep_free(&X0.prep), ss_mesh_free(&X0.m);
+    }
+    return 0;
   }
   int lo = 0, n = 100;
   if (!strcmp(split, "tune")) lo = 0, n = 50;

@@ -25,7 +25,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->orient_k = 30;
   o->orient_descr_k = 100;
   o->min_gap = 0.05;
-  o->min_mirror = 0.2;
+  o->min_mirror = 0.3;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
