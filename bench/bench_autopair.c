@@ -2,8 +2,13 @@
  * the ground truth (identity), up to the left-right mirror and with it, its confidence and CPU, and
  * optionally the landmark-free ss_match_prepared map error.
  *   bench_autopair [--data DIR] [--cache DIR] [--split tune|held|all] [--pairs N] [--seed S]
- *                  [--all-pairs] [--wd W] [--wg W] [--wo W] [--radius R] [--energies E]
+ *                  [--all-pairs] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
+ *                  [--ok K] [--odk K] (orientation test's basis / descriptor eigenpairs)
  *                  [--match N] [--verbose] [--dump DIR]
+ *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
+ *                  [--self]   the orientation test of the first 5 shapes with themselves
+ *   bench_autopair --tosca [--tosca-class NAME] [--verbose]
+ *                  each TOSCA class: its first shape against the others with the same vertex count
  * Pairs: --pairs N random ordered pairs of distinct shapes of the split (the LCG of bench_match from
  * --seed), or --all-pairs (every ordered pair of the split). A pair (cx, cy) is right when vertex cx
  * of X (GT = identity) lies in segment cy of Y; "up to the mirror" when it is right after FAUST's
