@@ -116,6 +116,7 @@ int cmd_geodesic(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_error(int argc, char **argv);
 int cmd_match(int argc, char **argv);
+int cmd_pair(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 
 #endif

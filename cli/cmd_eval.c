@@ -21,7 +21,7 @@
 static const char USAGE[] =
     "usage: specseg eval --table1 --data DIR [--pairs N] [--seed S] [--out RESULTS.csv] [--jobs N]\n"
     "                    [--cache DIR] [--shard I/N] [--error-samples N] [--k K]\n"
-    "                    [--policies random,subj,pose] [--landmarks best,gt,fps] [--methods std,asa,diff,refined]\n"
+    "                    [--policies random,subj,pose] [--landmarks best,gt,fps,none] [--methods std,asa,diff,refined]\n"
     "                    [--quiet]\n"
     "       specseg eval merge CSV... [--out ALL.csv]\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
@@ -49,7 +49,9 @@ static const char USAGE[] =
     "  --error-samples N   mean errors over N sampled vertices, 0..3000 (default 0: every vertex)\n"
     "  --k K               functional map basis size, 3..1000 (default 50)\n"
     "  --policies LIST     pairing policies, comma list of random,subj,pose (default all)\n"
-    "  --landmarks LIST    landmark sets, comma list of best,gt,fps (default all; --figures: best)\n"
+    "  --landmarks LIST    landmark sets, comma list of best,gt,fps,none (default best,gt,fps; --figures:\n"
+    "                      best). none: landmark-free rows (segments paired automatically, the paired\n"
+    "                      centres as landmarks; 100 eigenpairs per shape) and the pairing's accuracy\n"
     "  --methods LIST      comma list of std,asa,diff (the paper's maps), refined (the default output of\n"
     "                      specseg match) (default std,asa,diff)\n"
     "  --quiet             no progress bar or stage messages\n"
@@ -118,6 +120,29 @@ static void print_table(const ss_table1 *t, FILE *f) {
   }
 }
 
+/* The landmark-free rows (landmark set "none"), when there are any. */
+static void print_none_table(const ss_eval_row *rows, int n, FILE *f) {
+  ss_table1_none t;
+  if (ss_table1_none_aggregate(rows, n, &t, NULL)) return;
+  if (!t.pairs[0] && !t.pairs[1] && !t.pairs[2]) return;
+  static const char *names[4] = {"FAUST NONE", "FAUST subj NONE", "FAUST pose NONE", "FAUST sym NONE"};
+  fprintf(f, "\n%-17s %9s %9s %9s  %5s  %s\n", "landmark-free", "STD", "ASA", "DIFF", "pairs",
+          "segment pairing: all right / up to the mirror");
+  for (int i = 0; i < 4; i++) {
+    if (t.count[i][0] + t.count[i][1] + t.count[i][2] == 0) continue;
+    fprintf(f, "%-17s", names[i]);
+    int np = 0;
+    for (int c = 0; c < 3; c++) {
+      if (t.count[i][c]) fprintf(f, " %9.4f", t.mean[i][c]);
+      else fprintf(f, " %9s", "-");
+      if (t.count[i][c] > np) np = t.count[i][c];
+    }
+    fprintf(f, "  %5d", np);
+    if (i < 3) fprintf(f, "  %5.1f%% / %5.1f%%", 100 * t.all_right[i], 100 * t.mirror_right[i]);
+    fputc('\n', f);
+  }
+}
+
 static int print_csv_table(const char *path) {
   ss_eval_row *rows;
   int n;
@@ -125,9 +150,13 @@ static int print_csv_table(const char *path) {
   if (ss_eval_csv_read(path, &rows, &n, &e)) return cli_error("%s", e.msg);
   ss_table1 t;
   ss_status st = ss_table1_aggregate(rows, n, &t, &e);
-  free(rows);
-  if (st) return cli_error("%s", e.msg);
+  if (st) {
+    free(rows);
+    return cli_error("%s", e.msg);
+  }
   print_table(&t, stdout);
+  print_none_table(rows, n, stdout);
+  free(rows);
   return SS_EXIT_OK;
 }
 
@@ -173,10 +202,14 @@ static int cmd_merge(int argc, char **argv) {
   }
   ss_table1 t;
   ss_status st = ss_table1_aggregate(all, n, &t, &e);
-  free(all);
-  if (st) return cli_error("%s", e.msg);
+  if (st) {
+    free(all);
+    return cli_error("%s", e.msg);
+  }
   fprintf(report, "merged %d rows from %d files%s%s\n", n, nin, out ? " into " : "", out ? cli_out_name(out) : "");
   print_table(&t, report);
+  print_none_table(all, n, report);
+  free(all);
   return SS_EXIT_OK;
 }
 
@@ -472,7 +505,7 @@ int cmd_eval(int argc, char **argv) {
         return cli_bad(&A, "--shard: I/N with 1 <= I <= N (e.g. 3/8)");
       o.shard_i = si - 1, o.shard_n = sn;
     } else if (cli_is(&A, "--policies")) { if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_bad(&A, "--policies: comma list of random,subj,pose"); }
-    else if (cli_is(&A, "--landmarks")) { lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_bad(&A, "--landmarks: comma list of best,gt,fps"); }
+    else if (cli_is(&A, "--landmarks")) { lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_bad(&A, "--landmarks: comma list of best,gt,fps,none"); }
     else if (cli_is(&A, "--methods")) { if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_bad(&A, "--methods: comma list of std,asa,diff,refined"); }
   }
   if (A.rc >= 0) return A.rc;

@@ -1,4 +1,4 @@
-/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] [--no-refine]
+/* specseg match X Y [--landmarks LM.txt] [--probes std|asa|diff] [--k K] [--zoomout KMAX] [--no-refine]
  *                   [--zoomout-step S] [--zoomout-samples N] [--descr-k K] -o MAP.txt [--fmap C.npy]
  *                   [--pairs PAIRS.txt] [--timings] */
 #include "cli.h"
@@ -10,7 +10,7 @@
 #include <string.h>
 
 static const char USAGE[] =
-    "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
+    "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K]\n"
     "                     [--pairs PAIRS.txt] [--timings]\n"
@@ -20,11 +20,15 @@ static const char USAGE[] =
     "eigenfunctions (on vertex samples of X, then once on every vertex) from the STD map and from the\n"
     "segment-aided one, keeping the map of lowest unsupervised energy (orthonormality of its\n"
     "functional map + preservation of the descriptors).\n"
+    "Without --landmarks the segments are paired automatically (as 'specseg pair' prints them: WKS at the\n"
+    "centres, centre-to-centre geodesics, and the orientation for left / right, which needs both meshes\n"
+    "consistently oriented) and the paired centres serve as landmarks; a pairing below the confidence\n"
+    "thresholds is reported in a 'note:' line (the map may be wrong).\n"
     "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
     "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
     "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
-    "                      j on Y) (required)\n"
+    "                      j on Y); without it, landmark-free (see above)\n"
     "  -o, --output FILE   the map: line i = vertex of Y that is the image of vertex i of X (required)\n"
     "  --probes P          std: WKS + landmarks (NO17); asa: + segment indicators; diff: + wave-filtered\n"
     "                      segment indicators (default diff)\n"
@@ -101,17 +105,16 @@ int cmd_match(int argc, char **argv) {
   }
   if (A.rc >= 0) return A.rc;
   if (!xp || !yp) return cli_bad(&A, "needs two meshes X and Y");
-  if (!lmp) return cli_bad(&A, "missing --landmarks LM.txt");
   if (!outp) return cli_bad(&A, "missing -o MAP.txt");
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
   if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
-  const char *ins[3] = {xp, yp, lmp}, *outs[3] = {outp, fmapp, pairsp};
+  const char *ins[3] = {xp, yp, lmp ? lmp : ""}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 3) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
   int to_stdout = cli_count_std(outs, 3);
   if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
   FILE *report = to_stdout ? stderr : stdout;
-  const char *xn = cli_in_name(xp), *yn = cli_in_name(yp), *lmn = cli_in_name(lmp);
+  const char *xn = cli_in_name(xp), *yn = cli_in_name(yp), *lmn = lmp ? cli_in_name(lmp) : "";
 
   ss_error err = {{0}};
   ss_mesh X = {0}, Y = {0};
@@ -119,7 +122,7 @@ int cmd_match(int argc, char **argv) {
   int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
-  if (cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
+  if (lmp && cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
   if (cli_read_mesh(xp, &X, &err) || cli_read_mesh(yp, &Y, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
@@ -142,7 +145,8 @@ int cmd_match(int argc, char **argv) {
         cli_warn("%s: %d pinched (non-manifold) vertices: split internally for the segmentation", s ? yn : xn,
                  rep.nonmanifold_vertices);
       if (!rep.oriented && rep.orientable)
-        cli_warn("%s: faces not consistently oriented: %d re-oriented internally", s ? yn : xn, rep.reorient_faces);
+        cli_warn("%s: faces not consistently oriented: %d re-oriented internally%s", s ? yn : xn, rep.reorient_faces,
+                 nl ? "" : "; the landmark-free left / right decision needs consistently oriented meshes");
     }
   }
   char dropped[1024];
@@ -181,8 +185,13 @@ int cmd_match(int argc, char **argv) {
     fprintf(stderr, "timing: total %.6f\n", ss_time() - t0);
   }
   static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
-  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv,
-          Y.nv, nl, res.pairs.n, res.pairs.nx, res.pairs.ny,
+  if (res.autopair.used)
+    fprintf(report, "landmark-free pairing (%s search): energy %.4g, mirror candidate %.4g, next other %.4g (gap %.3f), "
+            "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
+            res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
+            res.autopair.mirror_other, res.autopair.confident ? ", confident" : ", NOT confident");
+  fprintf(report, "%d -> %d vertices, %d landmarks%s, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv,
+          Y.nv, res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", res.pairs.n, res.pairs.nx, res.pairs.ny,
           o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
           o.refine == SS_REFINE_NONE ? "" : ", refined: ",
           res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "",

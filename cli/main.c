@@ -72,6 +72,7 @@ static const command commands[] = {
     {"geodesic", cmd_geodesic, "geodesic distances from source vertices"},
     {"segment", cmd_segment, "coherent spectral segmentation"},
     {"match", cmd_match, "point-to-point map between two shapes (functional maps)"},
+    {"pair", cmd_pair, "landmark-free pairing of two shapes' segments, with its confidence"},
     {"error", cmd_error, "geodesic error of a map"},
     {"eval", cmd_eval, "the paper's evaluation (Table 1, coherency, timings, figures); eval merge"},
     {"render", cmd_render, "pictures of segmentations, fields, maps and map errors (PNG)"},

@@ -66,12 +66,16 @@ SS_API ss_status ss_symmetry_map(const ss_mesh *m, int nl, const int *lm, const 
 
 /* ---- Results: one row per (scenario, method, pair) -------------------------------------------- */
 
-typedef enum ss_lm_set { SS_LM_BEST = 0, SS_LM_GT = 1, SS_LM_FPS = 2 } ss_lm_set;
+/* SS_LM_NONE: landmark-free (issue 16): the segments paired by ss_pair_centres_auto, the paired
+ * centres as the landmarks of STD / ASA / DIFF; needs 100 eigenpairs (the runner then computes
+ * max(k, 100) per shape, so rows of the other sets in the same run may differ from a run without
+ * "none" in the last digits). */
+typedef enum ss_lm_set { SS_LM_BEST = 0, SS_LM_GT = 1, SS_LM_FPS = 2, SS_LM_NONE = 3 } ss_lm_set;
 /* STD / ASA / DIFF: the paper's maps (ss_match_paper_options); REFINED: the library's default output
  * (ss_match_default_options with the run's k: refined, selected by its unsupervised energy) */
 typedef enum ss_eval_method { SS_METHOD_STD = 0, SS_METHOD_ASA = 1, SS_METHOD_DIFF = 2, SS_METHOD_REFINED = 3 } ss_eval_method;
 #define SS_EVAL_NMETHODS 4
-SS_API const char *ss_lm_set_name(ss_lm_set s);           /* "best" | "gt" | "fps" */
+SS_API const char *ss_lm_set_name(ss_lm_set s);           /* "best" | "gt" | "fps" | "none" */
 SS_API const char *ss_eval_method_name(ss_eval_method m); /* "std" | "asa" | "diff" | "refined" */
 SS_API int ss_lm_set_parse(const char *s);
 SS_API int ss_eval_method_parse(const char *s);
@@ -86,6 +90,11 @@ typedef struct ss_eval_row {
   double seconds;                /* matching time of this row (wall) */
   int samples;                   /* vertices the error averages over */
   double cpu_seconds;            /* CPU time of the matching (its thread; BLAS runs single-threaded) */
+  /* landmark-free rows: 2 every segment pair right (a pair (cx, cy) is right when vertex cx of X,
+   * the ground truth being the identity, lies in segment cy of Y), 1 every pair right after the
+   * left-right symmetry map (the mirror), 0 otherwise; -1 for the other rows (CSV column "pairing",
+   * optional when read: -1 when absent) */
+  int pairing;
 } ss_eval_row;
 
 /* CSV header line (no newline) and one row (%.17g for reals, so CSV → read → CSV is exact). */
@@ -111,6 +120,18 @@ SS_API ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *
 /* The paper's Table 1 values, same rows, its three methods. */
 SS_API extern const double ss_table1_paper[12][3];
 SS_API extern const char *const ss_table1_row_names[12];
+
+/* The landmark-free rows beside Table 1: policies random / subj / pose and the sym variant of the
+ * random rows (rows 0..3) x methods, and per policy the fraction of shape pairs whose pairing was
+ * entirely right (all_right) and right up to the mirror (mirror_right, which includes all_right),
+ * over the STD rows (one per shape pair). */
+typedef struct ss_table1_none {
+  double mean[4][3];
+  int count[4][3];
+  double all_right[3], mirror_right[3];
+  int pairs[3];
+} ss_table1_none;
+SS_API ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_none *t, ss_error *err);
 
 /* ---- The Table 1 runner ----------------------------------------------------------------------- */
 
@@ -138,9 +159,10 @@ typedef struct ss_table1_options {
                              shape, whose exact fields are computed once per target (64 gave -29%..+12%
                              per row against the exact mean) */
   int k;                  /* eigenpairs of the functional map basis (default 50) */
-  /* bit sets of what to run: policies and landmark sets default to all (7), methods to the paper's
-   * STD / ASA / DIFF (7); 1 << SS_METHOD_REFINED adds the refined default, whose shapes carry their
-   * own max(k, descr_k, zoomout_kmax) eigenpairs (kept in the same cache entry) */
+  /* bit sets of what to run: policies default to all (7), landmark sets to best, gt, fps (7; | 1 <<
+   * SS_LM_NONE adds the landmark-free rows), methods to the paper's STD / ASA / DIFF (7); 1 <<
+   * SS_METHOD_REFINED adds the refined default, whose shapes carry their own max(k, descr_k,
+   * zoomout_kmax) eigenpairs (kept in the same cache entry) */
   int policies_mask, lm_mask, methods_mask;
   /* Progress and messages go to the caller (the library prints nothing). Both may be NULL (the
    * default); they are called one at a time (from whichever worker thread), with `user`. */

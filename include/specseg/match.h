@@ -104,6 +104,90 @@ SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_option
                                        ss_error *err);
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
 
+/* ---- Landmark-free pairing of the segments (autopair.c) ---------------------------------------- *
+ * Pairs the segment centres of two shapes without landmarks, from what each shape carries alone
+ * (its ss_centre_signature, computed once per shape):
+ *  - a descriptor per centre: the WKS (ss_wks, descr_k eigenpairs, n_energies energies) averaged
+ *    over the geodesic disc of radius descr_radius·√area around the centre, scaled to unit length;
+ *  - the centre-to-centre exact geodesic distances D (ss_geodesic_fields on the input mesh) / √area.
+ * 1. Intrinsic pairing. The energy of an injective pairing π of the centres of the shape with fewer
+ *    (A) into the other (B):
+ *      E(π) = w_descr · mean_a ‖d_A(a) − d_B(π a)‖²  +  w_geo · Σ_{a<a'} (D_A(a,a') − D_B(πa,πa'))² / Σ D_A²,
+ *    minimised exactly by depth-first branch and bound when the count allows (na ≤ exact_max and at
+ *    most 5·10⁷ injections; 8! = 40,320), otherwise relaxed: Hungarian assignment on descriptor +
+ *    distance-profile costs (each centre's sorted distances to the others), then swaps / moves to
+ *    free centres while E decreases (a local minimum, no guarantee). E cannot tell left from right
+ *    (a mirror is an isometry).
+ * 2. Left / right. The mirror candidate is π∘σ, σ the centres' own left-right symmetry (per shape:
+ *    of the 6 best non-identity pairings of the centres with themselves by E — relaxed: single
+ *    swaps — the one whose map below is the most clearly orientation-reversing), falling back to
+ *    the best other pairing when there is none. For both candidates a small functional map (ss_fmap_match:
+ *    orient_k eigenfunctions, descriptors from orient_descr_k eigenpairs, the candidate's paired
+ *    centres as landmarks) gives a point map A -> B, and its orientation score is (faces whose
+ *    image triangle keeps its orientation − faces whose image flips) / faces, measured against B's
+ *    outward vertex normals: +1 for an orientation-preserving map, −1 for a mirror. A left–right
+ *    swap of the landmarks makes the functional map a reflection (orientation-reversing), so the
+ *    candidate with the larger score is the answer. This needs consistently oriented meshes:
+ *    ss_mesh_sanitize orients each component consistently, and the sign of the signed volume then
+ *    fixes outward normals on both shapes (an open surface of ~zero volume cannot tell:
+ *    volume_ratio). The intrinsic energy alone cannot decide it: a mirror is an isometry.
+ * Confidence: gap = (E₃ − E₁) / E₁ with E₃ the best intrinsic energy of a pairing other than the
+ * answer and its mirror, and the orientation margin (score − score_mirror) / 2. */
+typedef struct ss_autopair_options {
+  int descr_k;         /* eigenpairs of the WKS (default 100; min with what the shapes have) */
+  int n_energies;      /* WKS energies (default 100) */
+  double sigma_factor; /* WKS σ (default 7) */
+  double descr_radius; /* disc radius / √area for the averaged descriptor (default 0.05; 0: the centre) */
+  double w_descr, w_geo; /* energy weights (defaults docs/tuning.md) */
+  int exact_max;       /* exact search up to this many centres on the smaller side (default 10) */
+  int orient_k;        /* basis of the orientation test's functional maps (default 30) */
+  int orient_descr_k;  /* eigenpairs of its descriptors (default 100; min with what the shapes have) */
+  double min_gap;      /* confidence thresholds: below either the result says so (notes) */
+  double min_mirror;
+} ss_autopair_options;
+
+SS_API void ss_autopair_default_options(ss_autopair_options *o);
+
+/* What the pairing needs from one shape (m exact fields and one WKS). */
+typedef struct ss_centre_signature {
+  int m;              /* centres (segments) */
+  int nd;             /* descriptor length */
+  int *centers;       /* m input vertices (copy of seg.centers) */
+  double *descr;      /* m x nd, row a at descr + a·nd, unit length */
+  double *D;          /* m x m scaled geodesic distances (symmetric) */
+  double volume_ratio; /* signed volume / area^1.5 (its sign fixes the orientation; |ratio| < 1e-3:
+                          orientation undecidable) */
+  double orient_sign;  /* +1 / −1: the sign applied to the faces' own orientation (outward) */
+  double *normals;     /* nv x 3 outward vertex normals (area-weighted) */
+  const ss_shape_prep *prep; /* borrowed: the shape it was computed from (must outlive it) */
+  int *sigma;          /* m: the centres' left-right symmetry (identity where none was found) */
+  double sigma_score;  /* the orientation score of σ's map (< 0: a mirror; 1: none found) */
+} ss_centre_signature;
+
+SS_API ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_options *o,
+                                             ss_centre_signature *out, ss_error *err);
+SS_API void ss_centre_signature_free(ss_centre_signature *s);
+
+typedef struct ss_autopair_info {
+  int used;             /* 1: the pairing was landmark-free (then the fields below are set) */
+  int exact;            /* 1: exact search, 0: the relaxation */
+  double energy;        /* E of the chosen pairing */
+  double energy_mirror; /* E of its mirror candidate */
+  double energy_other;  /* E₃: the best pairing other than those two (INFINITY: none) */
+  double gap;           /* (energy_other − min(energy, energy_mirror)) / that minimum */
+  double mirror;        /* orientation score of the chosen pairing's map */
+  double mirror_other;  /* that of the mirror candidate */
+  int confident;        /* gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror */
+  double cpu;           /* CPU seconds of the search and the orientation test (signatures excluded) */
+} ss_autopair_info;
+
+/* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:
+ * pairs sorted by sx, energy[p] the pair's own terms (descriptor + its share of the distance and
+ * orientation terms). info may be NULL. */
+SS_API ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y,
+                                      const ss_autopair_options *o, ss_segment_pairs *out, ss_autopair_info *info,
+                                      ss_error *err);
+
 /* ---- The matching pipeline (match.c) ------------------------------------------------------------ */
 
 typedef enum ss_probe_set {
@@ -145,6 +229,8 @@ typedef struct ss_match_options {
   /* SS_REFINE_BEST: refine only the start with the lower selection energy (the other start stays a
    * candidate unrefined); 0: refine every start */
   int refine_single;
+  /* the landmark-free pairing (used when ss_match_prepared gets no landmarks) */
+  ss_autopair_options autopair;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);
@@ -168,10 +254,13 @@ typedef struct ss_match_result {
   double refine_energy[4];
   /* what the caller should know, e.g. that segment probes were not used (empty: nothing) */
   char notes[256];
+  /* the landmark-free pairing's energies and confidence (autopair.used = 0 with landmarks) */
+  ss_autopair_info autopair;
 } ss_match_result;
 
 /* Matches two prepared shapes (each with ≥ max(k, zoomout_kmax, descr_k) eigenpairs; zoomout_kmax
- * only with refinement). lmX/lmY: nl input vertices. With STD the pairing is still computed (and
+ * only with refinement). lmX/lmY: nl input vertices; nl = 0 (lmX, lmY may be NULL): landmark-free,
+ * see ss_match_prepared_auto. With STD the pairing is still computed (and
  * reported) but not used; with fewer than pairing.min_landmarks landmarks, or no segment paired, ASA
  * and DIFF fall back to STD and say so in notes. */
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
@@ -185,12 +274,31 @@ SS_API ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_
                                          const int *lmY, const ss_segment_pairs *pairs, const ss_match_options *opts,
                                          ss_match_result *out, ss_error *err);
 
+/* Landmark-free (nl = 0 in ss_match_prepared / ss_match, or this call with the shapes' signatures,
+ * NULL: computed here): the segments are paired by ss_pair_centres_auto (opts->autopair), then the
+ * paired centres serve as the landmarks and the pairing as the segment pairing of the pipeline above
+ * (same probes, refinement and selection). out->autopair holds the pairing's energies and confidence;
+ * when it is not confident (autopair.min_gap / min_mirror) notes says so: the map may be wrong (a
+ * segment pair or the left-right mirror), never silently. The orientation decision needs both meshes
+ * consistently oriented (outward normals after the signed-volume convention). */
+SS_API ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                        const ss_centre_signature *sigY, const ss_match_options *opts,
+                                        ss_match_result *out, ss_error *err);
+
+/* The landmark-free pairing from two meshes: prepare both (opts->seg, max(autopair.descr_k,
+ * autopair.orient_k) eigenpairs), their signatures, ss_pair_centres_auto (opts->autopair). opts may
+ * be NULL. centerX / centerY (may be NULL): malloc'd pairs->n input vertices at the paired centres
+ * (free()). */
+SS_API ss_status ss_pair_auto(const ss_mesh *X, const ss_mesh *Y, const ss_match_options *opts, ss_segment_pairs *pairs,
+                              int **centerX, int **centerY, ss_autopair_info *info, ss_error *err);
+
 /* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL.
  * Meshes of several components: the map is only determined on components that hold a landmark, so
  * on each mesh the components with at least one landmark are kept and matched (the body of a scan,
  * without its crumbs; every component when each has a landmark); a vertex of X on a dropped
  * component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X maps to
- * a dropped vertex of Y. map, centerX and centerY refer to the input meshes' vertices; C, the basis
+ * a dropped vertex of Y. Landmark-free (nl = 0): the largest component (by area) of each mesh
+ * is kept. map, centerX and centerY refer to the input meshes' vertices; C, the basis
  * and pairs (segment indices) to the kept parts. Unreferenced vertices are refused as for one
  * component. */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,

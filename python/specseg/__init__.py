@@ -33,7 +33,7 @@ from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_
 from ._version import __version__
 
 __all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
-           "remesh", "segment", "Segmentation", "geodesic", "match", "Match", "error", "render", "write_png",
+           "remesh", "segment", "Segmentation", "geodesic", "match", "Match", "pair", "Pairing", "error", "render", "write_png",
            "label_colors", "align_labels", "library_version", "library_path", "render_library_path"]
 
 #: Path of the loaded core library (libspecseg.so...).
@@ -448,7 +448,7 @@ def _indices(a, n, what, hi):
     return a
 
 
-Match = namedtuple("Match", "map C pairs_x pairs_y centers_x centers_y")
+Match = namedtuple("Match", "map C pairs_x pairs_y centers_x centers_y notes confident")
 Match.__doc__ = """The result of `match`.
 
 Attributes
@@ -461,12 +461,16 @@ pairs_x, pairs_y : numpy.ndarray of int32, shape (p,)
     The paired segments: segment pairs_x[i] of X with segment pairs_y[i] of Y.
 centers_x, centers_y : numpy.ndarray of int32, shape (p,)
     The input vertices at the centres of the paired segments.
+notes : str
+    What the caller should know (e.g. a landmark-free pairing that is not confident); "" if nothing.
+confident : bool or None
+    Landmark-free: whether the automatic pairing was confident; None with landmarks.
 """
 
 _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
-def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zoomout=None, segment_profile=None):
+def match(VX, FX, VY, FY, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None, segment_profile=None):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
 
@@ -480,8 +484,10 @@ def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zo
         Vertex coordinates of Y.
     FY : array_like of int, shape (mY, 3)
         Triangles of Y.
-    landmarks : array_like of int, shape (l,)
-        Landmark vertices on X, each in 0..nX-1 (and on Y too unless landmarks_y is given).
+    landmarks : array_like of int, shape (l,), optional
+        Landmark vertices on X, each in 0..nX-1 (and on Y too unless landmarks_y is given). None:
+        landmark-free, the segments paired automatically (see `pair`); a pairing that is not
+        confident is reported in the result's notes.
     landmarks_y : array_like of int, shape (l,), optional
         The corresponding vertices on Y, each in 0..nY-1.
     probes : {"diff", "asa", "std"}, optional
@@ -520,11 +526,16 @@ def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zo
         raise ValueError("segment_profile must be indicator, tent or soft (got %r)" % (segment_profile,))
     mx, VX, FX = _clib.as_mesh(VX, FX)
     my, VY, FY = _clib.as_mesh(VY, FY)
-    lx = np.atleast_1d(landmarks)
-    lx = _indices(lx, lx.size, "landmarks", VX.shape[0])
-    ly = _indices(lx if landmarks_y is None else landmarks_y, lx.size, "landmarks_y", VY.shape[0])
-    if lx.size == 0:
-        raise ValueError("landmarks is empty: give at least one landmark vertex")
+    if landmarks is None:
+        if landmarks_y is not None:
+            raise ValueError("landmarks_y without landmarks")
+        lx = ly = np.zeros(0, dtype=np.int32)
+    else:
+        lx = np.atleast_1d(landmarks)
+        lx = _indices(lx, lx.size, "landmarks", VX.shape[0])
+        ly = _indices(lx if landmarks_y is None else landmarks_y, lx.size, "landmarks_y", VY.shape[0])
+        if lx.size == 0:
+            raise ValueError("landmarks is empty: give at least one landmark vertex (or None: landmark-free)")
     o = _clib.ss_match_options()
     lib.ss_match_default_options(C.byref(o))
     o.probes = _PROBES[probes]
@@ -543,9 +554,81 @@ def match(VX, FX, VY, FY, landmarks, landmarks_y=None, probes="diff", k=None, zo
         Cm = cp(r.C, r.kc * r.kc, np.float64).reshape(r.kc, r.kc).T.copy() if r.kc else np.zeros((0, 0))
         return Match(map=cp(r.map, r.nX, np.int32), C=Cm, pairs_x=cp(r.pairs.sx, r.pairs.n, np.int32),
                      pairs_y=cp(r.pairs.sy, r.pairs.n, np.int32), centers_x=cp(r.centerX, r.pairs.n, np.int32),
-                     centers_y=cp(r.centerY, r.pairs.n, np.int32))
+                     centers_y=cp(r.centerY, r.pairs.n, np.int32), notes=r.notes.decode("utf-8", "replace"),
+                     confident=None if not r.autopair.used else bool(r.autopair.confident))
     finally:
         lib.ss_match_result_free(C.byref(r))
+
+
+Pairing = namedtuple("Pairing", "pairs_x pairs_y centers_x centers_y energy gap mirror mirror_other confident exact")
+Pairing.__doc__ = """The result of `pair`.
+
+Attributes
+----------
+pairs_x, pairs_y : numpy.ndarray of int32, shape (p,)
+    Paired segments: segment pairs_x[i] of X with segment pairs_y[i] of Y.
+centers_x, centers_y : numpy.ndarray of int32, shape (p,)
+    The paired segments' centres (input vertices), usable as landmarks for `match`.
+energy : numpy.ndarray of float64, shape (p,)
+    Each pair's share of the pairing energy (lower is better).
+gap : float
+    (E of the best pairing other than the answer and its mirror - E) / E.
+mirror, mirror_other : float
+    Orientation scores (+1 preserving, -1 reversing) of the answer's and its mirror's maps.
+confident : bool
+    gap and orientation margin above the library's thresholds.
+exact : bool
+    Exact search (else the Hungarian + local moves relaxation).
+"""
+
+
+def pair(VX, FX, VY, FY):
+    """Landmark-free pairing of the coherent segments of X and Y, as ``specseg pair``.
+
+    Parameters
+    ----------
+    VX, FX, VY, FY : array_like
+        The two meshes (vertices (n, 3) float, triangles (m, 3) int), consistently oriented.
+
+    Returns
+    -------
+    Pairing
+
+    Raises
+    ------
+    ValueError
+        Wrong shapes or face indices out of range.
+    SpecsegError
+        The library refused a mesh or a stage failed.
+    NotImplementedError
+        The loaded library has no ss_pair_auto.
+    """
+    if not _clib.has("ss_pair_auto"):
+        raise NotImplementedError("this libspecseg (%s) has no ss_pair_auto" % library_path)
+    mx, VX, FX = _clib.as_mesh(VX, FX)
+    my, VY, FY = _clib.as_mesh(VY, FY)
+    pr, info, e = _clib.ss_segment_pairs(), _clib.ss_autopair_info(), _err()
+    cx, cy = C.POINTER(C.c_int)(), C.POINTER(C.c_int)()
+    st = lib.ss_pair_auto(C.byref(mx), C.byref(my), None, C.byref(pr), C.byref(cx), C.byref(cy), C.byref(info),
+                          C.byref(e))
+    try:
+        _check(st, e)
+        cp = _clib.copy_array
+        return Pairing(pairs_x=cp(pr.sx, pr.n, np.int32), pairs_y=cp(pr.sy, pr.n, np.int32),
+                       centers_x=cp(cx, pr.n, np.int32), centers_y=cp(cy, pr.n, np.int32),
+                       energy=cp(pr.energy, pr.n, np.float64), gap=info.gap, mirror=info.mirror,
+                       mirror_other=info.mirror_other, confident=bool(info.confident), exact=bool(info.exact))
+    finally:
+        lib.ss_segment_pairs_free(C.byref(pr))
+        _libc_free(cx)
+        _libc_free(cy)
+
+
+def _libc_free(p):
+    if p:
+        f = C.CDLL(None).free
+        f.argtypes = [C.c_void_p]
+        f(C.cast(p, C.c_void_p))
 
 
 def error(map, VY, FY, gt=None, sym=None):

@@ -114,11 +114,24 @@ class ss_pairing_options(C.Structure):
                 ("min_landmarks", C.c_int)]
 
 
+class ss_autopair_options(C.Structure):
+    _fields_ = [("descr_k", C.c_int), ("n_energies", C.c_int), ("sigma_factor", C.c_double),
+                ("descr_radius", C.c_double), ("w_descr", C.c_double), ("w_geo", C.c_double),
+                ("exact_max", C.c_int), ("orient_k", C.c_int), ("orient_descr_k", C.c_int),
+                ("min_gap", C.c_double), ("min_mirror", C.c_double)]
+
+
+class ss_autopair_info(C.Structure):
+    _fields_ = [("used", C.c_int), ("exact", C.c_int), ("energy", C.c_double), ("energy_mirror", C.c_double),
+                ("energy_other", C.c_double), ("gap", C.c_double), ("mirror", C.c_double),
+                ("mirror_other", C.c_double), ("confident", C.c_int), ("cpu", C.c_double)]
+
+
 class ss_match_options(C.Structure):
     _fields_ = [("probes", C.c_int), ("fmap", ss_fmap_match_options), ("seg", ss_segment_options),
                 ("segment_profile", C.c_int), ("pairing", ss_pairing_options), ("refine", C.c_int),
                 ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double),
-                ("seg_descr_k", C.c_int), ("refine_single", C.c_int)]
+                ("seg_descr_k", C.c_int), ("refine_single", C.c_int), ("autopair", ss_autopair_options)]
 
 
 class ss_segment_pairs(C.Structure):
@@ -131,7 +144,7 @@ class ss_match_result(C.Structure):
                 ("pairs", ss_segment_pairs), ("centerX", C.POINTER(C.c_int)), ("centerY", C.POINTER(C.c_int)),
                 ("t_segment", C.c_double), ("t_eigs", C.c_double), ("t_pair", C.c_double), ("t_fmap", C.c_double),
                 ("t_zoomout", C.c_double), ("t_total", C.c_double), ("refine_choice", C.c_int),
-                ("refine_energy", C.c_double * 4), ("notes", C.c_char * 256)]
+                ("refine_energy", C.c_double * 4), ("notes", C.c_char * 256), ("autopair", ss_autopair_info)]
 
 
 class ss_render_options(C.Structure):
@@ -439,6 +452,9 @@ _sig(lib, "ss_geodesic_distances", _i, _PM, _i, _PI, _i, _d, _PD, _PE)
 _sig(lib, "ss_map_geodesic_error", _i, _PM, _i, _PI, _PI, _PI, _PD, _PD, _PE)
 _sig(lib, "ss_match_default_options", None, C.POINTER(ss_match_options))
 _sig(lib, "ss_match", _i, _PM, _PM, _i, _PI, _PI, C.POINTER(ss_match_options), C.POINTER(ss_match_result), _PE)
+_sig(lib, "ss_pair_auto", _i, _PM, _PM, C.POINTER(ss_match_options), C.POINTER(ss_segment_pairs),
+     C.POINTER(C.POINTER(C.c_int)), C.POINTER(C.POINTER(C.c_int)), C.POINTER(ss_autopair_info), _PE)
+_sig(lib, "ss_segment_pairs_free", None, C.POINTER(ss_segment_pairs))
 _sig(lib, "ss_match_result_free", None, C.POINTER(ss_match_result))
 _sig(render_lib, "ss_render_default_options", None, C.POINTER(ss_render_options))
 _sig(render_lib, "ss_render_scene_init", None, C.POINTER(ss_render_scene), _PM)

@@ -18,6 +18,7 @@ typedef struct ev_shape {
   int fps[EV_NL];          /* this shape's own FPS landmarks (input vertices) */
   double *lmd[3];          /* per landmark set: m x EV_NL scaled distances landmark → critical point */
   ss_fmap_probes base[3];  /* per landmark set: WKS + landmark probes (ev_shape_probes; p = 0 until then) */
+  ss_centre_signature sig; /* landmark-free rows: the centre signature (m = 0 until computed) */
   double t_prep;
   /* the refined method's view of the shape (ctx->kref > 0): prep's segmentation and masses (borrowed)
    * with its own kref eigenpairs (computed with that count, so the paper methods' k eigenpairs stay
@@ -71,6 +72,15 @@ ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, 
 ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
                            int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS],
                            int paired[SS_EVAL_NMETHODS], ss_error *err);
+/* The same, also returning the segment pairing the paper methods used (pairs may be NULL; free with
+ * ss_segment_pairs_free). lmset SS_LM_NONE: the landmark-free pairing (ss_pair_centres_auto on the
+ * shapes' signatures, ev_shape_signature) and its paired centres as the landmarks (also for the
+ * refined method). */
+ss_status ev_match_methods_pairs(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                                 int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS],
+                                 int paired[SS_EVAL_NMETHODS], ss_segment_pairs *pairs, ss_error *err);
+/* s->sig for the landmark-free rows (once per shape, not cached on disk). */
+ss_status ev_shape_signature(ev_shape *s, const ev_context *ctx, ss_error *err);
 
 /* Exact error sums of nmaps maps onto one target (ground truth identity): sum[r] = Σ_x d(maps[r][x], x),
  * sum_sym[r] = Σ_x min(d(maps[r][x], x), d(maps[r][x], sym[x])), every distinct (image, vertex) pair

@@ -11,7 +11,7 @@
 #include <time.h>
 
 const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset) {
-  return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : s->fps;
+  return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : lmset == SS_LM_FPS ? s->fps : NULL;
 }
 
 static ss_fmap_shape fmap_shape(const ev_shape *s) {
@@ -43,7 +43,26 @@ static double thread_cpu(void) {
 }
 
 static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
-                             int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int *paired, ss_error *err);
+                             int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int *paired,
+                             ss_segment_pairs *pairs_out, ss_error *err);
+
+/* the landmark-free pairing (SS_LM_NONE) of two shapes from their signatures, and the paired centres
+ * as landmarks (lmX, lmY: malloc'd pr->n vertices) */
+static ss_status auto_landmarks(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, ss_segment_pairs *pr,
+                                int **lmX, int **lmY, ss_error *err) {
+  *lmX = *lmY = NULL;
+  if (X->sig.m < 1 || Y->sig.m < 1) return ss_fail(err, SS_ERR_INVALID, "eval: landmark-free rows need signatures");
+  ss_status st = ss_pair_centres_auto(&X->sig, &Y->sig, &ctx->mopt.autopair, pr, NULL, err);
+  if (st) return st;
+  *lmX = malloc(sizeof(int) * (size_t)(pr->n > 0 ? pr->n : 1));
+  *lmY = malloc(sizeof(int) * (size_t)(pr->n > 0 ? pr->n : 1));
+  if (!*lmX || !*lmY) {
+    free(*lmX), free(*lmY), *lmX = *lmY = NULL, ss_segment_pairs_free(pr);
+    return ss_fail(err, SS_ERR_NOMEM, "eval: out of memory");
+  }
+  for (int q = 0; q < pr->n; q++) (*lmX)[q] = X->prep.seg.centers[pr->sx[q]], (*lmY)[q] = Y->prep.seg.centers[pr->sy[q]];
+  return SS_OK;
+}
 
 /* the refined default (SS_METHOD_REFINED): the confident pairing from the cached landmark fields,
  * then ss_match_prepared_pairs on the shapes' refined eigenpairs */
@@ -52,13 +71,17 @@ static ss_status match_refined(const ev_context *ctx, const ev_shape *X, const e
   if (ctx->kref <= 0 || !X->rprep.evecs || !Y->rprep.evecs)
     return ss_fail(err, SS_ERR_INVALID, "eval: the refined method needs the shapes' refined eigenpairs");
   ss_segment_pairs pr;
-  ss_status st = ss_pair_critical_points_conf(X->prep.seg.m, Y->prep.seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset],
-                                              &ctx->ropt.pairing, &pr, err);
+  int *aX = NULL, *aY = NULL, nl = EV_NL;
+  const int *lmX = ev_landmarks(ctx, X, lmset), *lmY = ev_landmarks(ctx, Y, lmset);
+  ss_status st = lmset == SS_LM_NONE ? auto_landmarks(ctx, X, Y, &pr, &aX, &aY, err)
+                                     : ss_pair_critical_points_conf(X->prep.seg.m, Y->prep.seg.m, EV_NL, X->lmd[lmset],
+                                                                    Y->lmd[lmset], &ctx->ropt.pairing, &pr, err);
   if (st) return st;
+  if (lmset == SS_LM_NONE) lmX = aX, lmY = aY, nl = pr.n;
   ss_match_result res;
-  st = ss_match_prepared_pairs(&X->rprep, &Y->rprep, EV_NL, ev_landmarks(ctx, X, lmset), ev_landmarks(ctx, Y, lmset), &pr,
-                               &ctx->ropt, &res, err);
+  st = ss_match_prepared_pairs(&X->rprep, &Y->rprep, nl, lmX, lmY, &pr, &ctx->ropt, &res, err);
   ss_segment_pairs_free(&pr);
+  free(aX), free(aY);
   if (st) return st;
   memcpy(map, res.map, sizeof(int) * (size_t)X->mesh.nv);
   *paired = res.pairs.n;
@@ -69,6 +92,12 @@ static ss_status match_refined(const ev_context *ctx, const ev_shape *X, const e
 ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
                            int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int paired_out[SS_EVAL_NMETHODS],
                            ss_error *err) {
+  return ev_match_methods_pairs(ctx, X, Y, lmset, methods_mask, maps, cpu, paired_out, NULL, err);
+}
+
+ss_status ev_match_methods_pairs(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                                 int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS],
+                                 int paired_out[SS_EVAL_NMETHODS], ss_segment_pairs *pairs_out, ss_error *err) {
   int paired_ref = 0;
   double c_ref = 0;
   if (methods_mask >> SS_METHOD_REFINED & 1) {
@@ -79,7 +108,7 @@ ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_sh
   }
   int paired_paper = 0;
   ss_status st = SS_OK;
-  if (methods_mask & 7) st = match_paper(ctx, X, Y, lmset, methods_mask & 7, maps, cpu, &paired_paper, err);
+  if (methods_mask & 7) st = match_paper(ctx, X, Y, lmset, methods_mask & 7, maps, cpu, &paired_paper, pairs_out, err);
   if (st) return st;
   if (cpu) cpu[SS_METHOD_REFINED] = c_ref;
   if (paired_out)
@@ -87,31 +116,40 @@ ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_sh
   return SS_OK;
 }
 
-/* the paper's methods of one pair and landmark set (mask within 7) */
+/* the paper's methods of one pair and landmark set (mask within 7); pairs_out (may be NULL): the
+ * segment pairing used */
 static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
-                             int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int *paired, ss_error *err) {
+                             int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int *paired,
+                             ss_segment_pairs *pairs_out, ss_error *err) {
   const ss_shape_prep *pX = &X->prep, *pY = &Y->prep;
   const double c_start = thread_cpu();
   ss_fmap_shape sX = fmap_shape(X), sY = fmap_shape(Y);
   ss_fmap_match_options fo = fmap_options(ctx);
   const int k = fo.k, ops = fo.w_dcomm > 0, xops = ops && fo.extra_dcomm;
   const int *lmX = ev_landmarks(ctx, X, lmset), *lmY = ev_landmarks(ctx, Y, lmset);
+  int nl = EV_NL, *autoX = NULL, *autoY = NULL;
   ss_segment_pairs pr;
-  ss_status st = ss_pair_critical_points(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &pr, err);
-  if (st) return st;
+  ss_status st;
+  if (lmset == SS_LM_NONE) { /* landmark-free: the automatic pairing, its centres as the landmarks */
+    if ((st = auto_landmarks(ctx, X, Y, &pr, &autoX, &autoY, err))) return st;
+    lmX = autoX, lmY = autoY, nl = pr.n;
+  } else if ((st = ss_pair_critical_points(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &pr, err))) {
+    return st;
+  }
   *paired = pr.n;
   ss_fmap_probes ownX = {0}, ownY = {0}, xX = {0}, xY = {0};
   ss_fmap_system *sys = NULL;
   double *EX = NULL, *EY = NULL, *Ck = malloc(sizeof(double) * (size_t)k * k), c_method[3] = {0};
   if (!Ck) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
   /* base probes: the shapes' own (ev_shape_probes), else built here */
-  const ss_fmap_probes *bX = &X->base[lmset], *bY = &Y->base[lmset];
+  static const ss_fmap_probes none = {0};
+  const ss_fmap_probes *bX = lmset < 3 ? &X->base[lmset] : &none, *bY = lmset < 3 ? &Y->base[lmset] : &none;
   if (bX->p == 0) {
-    if ((st = ss_fmap_base_probes(&sX, EV_NL, lmX, &fo, ops, &ownX, err))) goto done;
+    if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo, ops, &ownX, err))) goto done;
     bX = &ownX;
   }
   if (bY->p == 0) {
-    if ((st = ss_fmap_base_probes(&sY, EV_NL, lmY, &fo, ops, &ownY, err))) goto done;
+    if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo, ops, &ownY, err))) goto done;
     bY = &ownY;
   }
   /* source S = Y, target T = X (see ss_fmap_match) */
@@ -132,8 +170,8 @@ static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_
     int nextra = mth == SS_METHOD_STD ? 0 : pr.n;
     if (nextra > 0) {
       ss_probe_filter f = mth == SS_METHOD_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
-      if ((st = ss_fmap_extra_probes(&sX, EV_NL, nextra, EX, f, &fo, xops, &xX, err))) goto done;
-      if ((st = ss_fmap_extra_probes(&sY, EV_NL, nextra, EY, f, &fo, xops, &xY, err))) goto done;
+      if ((st = ss_fmap_extra_probes(&sX, nl, nextra, EX, f, &fo, xops, &xX, err))) goto done;
+      if ((st = ss_fmap_extra_probes(&sY, nl, nextra, EY, f, &fo, xops, &xY, err))) goto done;
     }
     st = ss_fmap_system_solve(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, fo.w_extra, fo.extra_dcomm, Ck, err);
     ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
@@ -147,8 +185,9 @@ static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_
 done:
   ss_fmap_system_free(sys);
   ss_fmap_probes_free(&ownX), ss_fmap_probes_free(&ownY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
-  free(EX), free(EY), free(Ck);
-  ss_segment_pairs_free(&pr);
+  free(EX), free(EY), free(Ck), free(autoX), free(autoY);
+  if (pairs_out && !st) *pairs_out = pr;
+  else ss_segment_pairs_free(&pr);
   return st;
 }
 

@@ -18,7 +18,13 @@ void ev_shape_free(ev_shape *s) {
   ss_shape_prep_free(&s->prep);
   ss_mesh_free(&s->mesh);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), ss_fmap_probes_free(&s->base[i]);
+  ss_centre_signature_free(&s->sig);
   memset(s, 0, sizeof *s);
+}
+
+ss_status ev_shape_signature(ev_shape *s, const ev_context *ctx, ss_error *err) {
+  if (s->sig.m > 0) return SS_OK;
+  return ss_centre_signature_compute(&s->prep, &ctx->mopt.autopair, &s->sig, err);
 }
 
 ss_status ev_fps_landmarks(const ss_mesh *m, const ss_segmentation *seg, const ss_segment_options *so, int seed_vertex,

@@ -7,13 +7,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const lm_names[3] = {"best", "gt", "fps"};
+static const char *const lm_names[4] = {"best", "gt", "fps", "none"};
 static const char *const method_names[SS_EVAL_NMETHODS] = {"std", "asa", "diff", "refined"};
 
-const char *ss_lm_set_name(ss_lm_set s) { return (unsigned)s < 3 ? lm_names[s] : "?"; }
+const char *ss_lm_set_name(ss_lm_set s) { return (unsigned)s < 4 ? lm_names[s] : "?"; }
 const char *ss_eval_method_name(ss_eval_method m) { return (unsigned)m < SS_EVAL_NMETHODS ? method_names[m] : "?"; }
 int ss_lm_set_parse(const char *s) {
-  for (int i = 0; i < 3; i++)
+  for (int i = 0; i < 4; i++)
     if (s && !strcmp(s, lm_names[i])) return i;
   return -1;
 }
@@ -38,13 +38,13 @@ static const char *const col_names[NCOLS] = {"policy",     "landmarks",  "method
                                              "error_sym", "segments_x", "segments_y", "paired", "seconds", "samples"};
 
 const char *ss_eval_csv_header(void) {
-  return "policy,landmarks,method,x,y,error,error_sym,segments_x,segments_y,paired,seconds,samples,cpu_seconds";
+  return "policy,landmarks,method,x,y,error,error_sym,segments_x,segments_y,paired,seconds,samples,cpu_seconds,pairing";
 }
 
 void ss_eval_csv_format_row(const ss_eval_row *r, char *buf, size_t size) {
-  snprintf(buf, size, "%s,%s,%s,%d,%d,%.17g,%.17g,%d,%d,%d,%.6f,%d,%.6f", ss_pair_policy_name(r->policy),
+  snprintf(buf, size, "%s,%s,%s,%d,%d,%.17g,%.17g,%d,%d,%d,%.6f,%d,%.6f,%d", ss_pair_policy_name(r->policy),
            ss_lm_set_name(r->landmarks), ss_eval_method_name(r->method), r->x, r->y, r->error, r->error_sym,
-           r->segments_x, r->segments_y, r->paired, r->seconds, r->samples, r->cpu_seconds);
+           r->segments_x, r->segments_y, r->paired, r->seconds, r->samples, r->cpu_seconds, r->pairing);
 }
 
 /* splits `line` at commas in place; returns the field count (at most max) */
@@ -94,9 +94,11 @@ ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_
       if (!strcmp(fld[h], col_names[c])) idx[c] = h;
     if (idx[c] < 0) { st = ss_fail(err, SS_ERR_PARSE, "%s:1: no column '%s' in the header", path, col_names[c]); goto done; }
   }
-  int icpu = -1; /* optional column */
-  for (int h = 0; h < nh; h++)
+  int icpu = -1, ipair = -1; /* optional columns */
+  for (int h = 0; h < nh; h++) {
     if (!strcmp(fld[h], "cpu_seconds")) icpu = h;
+    if (!strcmp(fld[h], "pairing")) ipair = h;
+  }
   while (fgets(line, sizeof line, f)) {
     lineno++;
     size_t len = strlen(line);
@@ -106,6 +108,7 @@ ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_
     int nf = split(line, fld, 64);
     ss_eval_row r;
     memset(&r, 0, sizeof r);
+    r.pairing = -1;
     int bad = nf < nh;
     if (!bad) {
       r.policy = ss_pair_policy_parse(fld[idx[0]]);
@@ -115,7 +118,8 @@ ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_
             parse_int(fld[idx[4]], &r.y) || parse_dbl(fld[idx[5]], &r.error) || parse_dbl(fld[idx[6]], &r.error_sym) ||
             parse_int(fld[idx[7]], &r.segments_x) || parse_int(fld[idx[8]], &r.segments_y) ||
             parse_int(fld[idx[9]], &r.paired) || parse_dbl(fld[idx[10]], &r.seconds) ||
-            parse_int(fld[idx[11]], &r.samples) || (icpu >= 0 && parse_dbl(fld[icpu], &r.cpu_seconds));
+            parse_int(fld[idx[11]], &r.samples) || (icpu >= 0 && parse_dbl(fld[icpu], &r.cpu_seconds)) ||
+            (ipair >= 0 && (parse_int(fld[ipair], &r.pairing) || r.pairing < -1 || r.pairing > 2));
     }
     if (bad) {
       /* an interrupted run leaves at most a partial last line: drop it */
@@ -158,7 +162,7 @@ ss_status ss_eval_rows_canonical(ss_eval_row *rows, int *n, ss_error *err) {
     const ss_eval_row *a = &rows[i], *b = &rows[m - 1];
     if (memcmp(&a->error, &b->error, sizeof a->error) || memcmp(&a->error_sym, &b->error_sym, sizeof a->error) ||
         a->paired != b->paired || a->segments_x != b->segments_x || a->segments_y != b->segments_y ||
-        a->samples != b->samples)
+        a->samples != b->samples || a->pairing != b->pairing)
       return ss_fail(err, SS_ERR_INVALID, "conflicting results for %s,%s,%s,%d,%d (%.17g vs %.17g)",
                      ss_pair_policy_name(a->policy), ss_lm_set_name(a->landmarks), ss_eval_method_name(a->method), a->x,
                      a->y, a->error, b->error);
@@ -177,6 +181,7 @@ ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_e
   if (!st) {
     double sum[12][SS_EVAL_NMETHODS] = {{0}};
     for (int i = 0; i < n; i++) {
+      if (r[i].landmarks == SS_LM_NONE) continue; /* ss_table1_none_aggregate */
       int row = 3 * r[i].policy + r[i].landmarks, c = r[i].method;
       sum[row][c] += r[i].error;
       t->count[row][c]++;
@@ -187,6 +192,37 @@ ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_e
     }
     for (int i = 0; i < 12; i++)
       for (int c = 0; c < SS_EVAL_NMETHODS; c++) t->mean[i][c] = t->count[i][c] ? sum[i][c] / t->count[i][c] : NAN;
+  }
+  free(r);
+  return st;
+}
+
+ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_none *t, ss_error *err) {
+  memset(t, 0, sizeof *t);
+  if (n < 0 || (n > 0 && !rows)) return ss_fail(err, SS_ERR_INVALID, "table: bad rows");
+  ss_eval_row *r = malloc(sizeof *r * (size_t)(n > 0 ? n : 1));
+  if (!r) return ss_fail(err, SS_ERR_NOMEM, "table: out of memory");
+  if (n > 0) memcpy(r, rows, sizeof *r * (size_t)n);
+  ss_status st = ss_eval_rows_canonical(r, &n, err);
+  if (!st) {
+    double sum[4][3] = {{0}};
+    int all[3] = {0}, mir[3] = {0}, tot[3] = {0};
+    for (int i = 0; i < n; i++) {
+      if (r[i].landmarks != SS_LM_NONE) continue;
+      int p = r[i].policy, c = r[i].method;
+      sum[p][c] += r[i].error;
+      t->count[p][c]++;
+      if (p == SS_POLICY_RANDOM) sum[3][c] += r[i].error_sym, t->count[3][c]++;
+      /* every method row of a shape pair carries the same pairing: the fractions over rows are those over pairs */
+      tot[p]++, all[p] += r[i].pairing == 2, mir[p] += r[i].pairing >= 1;
+    }
+    for (int i = 0; i < 4; i++)
+      for (int c = 0; c < 3; c++) t->mean[i][c] = t->count[i][c] ? sum[i][c] / t->count[i][c] : NAN;
+    for (int p = 0; p < 3; p++) {
+      for (int c = 0; c < 3; c++) t->pairs[p] = t->count[p][c] > t->pairs[p] ? t->count[p][c] : t->pairs[p];
+      t->all_right[p] = tot[p] ? (double)all[p] / tot[p] : NAN;
+      t->mirror_right[p] = tot[p] ? (double)mir[p] / tot[p] : NAN;
+    }
   }
   free(r);
   return st;

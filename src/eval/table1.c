@@ -48,10 +48,10 @@ static int unit_cmp(const void *pa, const void *pb) {
   return 0;
 }
 
-/* done[key]: rows already in the CSV; key = ((policy*3+lm)*NM+method)*NSHAPES² + x*NSHAPES + y */
+/* done[key]: rows already in the CSV; key = ((policy*4+lm)*NM+method)*NSHAPES² + x*NSHAPES + y */
 #define NM SS_EVAL_NMETHODS
 static size_t row_key(int policy, int lm, int method, int x, int y) {
-  return ((size_t)((policy * 3 + lm) * NM + method) * NSHAPES + x) * NSHAPES + y;
+  return ((size_t)((policy * 4 + lm) * NM + method) * NSHAPES + x) * NSHAPES + y;
 }
 
 /* Drops a partial last line left by an interrupted run, so appended rows start on a fresh line.
@@ -146,6 +146,8 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
     ctx.kref = ctx.ropt.fmap.zoomout_kmax > ctx.ropt.fmap.descr_k ? ctx.ropt.fmap.zoomout_kmax : ctx.ropt.fmap.descr_k;
     if (ctx.kref < o->k) ctx.kref = o->k;
   }
+  /* the landmark-free rows' pairing uses descriptors from 100 eigenpairs */
+  if ((o->lm_mask >> SS_LM_NONE & 1) && ctx.kev < ctx.mopt.autopair.descr_k) ctx.kev = ctx.mopt.autopair.descr_k;
   unit *U = NULL;
   int *px = NULL, *py = NULL, *lmb = NULL, *sym = NULL, *need = NULL;
   unsigned char *done = NULL;
@@ -163,15 +165,15 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   memcpy(ctx.best, lmb, sizeof ctx.best);
   px = malloc(sizeof(int) * (size_t)o->npairs);
   py = malloc(sizeof(int) * (size_t)o->npairs);
-  U = malloc(sizeof(unit) * (size_t)o->npairs * 9);
-  done = calloc(row_key(2, 2, NM - 1, NSHAPES - 1, NSHAPES - 1) + 1, 1);
+  U = malloc(sizeof(unit) * (size_t)o->npairs * 12);
+  done = calloc(row_key(2, 3, NM - 1, NSHAPES - 1, NSHAPES - 1) + 1, 1);
   if (!px || !py || !U || !done) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
   int nu = 0;
   for (int p = 0; p < 3; p++) {
     if (!(o->policies_mask >> p & 1)) continue;
     if ((st = ss_eval_pairs((ss_pair_policy)p, NSUBJ, NPOSE, o->npairs, o->seed, px, py, err))) goto done;
     for (int i = 0; i < o->npairs; i++)
-      for (int l = 0; l < 3; l++)
+      for (int l = 0; l < 4; l++)
         if (o->lm_mask >> l & 1) U[nu++] = (unit){p, px[i], py[i], l, i};
   }
   qsort(U, (size_t)nu, sizeof *U, unit_cmp);
@@ -249,6 +251,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
       omp_unset_lock(&locks->progress);
     }
     if (!ws && (o->methods_mask & 7)) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
+    if (!ws && (o->lm_mask >> SS_LM_NONE & 1)) ws = ev_shape_signature(&shapes[list[i]], &ctx, &e);
     if (ws) {
       omp_set_lock(&locks->err);
       if (!failed) failed = ws, perr = e;
@@ -319,7 +322,20 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
         int *maps[NM];
         for (int mth = 0; mth < NM; mth++) maps[mth] = mapbuf + (size_t)nv * (nr + mth);
         double cpu[NM], t0 = ss_time();
-        if ((s2 = ev_match_methods(&ctx, X, Y, w->lmset, mask, maps, cpu, paired, &e))) break;
+        ss_segment_pairs pr = {0};
+        const int want_pr = w->lmset == SS_LM_NONE && (mask & 7);
+        if ((s2 = ev_match_methods_pairs(&ctx, X, Y, w->lmset, mask, maps, cpu, paired, want_pr ? &pr : NULL, &e))) break;
+        int pairing = -1;
+        if (want_pr) { /* against the ground truth (identity) and its mirror */
+          int right = 0, mright = 0;
+          for (int q = 0; q < pr.n; q++) {
+            int cx = X->prep.seg.centers[pr.sx[q]];
+            right += Y->prep.seg.labels[cx] == pr.sy[q];
+            mright += Y->prep.seg.labels[sym[cx]] == pr.sy[q];
+          }
+          pairing = pr.n > 0 && right == pr.n ? 2 : pr.n > 0 && mright == pr.n ? 1 : 0;
+          ss_segment_pairs_free(&pr);
+        }
         const double wall = (ss_time() - t0) / __builtin_popcount(mask);
         int slot = 0;
         for (int mth = 0; mth < NM; mth++) {
@@ -328,7 +344,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
             memcpy(mapbuf + (size_t)nv * (nr + slot), maps[mth], sizeof(int) * (size_t)nv);
           ss_eval_row *r = &rows[nr + slot];
           memset(r, 0, sizeof *r);
-          r->paired = paired[mth], r->seconds = wall, r->cpu_seconds = cpu[mth];
+          r->paired = paired[mth], r->seconds = wall, r->cpu_seconds = cpu[mth], r->pairing = pairing;
           r->policy = w->policy, r->landmarks = w->lmset, r->method = mth, r->x = w->x, r->y = w->y;
           r->segments_x = X->prep.seg.m, r->segments_y = Y->prep.seg.m;
           rmap[nr + slot] = mapbuf + (size_t)nv * (nr + slot);

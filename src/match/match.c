@@ -33,6 +33,7 @@ void ss_match_default_options(ss_match_options *o) {
   o->refine = SS_REFINE_BEST;
   o->refine_w_lap = 0.0;
   o->refine_w_descr = SS_DEFAULT_REFINE_W_DESCR;
+  ss_autopair_default_options(&o->autopair);
 }
 
 void ss_match_paper_options(ss_match_options *o) {
@@ -369,6 +370,7 @@ typedef struct kept {
   int *to_in;      /* sub vertex -> input vertex */
   int *to_sub;     /* input vertex -> sub vertex, -1 when dropped */
   int nc, nkept;   /* components, kept components */
+  int landmark_free; /* kept: the largest component (no landmarks) */
   double area, kept_area;
 } kept;
 
@@ -414,6 +416,13 @@ static ss_status keep_landmark_components(const ss_mesh *m, const char *name, in
     double a = ssi_triangle_area(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2]);
     if (isfinite(a)) carea[comp[t[0]]] += a, k->area += a;
   }
+  if (nl == 0) { /* landmark-free: the largest component by area (the body of a scan) */
+    int big = 0;
+    k->landmark_free = 1;
+    for (int c = 1; c < nc; c++)
+      if (carea[c] > carea[big]) big = c;
+    has[big] = 1;
+  }
   for (int c = 0; c < nc; c++)
     if (has[c]) k->nkept++, k->kept_area += carea[c];
   if (k->nkept == nc) goto done; /* every component has a landmark: matched as it is */
@@ -450,9 +459,9 @@ static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int 
   char line[400];
   int dropped = m->nv - k->sub.nv, nd = k->nc - k->nkept;
   snprintf(line, sizeof line,
-           "%s: matched the %d of its %d components that hold a landmark (%d of %d vertices, %.1f%% of the area); "
+           "%s: matched the %d of its %d components that %s (%d of %d vertices, %.1f%% of the area); "
            "dropped %d component%s of %d vert%s in all, %s",
-           name, k->nkept, k->nc, k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
+           name, k->nkept, k->nc, k->landmark_free ? "is the largest" : "hold a landmark", k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
            nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
            is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
   ssi_warn_append(w, size, line);
@@ -460,8 +469,12 @@ static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int 
 
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                             const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  if (nl == 0) return ss_match_prepared_auto(X, Y, NULL, NULL, opts, out, err);
+  memset(out, 0, sizeof *out);
   return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
 }
+
 
 ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                   const ss_segment_pairs *pairs, const ss_match_options *opts, ss_match_result *out,
@@ -471,6 +484,50 @@ ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y
     return ss_fail(err, SS_ERR_INVALID, "match: NULL segment pairs");
   }
   return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
+}
+
+ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                 const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
+                                 ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_match_options o;
+  if (opts_in) o = *opts_in;
+  else ss_match_default_options(&o);
+  if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
+    return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
+  ss_centre_signature own[2];
+  memset(own, 0, sizeof own);
+  ss_segment_pairs pr = {0};
+  ss_autopair_info info;
+  int *lx = NULL, *ly = NULL;
+  ss_status st = SS_OK;
+  double t0 = ss_time();
+  if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
+  if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
+  if ((st = ss_pair_centres_auto(sigX ? sigX : &own[0], sigY ? sigY : &own[1], &o.autopair, &pr, &info, err))) goto done;
+  double t_pair = ss_time() - t0;
+  lx = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
+  ly = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
+  if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  for (int p = 0; p < pr.n; p++) lx[p] = X->seg.centers[pr.sx[p]], ly[p] = Y->seg.centers[pr.sy[p]];
+  /* the paired centres are the landmarks; the pairing is the segments' */
+  o.pairing.min_landmarks = 1;
+  if ((st = match_core(X, Y, pr.n, lx, ly, &pr, &o, out, err))) goto done;
+  out->t_pair += t_pair;
+  out->autopair = info;
+  if (!info.confident) {
+    char msg[200];
+    snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation %.2f, min %.2f): the "
+             "map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror, o.autopair.min_mirror);
+    add_note(out, msg);
+  }
+done:
+  ss_centre_signature_free(&own[0]);
+  ss_centre_signature_free(&own[1]);
+  ss_segment_pairs_free(&pr);
+  free(lx), free(ly);
+  return st;
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
@@ -489,7 +546,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   else ss_match_default_options(&o);
   if (!X || !Y) return ss_fail(err, SS_ERR_INVALID, "match: NULL mesh");
   /* check the landmarks before the expensive part */
-  if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
+  if (nl < 0 || (nl > 0 && (!lmX || !lmY))) return ss_fail(err, SS_ERR_INVALID, "match: bad landmarks");
   for (int i = 0; i < nl; i++) {
     if (lmX[i] < 0 || lmX[i] >= X->nv)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on X [0,%d)", i, lmX[i], X->nv);
@@ -504,12 +561,16 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
     return st;
   }
   const ss_mesh *PX = kx.active ? &kx.sub : X, *PY = ky.active ? &ky.sub : Y;
-  int *lx = malloc(sizeof(int) * (size_t)nl), *ly = malloc(sizeof(int) * (size_t)nl);
+  int *lx = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1)), *ly = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1));
   ss_shape_prep pX = {0}, pY = {0};
   int have_x = 0, have_y = 0;
   if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
   int kev = match_kev(&o);
+  if (nl == 0) { /* the landmark-free pairing's descriptors and orientation test */
+    if (o.autopair.descr_k > kev) kev = o.autopair.descr_k;
+    if (o.autopair.orient_k > kev) kev = o.autopair.orient_k;
+  }
   if ((st = ss_shape_prep_compute(PX, &o.seg, kev, &pX, err))) { name_shape(err, "X (the first mesh)"); goto done; }
   have_x = 1;
   if ((st = ss_shape_prep_compute(PY, &o.seg, kev, &pY, err))) { name_shape(err, "Y (the second mesh)"); goto done; }
@@ -566,5 +627,47 @@ done:
   free(ly);
   kept_free(&kx);
   kept_free(&ky);
+  return st;
+}
+
+ss_status ss_pair_auto(const ss_mesh *X, const ss_mesh *Y, const ss_match_options *opts_in, ss_segment_pairs *pairs,
+                       int **centerX, int **centerY, ss_autopair_info *info, ss_error *err) {
+  if (!pairs) return ss_fail(err, SS_ERR_INVALID, "pair: NULL output");
+  memset(pairs, 0, sizeof *pairs);
+  if (centerX) *centerX = NULL;
+  if (centerY) *centerY = NULL;
+  if (!X || !Y) return ss_fail(err, SS_ERR_INVALID, "pair: NULL mesh");
+  ss_match_options o;
+  if (opts_in) o = *opts_in;
+  else ss_match_default_options(&o);
+  int kev = o.autopair.descr_k > o.autopair.orient_k ? o.autopair.descr_k : o.autopair.orient_k;
+  const int nmin = X->nv < Y->nv ? X->nv : Y->nv;
+  if (kev >= nmin) kev = nmin - 1;
+  ss_shape_prep pX = {0}, pY = {0};
+  ss_centre_signature sX = {0}, sY = {0};
+  ss_status st = ss_shape_prep_compute(X, &o.seg, kev, &pX, err);
+  if (!st) st = ss_shape_prep_compute(Y, &o.seg, kev, &pY, err);
+  if (!st) st = ss_centre_signature_compute(&pX, &o.autopair, &sX, err);
+  if (!st) st = ss_centre_signature_compute(&pY, &o.autopair, &sY, err);
+  if (!st) st = ss_pair_centres_auto(&sX, &sY, &o.autopair, pairs, info, err);
+  if (!st && (centerX || centerY)) {
+    int *cx = malloc(sizeof(int) * (size_t)(pairs->n > 0 ? pairs->n : 1));
+    int *cy = malloc(sizeof(int) * (size_t)(pairs->n > 0 ? pairs->n : 1));
+    if (!cx || !cy) {
+      free(cx), free(cy);
+      ss_segment_pairs_free(pairs);
+      st = ss_fail(err, SS_ERR_NOMEM, "pair: out of memory");
+    } else {
+      for (int p = 0; p < pairs->n; p++) cx[p] = pX.seg.centers[pairs->sx[p]], cy[p] = pY.seg.centers[pairs->sy[p]];
+      if (centerX) *centerX = cx;
+      else free(cx);
+      if (centerY) *centerY = cy;
+      else free(cy);
+    }
+  }
+  ss_centre_signature_free(&sX);
+  ss_centre_signature_free(&sY);
+  ss_shape_prep_free(&pX);
+  ss_shape_prep_free(&pY);
   return st;
 }

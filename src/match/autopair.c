@@ -1,0 +1,582 @@
+/* Landmark-free pairing of the segments of two shapes (match.h): per-shape centre signatures
+ * (WKS at the centres, centre-to-centre exact geodesics, the intrinsic orientation tensor) and the
+ * search for the pairing of least energy (exact branch and bound, or Hungarian + local moves). */
+#include "specseg/fmap.h"
+#include "specseg/geodesic.h"
+#include "specseg/match.h"
+#include "match/autopair_internal.h"
+
+#include <cblas.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+/* Defaults measured in docs/tuning.md (issue 16). */
+void ss_autopair_default_options(ss_autopair_options *o) {
+  memset(o, 0, sizeof *o);
+  o->descr_k = 100;
+  o->n_energies = 100;
+  o->sigma_factor = 7.0;
+  o->descr_radius = 0.05;
+  o->w_descr = 0.1;
+  o->w_geo = 1.0;
+  o->exact_max = 10;
+  o->orient_k = 30;
+  o->orient_descr_k = 100;
+  o->min_gap = 0.05;
+  o->min_mirror = 0.3;
+}
+
+void ss_centre_signature_free(ss_centre_signature *s) {
+  if (!s) return;
+  free(s->centers);
+  free(s->descr);
+  free(s->D);
+  free(s->normals);
+  free(s->sigma);
+  memset(s, 0, sizeof *s);
+}
+
+static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err);
+
+static double cpu_now(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_options *o_in, ss_centre_signature *out,
+                                      ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "autopair: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_autopair_options o;
+  if (o_in) o = *o_in;
+  else ss_autopair_default_options(&o);
+  if (!p || !p->mesh || !p->evecs || !p->evals || !p->M || !p->seg.centers || p->seg.m < 1)
+    return ss_fail(err, SS_ERR_INVALID, "autopair: shape not prepared");
+  if (o.n_energies < 1 || !(o.sigma_factor > 0) || !(o.descr_radius >= 0) || o.descr_k < 3 || o.orient_k < 3 ||
+      o.orient_descr_k < 3)
+    return ss_fail(err, SS_ERR_INVALID, "autopair: bad descriptor options");
+  const ss_mesh *mesh = p->mesh;
+  const int n = mesh->nv, nf = mesh->nf, m = p->seg.m, ne = o.n_energies;
+  const int kw = o.descr_k < p->kev ? o.descr_k : p->kev;
+  for (int a = 0; a < m; a++)
+    if (p->seg.centers[a] < 0 || p->seg.centers[a] >= n)
+      return ss_fail(err, SS_ERR_INVALID, "autopair: centre %d out of range", a);
+  ss_status st = SS_OK;
+  ss_geodesic_mesh *gm = NULL;
+  double *F = malloc(sizeof(double) * (size_t)n * m), *W = malloc(sizeof(double) * (size_t)n * ne);
+  out->m = m;
+  out->nd = ne;
+  out->prep = p;
+  out->centers = malloc(sizeof(int) * (size_t)m);
+  out->descr = malloc(sizeof(double) * (size_t)m * ne);
+  out->D = malloc(sizeof(double) * (size_t)m * m);
+  out->normals = calloc((size_t)n * 3, sizeof(double));
+  out->sigma = malloc(sizeof(int) * (size_t)m);
+  if (!F || !W || !out->centers || !out->descr || !out->D || !out->normals || !out->sigma) {
+    st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+    goto done;
+  }
+  memcpy(out->centers, p->seg.centers, sizeof(int) * (size_t)m);
+  const double area = ss_mesh_area(mesh), scale = 1.0 / sqrt(area);
+  /* 1. exact fields from the centres, scaled */
+  if ((st = ss_geodesic_mesh_build(mesh, &gm, err))) goto done;
+  if ((st = ss_geodesic_fields(gm, out->centers, m, 0.0, F, err))) goto done;
+  for (size_t i = 0; i < (size_t)n * m; i++) {
+    if (!isfinite(F[i])) {
+      st = ss_fail(err, SS_ERR_INVALID, "autopair: a segment centre does not reach every vertex (several components)");
+      goto done;
+    }
+    F[i] *= scale;
+  }
+  for (int a = 0; a < m; a++)
+    for (int b = 0; b < m; b++)
+      out->D[a + (size_t)m * b] = 0.5 * (F[out->centers[b] + (size_t)n * a] + F[out->centers[a] + (size_t)n * b]);
+  /* 2. WKS averaged over a disc around each centre, unit length */
+  if ((st = ss_wks(n, kw, p->evals, p->evecs, p->M, ne, o.sigma_factor, W, err))) goto done;
+  for (int a = 0; a < m; a++) {
+    double *d = out->descr + (size_t)a * ne, wsum = 0;
+    memset(d, 0, sizeof(double) * (size_t)ne);
+    if (o.descr_radius > 0) {
+      for (int v = 0; v < n; v++)
+        if (F[v + (size_t)n * a] <= o.descr_radius) {
+          wsum += p->M[v];
+          for (int j = 0; j < ne; j++) d[j] += p->M[v] * W[v + (size_t)n * j];
+        }
+    }
+    if (!(wsum > 0))
+      for (int j = 0; j < ne; j++) d[j] = W[out->centers[a] + (size_t)n * j];
+    double nn = 0;
+    for (int j = 0; j < ne; j++) nn += d[j] * d[j];
+    nn = nn > 0 ? 1.0 / sqrt(nn) : 0.0;
+    for (int j = 0; j < ne; j++) d[j] *= nn;
+  }
+  /* 3. orientation: the signed volume's sign makes the normals outward */
+  {
+    double vol = 0;
+    for (int f = 0; f < nf; f++) {
+      const int *t = mesh->F + 3 * (size_t)f;
+      const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
+      double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+      double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      vol += p0[0] * N[0] + p0[1] * N[1] + p0[2] * N[2]; /* p0 · (u × w) = p0 · (p1 × p2) */
+      for (int c = 0; c < 3; c++)
+        for (int d = 0; d < 3; d++) out->normals[3 * (size_t)t[c] + d] += N[d];
+    }
+    vol /= 6.0;
+    out->volume_ratio = vol / (area * sqrt(area));
+    out->orient_sign = vol < 0 ? -1.0 : 1.0;
+    for (size_t i = 0; i < (size_t)n * 3; i++) out->normals[i] *= out->orient_sign;
+  }
+  /* 4. the centres' own left-right symmetry */
+  st = self_symmetry(out, &o, err);
+done:
+  ss_geodesic_mesh_free(gm);
+  free(F), free(W);
+  if (st) ss_centre_signature_free(out);
+  return st;
+}
+
+double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
+  const ss_mesh *mA = A->prep->mesh, *mB = B->prep->mesh;
+  double pos = 0, tot = 0;
+  for (int f = 0; f < mA->nf; f++) {
+    const int *t = mA->F + 3 * (size_t)f;
+    const double *q0 = mB->V + 3 * (size_t)T[t[0]], *q1 = mB->V + 3 * (size_t)T[t[1]], *q2 = mB->V + 3 * (size_t)T[t[2]];
+    const double *nr = B->normals + 3 * (size_t)T[t[0]];
+    double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
+    double x = nr[0] * (u[1] * w[2] - u[2] * w[1]) + nr[1] * (u[2] * w[0] - u[0] * w[2]) + nr[2] * (u[0] * w[1] - u[1] * w[0]);
+    x *= A->orient_sign;
+    if (x != 0) tot += 1, pos += x > 0;
+  }
+  return tot > 0 ? (2 * pos - tot) / tot : 0.0;
+}
+
+/* ---- the search ----------------------------------------------------------------------------- */
+
+#define TOPK 8 /* leaves kept by the exact search (self-symmetry candidates, runner-ups) */
+#define SELF_CANDIDATES 6
+
+typedef struct search {
+  int na, nb;
+  const double *U;  /* na x nb unary costs, U[a * nb + b] (weighted) */
+  const double *DA, *DB;
+  double wg;        /* weight of a squared distance difference */
+  const double *minU; /* minU[t] = Σ_{a ≥ t} min_b U[a][b] */
+  int *cur, *used;
+  int ntop;                 /* leaves kept (1..TOPK) */
+  double top_e[TOPK];       /* ascending */
+  int *top_p[TOPK];
+} search;
+
+static double pair_inc(const search *S, int t, int b) {
+  double c = S->U[(size_t)t * S->nb + b];
+  for (int s = 0; s < t; s++) {
+    double d = S->DA[s + (size_t)S->na * t] - S->DB[S->cur[s] + (size_t)S->nb * b];
+    c += S->wg * d * d;
+  }
+  return c;
+}
+
+static void keep_leaf(search *S, const int *p, double e) {
+  int k = S->ntop - 1;
+  if (!(e < S->top_e[k])) return;
+  int *slot = S->top_p[k];
+  while (k > 0 && e < S->top_e[k - 1]) {
+    S->top_e[k] = S->top_e[k - 1];
+    S->top_p[k] = S->top_p[k - 1];
+    k--;
+  }
+  S->top_e[k] = e;
+  S->top_p[k] = slot;
+  memcpy(slot, p, sizeof(int) * (size_t)S->na);
+}
+
+static void dfs(search *S, int t, double partial) {
+  if (t == S->na) {
+    keep_leaf(S, S->cur, partial);
+    return;
+  }
+  for (int b = 0; b < S->nb; b++) {
+    if (S->used[b]) continue;
+    double c = partial + pair_inc(S, t, b);
+    if (!(c + S->minU[t + 1] < S->top_e[S->ntop - 1])) continue;
+    S->cur[t] = b;
+    S->used[b] = 1;
+    dfs(S, t + 1, c);
+    S->used[b] = 0;
+  }
+}
+
+/* energy of an assignment p (A index -> B index); share (may be NULL): per-centre shares */
+static double full_energy(const search *S, const int *p, double *share) {
+  const int na = S->na, nb = S->nb;
+  double E = 0;
+  for (int a = 0; a < na; a++) {
+    E += S->U[(size_t)a * nb + p[a]];
+    if (share) share[a] = S->U[(size_t)a * nb + p[a]];
+  }
+  for (int a = 0; a < na; a++)
+    for (int c = a + 1; c < na; c++) {
+      double d = S->DA[a + (size_t)na * c] - S->DB[p[a] + (size_t)nb * p[c]], e = S->wg * d * d;
+      E += e;
+      if (share) share[a] += e / 2, share[c] += e / 2;
+    }
+  return E;
+}
+
+/* Hungarian algorithm (shortest augmenting paths, O(n² m)) for an n x m cost matrix, n <= m,
+ * C[i * m + j]; assign[i] receives the column of row i. */
+static int hungarian(int n, int m, const double *C, int *assign) {
+  double *u = calloc((size_t)n + 1, sizeof(double)), *v = calloc((size_t)m + 1, sizeof(double));
+  double *minv = malloc(sizeof(double) * ((size_t)m + 1));
+  int *p = calloc((size_t)m + 1, sizeof(int)), *way = calloc((size_t)m + 1, sizeof(int));
+  char *usedc = malloc((size_t)m + 1);
+  if (!u || !v || !minv || !p || !way || !usedc) {
+    free(u), free(v), free(minv), free(p), free(way), free(usedc);
+    return 1;
+  }
+  for (int i = 1; i <= n; i++) {
+    p[0] = i;
+    int j0 = 0;
+    for (int j = 0; j <= m; j++) minv[j] = INFINITY, usedc[j] = 0;
+    do {
+      usedc[j0] = 1;
+      int i0 = p[j0], j1 = 0;
+      double delta = INFINITY;
+      for (int j = 1; j <= m; j++)
+        if (!usedc[j]) {
+          double cur = C[(size_t)(i0 - 1) * m + (j - 1)] - u[i0] - v[j];
+          if (cur < minv[j]) minv[j] = cur, way[j] = j0;
+          if (minv[j] < delta) delta = minv[j], j1 = j;
+        }
+      for (int j = 0; j <= m; j++)
+        if (usedc[j]) u[p[j]] += delta, v[j] -= delta;
+        else minv[j] -= delta;
+      j0 = j1;
+    } while (p[j0] != 0);
+    do {
+      int j1 = way[j0];
+      p[j0] = p[j1];
+      j0 = j1;
+    } while (j0);
+  }
+  for (int j = 1; j <= m; j++)
+    if (p[j]) assign[p[j] - 1] = j - 1;
+  free(u), free(v), free(minv), free(p), free(way), free(usedc);
+  return 0;
+}
+
+static int dbl_cmp(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The relaxation: Hungarian on unary + distance-profile costs, then swaps / moves to free centres
+ * while the energy decreases; top[0] = that local minimum, top[1..] = its best single-move
+ * neighbours. */
+static int relaxed(search *S, int self) {
+  const int na = S->na, nb = S->nb, q = na - 1, lq = q > 0 ? q : 1;
+  double *C = malloc(sizeof(double) * (size_t)na * nb), *pa = malloc(sizeof(double) * (size_t)na * lq);
+  double *pb = malloc(sizeof(double) * (size_t)nb * lq), *tmp = malloc(sizeof(double) * (size_t)nb);
+  int *p = malloc(sizeof(int) * (size_t)na), *inv = malloc(sizeof(int) * (size_t)nb);
+  int rc = 1;
+  if (!C || !pa || !pb || !tmp || !p || !inv) goto out;
+  for (int side = 0; side < 2; side++) { /* sorted distance profiles: the q smallest distances */
+    const int n = side ? nb : na;
+    const double *D = side ? S->DB : S->DA;
+    double *prof = side ? pb : pa;
+    for (int a = 0; a < n; a++) {
+      int c = 0;
+      for (int x = 0; x < n; x++)
+        if (x != a) tmp[c++] = D[a + (size_t)n * x];
+      qsort(tmp, (size_t)c, sizeof(double), dbl_cmp);
+      for (int i = 0; i < q; i++) prof[(size_t)a * lq + i] = i < c ? tmp[i] : 0.0;
+    }
+  }
+  for (int a = 0; a < na; a++)
+    for (int b = 0; b < nb; b++) {
+      double s = 0;
+      for (int i = 0; i < q; i++) {
+        double d = pa[(size_t)a * lq + i] - pb[(size_t)b * lq + i];
+        s += d * d;
+      }
+      C[(size_t)a * nb + b] = S->U[(size_t)a * nb + b] + S->wg * s / 2;
+    }
+  if (hungarian(na, nb, C, p)) goto out;
+  double E = self ? INFINITY : full_energy(S, p, NULL);
+  if (self) { /* A with itself: the identity is the trivial optimum; start from the best swap */
+    for (int a = 0; a < na; a++) p[a] = a;
+    int ba = -1, bc = -1;
+    for (int a = 0; a < na; a++)
+      for (int c = a + 1; c < na; c++) {
+        p[a] = c, p[c] = a;
+        double e = full_energy(S, p, NULL);
+        if (e < E) E = e, ba = a, bc = c;
+        p[a] = a, p[c] = c;
+      }
+    if (ba >= 0) p[ba] = bc, p[bc] = ba;
+  }
+  for (int improved = 1; improved && !self;) {
+    improved = 0;
+    for (int b = 0; b < nb; b++) inv[b] = -1;
+    for (int a = 0; a < na; a++) inv[p[a]] = a;
+    for (int a = 0; a < na && !improved; a++)
+      for (int b = 0; b < nb && !improved; b++) {
+        if (b == p[a]) continue;
+        int c = inv[b], old = p[a];
+        p[a] = b;
+        if (c >= 0) p[c] = old;
+        double e = full_energy(S, p, NULL);
+        if (e < E - 1e-15 * fabs(E)) E = e, improved = 1;
+        else {
+          p[a] = old;
+          if (c >= 0) p[c] = b;
+        }
+      }
+  }
+  for (int k = 0; k < S->ntop; k++) S->top_e[k] = INFINITY;
+  keep_leaf(S, p, E);
+  for (int b = 0; b < nb; b++) inv[b] = -1;
+  for (int a = 0; a < na; a++) inv[p[a]] = a;
+  for (int a = 0; a < na; a++)
+    for (int b = 0; b < nb; b++) {
+      if (b == p[a]) continue;
+      int c = inv[b], old = p[a];
+      if (c >= 0 && c < a) continue; /* each swap once */
+      p[a] = b;
+      if (c >= 0) p[c] = old;
+      keep_leaf(S, p, full_energy(S, p, NULL));
+      p[a] = old;
+      if (c >= 0) p[c] = b;
+    }
+  rc = 0;
+out:
+  free(C), free(pa), free(pb), free(tmp), free(p), free(inv);
+  return rc;
+}
+
+static double count_injections(int na, int nb) {
+  double c = 1;
+  for (int i = 0; i < na; i++) c *= nb - i;
+  return c;
+}
+
+static void run_search(search *S, int exact, int ntop, int self, int *status) {
+  S->ntop = ntop;
+  for (int k = 0; k < TOPK; k++) S->top_e[k] = INFINITY;
+  for (int b = 0; b < S->nb; b++) S->used[b] = 0;
+  if (exact) dfs(S, 0, 0.0);
+  else if (relaxed(S, self)) *status = 1;
+}
+
+/* The orientation test of a pairing p (A index -> B index): ρ of the small functional map C from
+ * functions on B to functions on A fitted to the WKS and the paired centres' wave-kernel maps. */
+/* The orientation test of a pairing p (A index -> B index): score of the map A -> B of a small
+ * functional map with the paired centres as landmarks. */
+ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+                              const ss_autopair_options *o, double *score, ss_error *err) {
+  const ss_shape_prep *pA = A->prep, *pB = B->prep;
+  const int na = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
+  ss_fmap_match_options fo;
+  ss_fmap_match_default_options(&fo);
+  fo.k = o->orient_k < kmin ? o->orient_k : kmin;
+  fo.descr_k = o->orient_descr_k < kmin ? o->orient_descr_k : kmin;
+  if (fo.descr_k < fo.k) fo.descr_k = fo.k;
+  fo.zoomout_kmax = 0;
+  int *lA = malloc(sizeof(int) * (size_t)na), *lB = malloc(sizeof(int) * (size_t)na);
+  int *T = malloc(sizeof(int) * (size_t)pA->mesh->nv);
+  ss_status st = SS_OK;
+  if (!lA || !lB || !T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  if (!st) {
+    for (int a = 0; a < na; a++) lA[a] = A->centers[a], lB[a] = B->centers[p[a]];
+    ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev}, sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev};
+    st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
+  }
+  if (!st) *score = ssi_map_orientation(A, B, T);
+  free(lA), free(lB), free(T);
+  return st;
+}
+
+static int same(const int *a, const int *b, int n) { return !memcmp(a, b, sizeof(int) * (size_t)n); }
+
+/* unary costs of A's centres against Q's and their suffix minima (the search's bound) */
+static void fill_unary(search *S, double *U, double *minU, const ss_centre_signature *A, const ss_centre_signature *Q,
+                       double w_descr) {
+  const int na = A->m, nq = Q->m, nd = A->nd;
+  S->nb = nq, S->DB = Q->D;
+  for (int a = 0; a < na; a++)
+    for (int b = 0; b < nq; b++) {
+      double s = 0;
+      for (int j = 0; j < nd; j++) {
+        double d = A->descr[(size_t)a * nd + j] - Q->descr[(size_t)b * nd + j];
+        s += d * d;
+      }
+      U[(size_t)a * nq + b] = w_descr * s / na;
+    }
+  minU[na] = 0;
+  for (int a = na - 1; a >= 0; a--) {
+    double mn = INFINITY;
+    for (int b = 0; b < nq; b++) mn = U[(size_t)a * nq + b] < mn ? U[(size_t)a * nq + b] : mn;
+    minU[a] = minU[a + 1] + mn;
+  }
+}
+
+static void init_search(search *S, const ss_centre_signature *A, const ss_autopair_options *o, double *U, double *minU,
+                        int *cur, int *used, int *buf) {
+  const int na = A->m;
+  double d2 = 0;
+  for (int a = 0; a < na; a++)
+    for (int c = a + 1; c < na; c++) d2 += A->D[a + (size_t)na * c] * A->D[a + (size_t)na * c];
+  memset(S, 0, sizeof *S);
+  S->na = na, S->U = U, S->DA = A->D, S->wg = d2 > 0 ? o->w_geo / d2 : 0.0, S->minU = minU, S->cur = cur, S->used = used;
+  for (int k = 0; k < TOPK; k++) S->top_p[k] = buf + (size_t)na * k;
+}
+
+/* σ: of the SELF_CANDIDATES best non-identity pairings of the centres with themselves (intrinsic
+ * energy), the one whose map is the most clearly orientation-reversing (a mirror); identity when
+ * none reverses (score ≥ 0). */
+static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err) {
+  const int m = sg->m;
+  for (int a = 0; a < m; a++) sg->sigma[a] = a;
+  sg->sigma_score = 1.0;
+  if (m < 2) return SS_OK;
+  double *U = malloc(sizeof(double) * (size_t)m * m), *minU = malloc(sizeof(double) * ((size_t)m + 1));
+  int *cur = malloc(sizeof(int) * (size_t)m), *used = malloc(sizeof(int) * (size_t)m);
+  int *buf = malloc(sizeof(int) * (size_t)m * TOPK);
+  ss_status st = SS_OK;
+  int status = 0, moved[TOPK];
+  double sc_k[TOPK], best_sc = INFINITY;
+  if (!U || !minU || !cur || !used || !buf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  search S;
+  S.ntop = 0;
+  if (!st) {
+    init_search(&S, sg, o, U, minU, cur, used, buf);
+    fill_unary(&S, U, minU, sg, sg, o->w_descr);
+    const int exact = m <= o->exact_max && count_injections(m, m) <= 5e7;
+    run_search(&S, exact, SELF_CANDIDATES + 1 < TOPK ? SELF_CANDIDATES + 1 : TOPK, 1, &status);
+    if (status) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  }
+  for (int k = 0; !st && k < S.ntop; k++) {
+    if (!isfinite(S.top_e[k])) break;
+    int id = 1;
+    for (int a = 0; a < m && id; a++) id = S.top_p[k][a] == a;
+    if (id) continue;
+    double sc;
+    if ((st = ssi_autopair_orient_score(sg, sg, S.top_p[k], o, &sc, err))) break;
+    sc_k[k] = sc;
+    moved[k] = 0;
+    for (int a = 0; a < m; a++) moved[k] += S.top_p[k][a] != a;
+    if (sc < best_sc) best_sc = sc;
+  }
+  /* a partial swap (e.g. the hands only) reverses orientation too: of the candidates that reverse
+   * it clearly (score ≤ half the most negative one), the one moving the most centres, then the
+   * lowest score */
+  int pick = -1;
+  for (int k = 0; !st && k < S.ntop && best_sc < 0; k++) {
+    if (!isfinite(S.top_e[k]) || moved[k] == 0 || !(sc_k[k] <= 0.5 * best_sc)) continue;
+    if (pick < 0 || moved[k] > moved[pick] || (moved[k] == moved[pick] && sc_k[k] < sc_k[pick])) pick = k;
+  }
+  if (pick >= 0) sg->sigma_score = sc_k[pick], memcpy(sg->sigma, S.top_p[pick], sizeof(int) * (size_t)m);
+  free(U), free(minU), free(cur), free(used), free(buf);
+  return st;
+}
+
+ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y, const ss_autopair_options *o_in,
+                               ss_segment_pairs *out, ss_autopair_info *info, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "autopair: NULL output");
+  memset(out, 0, sizeof *out);
+  if (info) memset(info, 0, sizeof *info);
+  ss_autopair_options o;
+  if (o_in) o = *o_in;
+  else ss_autopair_default_options(&o);
+  if (!X || !Y || X->m < 1 || Y->m < 1 || !X->descr || !Y->descr || !X->D || !Y->D || !X->prep || !Y->prep)
+    return ss_fail(err, SS_ERR_INVALID, "autopair: empty signature");
+  if (X->nd != Y->nd)
+    return ss_fail(err, SS_ERR_INVALID, "autopair: signatures computed with different options");
+  if (!(o.w_descr >= 0) || !(o.w_geo >= 0) || !isfinite(o.w_descr + o.w_geo))
+    return ss_fail(err, SS_ERR_INVALID, "autopair: weights must be finite and non-negative");
+  double c0 = cpu_now();
+  const int swap = X->m > Y->m;
+  const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
+  const int na = A->m, nb = B->m;
+  ss_status st = SS_OK;
+  int status = 0;
+  const int nbuf = TOPK + 4;
+  double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
+  double *share = malloc(sizeof(double) * (size_t)na);
+  int *cur = malloc(sizeof(int) * (size_t)nb), *used = malloc(sizeof(int) * (size_t)nb);
+  int *buf = malloc(sizeof(int) * (size_t)na * nbuf);
+  if (!U || !minU || !share || !cur || !used || !buf) {
+    st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+    goto done;
+  }
+  search S;
+  init_search(&S, A, &o, U, minU, cur, used, buf);
+  int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
+  const int *sigma = A->sigma;
+  const int exact = na <= o.exact_max && count_injections(na, nb) <= 5e7;
+  fill_unary(&S, U, minU, A, B, o.w_descr);
+  run_search(&S, exact, TOPK, 0, &status);
+  if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
+  memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
+  for (int a = 0; a < na; a++) pi2[a] = pi1[sigma[a]];
+  double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = INFINITY;
+  for (int k = 0; k < TOPK; k++)
+    if (isfinite(S.top_e[k]) && !same(S.top_p[k], pi1, na) && !same(S.top_p[k], pi2, na)) {
+      e3 = S.top_e[k];
+      memcpy(third, S.top_p[k], sizeof(int) * (size_t)na);
+      break;
+    }
+  /* left / right: the candidate whose map preserves orientation */
+  double r1 = 0, r2 = 0;
+  if ((st = ssi_autopair_orient_score(A, B, pi1, &o, &r1, err))) goto done;
+  if (same(pi1, pi2, na)) { /* no symmetry found: the runner-up is the other candidate */
+    if (isfinite(e3)) memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
+  }
+  if (same(pi1, pi2, na)) r2 = r1;
+  else if ((st = ssi_autopair_orient_score(A, B, pi2, &o, &r2, err))) goto done;
+  if (r2 > r1) {
+    int *t = pi1;
+    pi1 = pi2, pi2 = t;
+    double x = r1;
+    r1 = r2, r2 = x;
+    x = e1, e1 = e2, e2 = x;
+  }
+  (void)full_energy(&S, pi1, share);
+  out->nx = X->m, out->ny = Y->m, out->n = na;
+  out->sx = malloc(sizeof(int) * (size_t)na);
+  out->sy = malloc(sizeof(int) * (size_t)na);
+  out->energy = malloc(sizeof(double) * (size_t)na);
+  if (!out->sx || !out->sy || !out->energy) {
+    ss_segment_pairs_free(out);
+    st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+    goto done;
+  }
+  if (!swap) {
+    for (int a = 0; a < na; a++) out->sx[a] = a, out->sy[a] = pi1[a], out->energy[a] = share[a];
+  } else { /* sorted by sx = the B index */
+    int q = 0;
+    for (int b = 0; b < nb; b++)
+      for (int a = 0; a < na; a++)
+        if (pi1[a] == b) out->sx[q] = b, out->sy[q] = a, out->energy[q++] = share[a];
+  }
+  if (info) {
+    double emin = e1 < e2 ? e1 : e2;
+    info->used = 1;
+    info->exact = exact;
+    info->energy = e1;
+    info->energy_mirror = e2;
+    info->energy_other = e3;
+    info->gap = isfinite(e3) ? (e3 - emin) / (emin > 1e-300 ? emin : 1e-300) : INFINITY;
+    info->mirror = r1;
+    info->mirror_other = r2;
+    info->confident = info->gap >= o.min_gap && (r1 - r2) / 2 >= o.min_mirror;
+    info->cpu = cpu_now() - c0;
+  }
+done:
+  free(U), free(minU), free(share), free(cur), free(used), free(buf);
+  return st;
+}

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# `specseg pair` and `specseg match` without --landmarks on the built-in humanoid (two poses of one
+# vertex order, so the ground truth is the identity): the report, the -o landmark file (usable by
+# `match --landmarks`), the confidence line, the landmark-free match's summary, usage errors.
+# Usage: cli_pair.sh PATH/TO/specseg
+set -u
+BIN=${1:?usage: $0 PATH/TO/specseg}
+. "$(dirname "$0")/lib_cli.sh"
+"$BIN" demo -o "$TMP/demo" > /dev/null 2>&1 || { bad "demo"; finish; }
+A="$TMP/demo/humanoid_pose0.off"
+B=$(ls "$TMP"/demo/humanoid_pose*.off | grep -v pose0 | head -1)
+"$BIN" pair "$A" "$B" -o "$TMP/pairs.txt" > "$TMP/out" 2>&1 && ok || bad "pair: $(cat "$TMP/out")"
+grep -q 'paired (exact search)' "$TMP/out" && ok || bad "pair report: $(cat "$TMP/out")"
+grep -Eq '^(confident|NOT confident)' "$TMP/out" && ok || bad "confidence line: $(cat "$TMP/out")"
+np=$(sed -n 's/.* \([0-9]*\) paired (exact.*/\1/p' "$TMP/out")
+[ -n "$np" ] && [ "$(wc -l < "$TMP/pairs.txt")" -eq "$np" ] && ok || bad "-o: $np pairs, $(wc -l < "$TMP/pairs.txt") lines"
+# every pair's centres: two vertex indices
+awk 'NF != 2 || $1 !~ /^[0-9]+$/ || $2 !~ /^[0-9]+$/ { exit 1 }' "$TMP/pairs.txt" && ok || bad "pairs file format"
+# the pairs file is a landmark file for match
+"$BIN" match "$A" "$B" --landmarks "$TMP/pairs.txt" --no-refine -o "$TMP/m1.txt" > "$TMP/out" 2>&1 && ok ||
+  bad "match --landmarks PAIRS: $(cat "$TMP/out")"
+# landmark-free match: its pairing line and a map of the right length
+"$BIN" match "$A" "$B" --no-refine -o "$TMP/m0.txt" > "$TMP/out" 2>&1 && ok || bad "match without landmarks: $(cat "$TMP/out")"
+grep -q '^landmark-free pairing' "$TMP/out" && grep -q '(the paired centres)' "$TMP/out" && ok || bad "match summary: $(cat "$TMP/out")"
+[ "$(wc -l < "$TMP/m0.txt")" -eq "$(sed -n 2p "$A" | awk '{print $1}')" ] && ok || bad "map length"
+if grep -q 'NOT confident' "$TMP/out"; then grep -q '^note: .*NOT confident' "$TMP/out" && ok || bad "no note for a pairing that is not confident"; fi
+# report to stderr when the pairs go to stdout
+"$BIN" pair "$A" "$B" -o - > "$TMP/so" 2> "$TMP/se" && [ "$(wc -l < "$TMP/so")" -eq "$np" ] && grep -q 'energy' "$TMP/se" && ok ||
+  bad "pair -o -"
+# usage errors
+"$BIN" pair "$A" > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "one mesh: exit 2"
+"$BIN" pair "$A" "$B" --bogus > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "unknown option: exit 2"
+"$BIN" pair "$A" "$TMP/missing.off" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "missing file: exit 1"
+"$BIN" pair --help | grep -q 'usage: specseg pair' && ok || bad "--help"
+finish
