@@ -126,19 +126,20 @@ static void print_none_table(const ss_eval_row *rows, int n, FILE *f) {
   if (ss_table1_none_aggregate(rows, n, &t, NULL)) return;
   if (!t.pairs[0] && !t.pairs[1] && !t.pairs[2]) return;
   static const char *names[4] = {"FAUST NONE", "FAUST subj NONE", "FAUST pose NONE", "FAUST sym NONE"};
-  fprintf(f, "\n%-17s %9s %9s %9s  %5s  %s\n", "landmark-free", "STD", "ASA", "DIFF", "pairs",
+  fprintf(f, "\n%-17s %9s %9s %9s %9s  %5s  %s\n", "landmark-free", "STD", "ASA", "DIFF", "REFINED", "pairs",
           "segment pairing: all right / up to the mirror");
   for (int i = 0; i < 4; i++) {
-    if (t.count[i][0] + t.count[i][1] + t.count[i][2] == 0) continue;
+    if (t.count[i][0] + t.count[i][1] + t.count[i][2] + t.count[i][3] == 0) continue;
     fprintf(f, "%-17s", names[i]);
     int np = 0;
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < SS_EVAL_NMETHODS; c++) {
       if (t.count[i][c]) fprintf(f, " %9.4f", t.mean[i][c]);
       else fprintf(f, " %9s", "-");
       if (t.count[i][c] > np) np = t.count[i][c];
     }
     fprintf(f, "  %5d", np);
-    if (i < 3) fprintf(f, "  %5.1f%% / %5.1f%%", 100 * t.all_right[i], 100 * t.mirror_right[i]);
+    if (i < 3 && t.all_right[i] == t.all_right[i])
+      fprintf(f, "  %5.1f%% / %5.1f%%", 100 * t.all_right[i], 100 * t.mirror_right[i]);
     fputc('\n', f);
   }
 }

@@ -367,12 +367,46 @@ static void test_adapter(void) {
   ev_shape_free(&Y);
 }
 
+/* The landmark-free table: every method (the refined one too) gets its column; the pairing
+ * fractions count only rows that carry a pairing (the refined rows carry -1). */
+static void test_none_table(void) {
+  ss_eval_row rows[3 * 4 * 4];
+  int n = 0;
+  for (int p = 0; p < 3; p++)
+    for (int i = 0; i < 4; i++)
+      for (int mth = 0; mth < SS_EVAL_NMETHODS; mth++) {
+        ss_eval_row *r = &rows[n++];
+        memset(r, 0, sizeof *r);
+        r->policy = (ss_pair_policy)p, r->landmarks = SS_LM_NONE, r->method = (ss_eval_method)mth;
+        r->x = i, r->y = i + 10, r->error = 0.01 * (mth + 1) + 0.001 * i, r->error_sym = r->error;
+        r->samples = 10, r->segments_x = r->segments_y = r->paired = 8;
+        r->pairing = mth == SS_METHOD_REFINED ? -1 : (i == 0 ? 0 : i == 1 ? 1 : 2);
+      }
+  ss_table1_none t;
+  CHECK(ss_table1_none_aggregate(rows, n, &t, NULL) == SS_OK);
+  for (int p = 0; p < 3; p++) {
+    CHECK(t.count[p][SS_METHOD_REFINED] == 4);
+    CHECK(fabs(t.mean[p][SS_METHOD_REFINED] - (0.04 + 0.0015)) < 1e-12);
+    CHECK(fabs(t.all_right[p] - 0.5) < 1e-12 && fabs(t.mirror_right[p] - 0.75) < 1e-12);
+    CHECK(t.pairs[p] == 4);
+  }
+  CHECK(t.count[3][SS_METHOD_REFINED] == 4 && t.count[3][SS_METHOD_STD] == 4);
+  /* refined rows alone: the errors, and no pairing fraction */
+  int m = 0;
+  for (int i = 0; i < n; i++)
+    if (rows[i].method == SS_METHOD_REFINED) rows[m++] = rows[i];
+  CHECK(ss_table1_none_aggregate(rows, m, &t, NULL) == SS_OK);
+  CHECK(t.count[0][SS_METHOD_REFINED] == 4 && t.count[0][SS_METHOD_STD] == 0);
+  CHECK(isnan(t.all_right[0]) && isnan(t.mirror_right[0]));
+}
+
 int main(void) {
   test_rng();
   test_pairs();
   test_fps();
   test_symmetry();
   test_csv_and_merge();
+  test_none_table();
   test_adapter();
   TEST_MAIN_END();
 }

@@ -124,10 +124,10 @@ SS_API extern const char *const ss_table1_row_names[12];
 /* The landmark-free rows beside Table 1: policies random / subj / pose and the sym variant of the
  * random rows (rows 0..3) x methods, and per policy the fraction of shape pairs whose pairing was
  * entirely right (all_right) and right up to the mirror (mirror_right, which includes all_right),
- * over the STD rows (one per shape pair). */
+ * over the paper methods' rows (a refined row carries no pairing: NaN when there are only those). */
 typedef struct ss_table1_none {
-  double mean[4][3];
-  int count[4][3];
+  double mean[4][SS_EVAL_NMETHODS];
+  int count[4][SS_EVAL_NMETHODS];
   double all_right[3], mirror_right[3];
   int pairs[3];
 } ss_table1_none;

@@ -205,7 +205,7 @@ ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_non
   if (n > 0) memcpy(r, rows, sizeof *r * (size_t)n);
   ss_status st = ss_eval_rows_canonical(r, &n, err);
   if (!st) {
-    double sum[4][3] = {{0}};
+    double sum[4][SS_EVAL_NMETHODS] = {{0}};
     int all[3] = {0}, mir[3] = {0}, tot[3] = {0};
     for (int i = 0; i < n; i++) {
       if (r[i].landmarks != SS_LM_NONE) continue;
@@ -213,13 +213,14 @@ ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_non
       sum[p][c] += r[i].error;
       t->count[p][c]++;
       if (p == SS_POLICY_RANDOM) sum[3][c] += r[i].error_sym, t->count[3][c]++;
-      /* every method row of a shape pair carries the same pairing: the fractions over rows are those over pairs */
-      tot[p]++, all[p] += r[i].pairing == 2, mir[p] += r[i].pairing >= 1;
+      /* every paper-method row of a shape pair carries the same pairing (refined rows alone carry -1):
+       * the fractions over those rows are those over pairs */
+      if (r[i].pairing >= 0) tot[p]++, all[p] += r[i].pairing == 2, mir[p] += r[i].pairing >= 1;
     }
     for (int i = 0; i < 4; i++)
-      for (int c = 0; c < 3; c++) t->mean[i][c] = t->count[i][c] ? sum[i][c] / t->count[i][c] : NAN;
+      for (int c = 0; c < SS_EVAL_NMETHODS; c++) t->mean[i][c] = t->count[i][c] ? sum[i][c] / t->count[i][c] : NAN;
     for (int p = 0; p < 3; p++) {
-      for (int c = 0; c < 3; c++) t->pairs[p] = t->count[p][c] > t->pairs[p] ? t->count[p][c] : t->pairs[p];
+      for (int c = 0; c < SS_EVAL_NMETHODS; c++) t->pairs[p] = t->count[p][c] > t->pairs[p] ? t->count[p][c] : t->pairs[p];
       t->all_right[p] = tot[p] ? (double)all[p] / tot[p] : NAN;
       t->mirror_right[p] = tot[p] ? (double)mir[p] / tot[p] : NAN;
     }
