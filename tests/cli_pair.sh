@@ -24,6 +24,24 @@ awk 'NF != 2 || $1 !~ /^[0-9]+$/ || $2 !~ /^[0-9]+$/ { exit 1 }' "$TMP/pairs.txt
 grep -q '^landmark-free pairing' "$TMP/out" && grep -q '(the paired centres)' "$TMP/out" && ok || bad "match summary: $(cat "$TMP/out")"
 [ "$(wc -l < "$TMP/m0.txt")" -eq "$(sed -n 2p "$A" | awk '{print $1}')" ] && ok || bad "map length"
 if grep -q 'NOT confident' "$TMP/out"; then grep -q '^note: .*NOT confident' "$TMP/out" && ok || bad "no note for a pairing that is not confident"; fi
+# landmark-free match of meshes with a crumb (a small sphere beside the body): the largest component
+# of each is matched, the crumb dropped with a warning (was: no landmark on any component)
+S="$TMP/demo/sphere.off"
+crumb() {
+  awk 'FNR == 1 { k++; next } FNR == 2 { n[k] = $1; m[k] = $2; next } { L[k, ++c[k]] = $0 }
+    END { print "OFF"; print n[1] + n[2], m[1] + m[2], 0
+          for (i = 1; i <= n[1]; i++) print L[1, i]
+          for (i = 1; i <= n[2]; i++) { split(L[2, i], a, " "); print a[1] * 0.05 + 3, a[2] * 0.05, a[3] * 0.05 }
+          for (i = n[1] + 1; i <= n[1] + m[1]; i++) print L[1, i]
+          for (i = n[2] + 1; i <= n[2] + m[2]; i++) { split(L[2, i], a, " "); print 3, a[2] + n[1], a[3] + n[1], a[4] + n[1] } }' "$1" "$S"
+}
+crumb "$A" > "$TMP/ac.off"; crumb "$B" > "$TMP/bc.off"
+nva=$(sed -n 2p "$A" | awk '{print $1}')
+"$BIN" match "$TMP/ac.off" "$TMP/bc.off" --no-refine -o "$TMP/mc.txt" > "$TMP/out" 2>&1 && ok || bad "crumbs, no landmarks: $(cat "$TMP/out")"
+grep -q 'X (the first mesh): matched the 1 of its 2 components that is the largest' "$TMP/out" &&
+  grep -q 'Y (the second mesh): matched the 1 of its 2 components that is the largest' "$TMP/out" && ok ||
+  bad "crumb warning: $(cat "$TMP/out")"
+awk -v n="$nva" 'NR <= n && $1 >= n { b++ } END { exit b > 0 }' "$TMP/mc.txt" && ok || bad "body vertices mapped onto the crumb"
 # report to stderr when the pairs go to stdout
 "$BIN" pair "$A" "$B" -o - > "$TMP/so" 2> "$TMP/se" && [ "$(wc -l < "$TMP/so")" -eq "$np" ] && grep -q 'energy' "$TMP/se" && ok ||
   bad "pair -o -"
