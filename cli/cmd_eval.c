@@ -23,7 +23,9 @@ static const char USAGE[] =
     "                    [--cache DIR] [--shard I/N] [--error-samples N] [--k K]\n"
     "                    [--policies random,subj,pose] [--landmarks best,gt,fps,none] [--methods std,asa,diff,refined]\n"
     "                    [--quiet]\n"
-    "       specseg eval merge CSV... [--out ALL.csv]\n"
+    "       specseg eval --table1 --manifest FILE [--out RESULTS.csv] [--landmarks best,gt,fps,none]\n"
+    "                    [--pairing paper|confident] [--methods ...] [--cache DIR] [--shard I/N] ...\n"
+    "       specseg eval merge CSV... [--out ALL.csv] [--manifest FILE]\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
     "       specseg eval --timings --data DIR [--shapes N]\n"
     "       specseg eval --figures OUTDIR --data DIR [--landmarks best,gt,fps] [--pair X,Y] [--size WxH]\n"
@@ -38,7 +40,14 @@ static const char USAGE[] =
     "  --figures OUTDIR    Figure 3 (segment gallery) and Figures 9-11 (maps, BEST / GT / FPS landmarks)\n"
     "  merge CSV...        merge (shard) CSVs into one table\n"
     "Options:\n"
-    "  --data DIR          the data folder, with faust/ (and tosca/) (required)\n"
+    "  --data DIR          the data folder, with faust/ (and tosca/) (required unless --manifest)\n"
+    "  --manifest FILE     --table1 (and merge): any data set described by a manifest (README.md) instead of\n"
+    "                      FAUST: its groups, ground truth, landmarks and pairs; the table per group. Landmark\n"
+    "                      sets: best = its landmark files, gt = FPS on each group's reference carried by\n"
+    "                      the ground truth, fps = each mesh's own FPS (default: those it has)\n"
+    "  --pairing RULE      segment pairing of the ASA / DIFF rows: paper (default, the paper's rule) or\n"
+    "                      confident (the library's safeguards: ratio test, at least 4 landmarks); use\n"
+    "                      another --out for each rule\n"
     "  --out, -o FILE      --table1: the CSV, also the resume state (default specseg_table1.csv);\n"
     "                      merge: the merged CSV (default: none written; - writes it to standard output)\n"
     "  --pairs N           shape pairs per pairing policy, 1..900 (default 100)\n"
@@ -64,8 +73,9 @@ static const char USAGE[] =
 static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--quiet", "--gallery-only", "--figures=",
                                    "--gallery-count=", "--pair=", "--size=", "--data=", "--out=", "-o=", "--cache=",
                                    "--pairs=", "--jobs=", "--k=", "--shapes=", "--error-samples=", "--seed=",
-                                   "--shard=", "--policies=", "--landmarks=", "--methods=", NULL};
-static const char *const MERGE_OPTS[] = {"--out=", "-o=", NULL};
+                                   "--shard=", "--policies=", "--landmarks=", "--methods=", "--manifest=",
+                                   "--pairing=", NULL};
+static const char *const MERGE_OPTS[] = {"--out=", "-o=", "--manifest=", NULL};
 
 /* "a,b,c" of names → bit set; -1 on an unknown name */
 static int parse_set(const char *s, int (*parse)(const char *)) {
@@ -144,11 +154,57 @@ static void print_none_table(const ss_eval_row *rows, int n, FILE *f) {
   }
 }
 
-static int print_csv_table(const char *path) {
+/* A manifest's table: per group and landmark set, the methods' mean errors (and symmetric ones when
+ * the group has symmetry maps), and the issue's DIFF <= 1.02 STD check. */
+static int print_manifest_table(const ss_manifest *m, const ss_eval_row *rows, int n, FILE *f) {
+  const int NM = SS_EVAL_NMETHODS, cells = m->ngroups * 4 * NM;
+  double *mean = malloc(sizeof(double) * (size_t)cells), *msym = malloc(sizeof(double) * (size_t)cells);
+  int *count = malloc(sizeof(int) * (size_t)cells);
+  ss_error e;
+  if (!mean || !msym || !count) { free(mean), free(msym), free(count); return cli_error("out of memory"); }
+  if (ss_manifest_aggregate(m, rows, n, mean, msym, count, &e)) {
+    free(mean), free(msym), free(count);
+    return cli_error("%s", e.msg);
+  }
+  fprintf(f, "\n%-20s %-5s %9s %9s %9s %9s  %5s  %s\n", "group", "lm", "STD", "ASA", "DIFF", "REFINED", "pairs", "checks");
+  for (int g = 0; g < m->ngroups; g++)
+    for (int l = 0; l < 4; l++) {
+      const int *c = count + (g * 4 + l) * NM;
+      const double *a = mean + (g * 4 + l) * NM;
+      int np = 0;
+      for (int k = 0; k < NM; k++) np = c[k] > np ? c[k] : np;
+      if (!np) continue;
+      for (int sy = 0; sy < 1 + (m->groups[g].symmetry != NULL); sy++) {
+        const double *v = sy ? msym + (g * 4 + l) * NM : a;
+        char name[40];
+        snprintf(name, sizeof name, "%.15s%s", m->groups[g].name, sy ? " sym" : "");
+        fprintf(f, "%-20s %-5s", name, ss_lm_set_name((ss_lm_set)l));
+        for (int k = 0; k < NM; k++)
+          if (c[k]) fprintf(f, " %9.4f", v[k]);
+          else fprintf(f, " %9s", "-");
+        fprintf(f, "  %5d", np);
+        if (c[SS_METHOD_STD] && c[SS_METHOD_DIFF])
+          fprintf(f, "  DIFF/STD %.3f%s", v[SS_METHOD_DIFF] / v[SS_METHOD_STD],
+                  v[SS_METHOD_DIFF] <= 1.02 * v[SS_METHOD_STD] ? "" : " (> 1.02)");
+        if (c[SS_METHOD_STD] && c[SS_METHOD_REFINED])
+          fprintf(f, "%sREFINED/STD %.3f", c[SS_METHOD_DIFF] ? ", " : "  ", v[SS_METHOD_REFINED] / v[SS_METHOD_STD]);
+        fputc('\n', f);
+      }
+    }
+  free(mean), free(msym), free(count);
+  return SS_EXIT_OK;
+}
+
+static int print_csv_table(const char *path, const ss_manifest *man) {
   ss_eval_row *rows;
   int n;
   ss_error e;
   if (ss_eval_csv_read(path, &rows, &n, &e)) return cli_error("%s", e.msg);
+  if (man) {
+    int rc = print_manifest_table(man, rows, n, stdout);
+    free(rows);
+    return rc;
+  }
   ss_table1 t;
   ss_status st = ss_table1_aggregate(rows, n, &t, &e);
   if (st) {
@@ -162,7 +218,7 @@ static int print_csv_table(const char *path) {
 }
 
 static int cmd_merge(int argc, char **argv) {
-  const char *out = NULL;
+  const char *out = NULL, *mpath = NULL;
   ss_eval_row *all = NULL;
   int n = 0, nin = 0;
   ss_error e;
@@ -171,7 +227,8 @@ static int cmd_merge(int argc, char **argv) {
   A.cmd = "eval merge";
   while (cli_next(&A)) {
     if (A.opt) {
-      out = A.val;
+      if (cli_is(&A, "--manifest")) mpath = A.val;
+      else out = A.val;
       continue;
     }
     if (cli_is_std(A.pos)) { free(all); return cli_bad(&A, "merge reads CSV files, not standard input ('-')"); }
@@ -208,10 +265,17 @@ static int cmd_merge(int argc, char **argv) {
     return cli_error("%s", e.msg);
   }
   fprintf(report, "merged %d rows from %d files%s%s\n", n, nin, out ? " into " : "", out ? cli_out_name(out) : "");
-  print_table(&t, report);
-  print_none_table(all, n, report);
+  int rc = SS_EXIT_OK;
+  if (mpath) {
+    ss_manifest man;
+    if (ss_manifest_read(mpath, &man, &e)) rc = cli_error("%s", e.msg);
+    else rc = print_manifest_table(&man, all, n, report), ss_manifest_free(&man);
+  } else {
+    print_table(&t, report);
+    print_none_table(all, n, report);
+  }
   free(all);
-  return SS_EXIT_OK;
+  return rc;
 }
 
 /* ---- §5 coherency ------------------------------------------------------------------------------ */
@@ -452,6 +516,48 @@ static void eval_log(void *user, const char *line) {
   out->on_line = 0;
 }
 
+static int run_table1(ss_table1_options *o, int quiet, const ss_manifest *man) {
+#ifdef __GLIBC__
+  /* every match allocates and frees tens of MB of probe / operator buffers: keep them in the heap
+   * instead of mmap/munmap-ing them each time (page faults were ~20 % of the run's CPU) */
+  mallopt(M_MMAP_THRESHOLD, 512 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+  eval_output eo = {!quiet && isatty(2), 0};
+  if (!quiet) {
+    o->progress = eval_progress;
+    o->log = eval_log;
+    o->user = &eo;
+  }
+  ss_error e;
+  int nnew = 0;
+  double t0 = ss_time();
+  ss_status st = ss_table1_run(o, &nnew, &e);
+  if (eo.on_line) fputc('\n', stderr);
+  if (st) return cli_error("%s", e.msg);
+  if (!quiet) fprintf(stderr, "eval: %d new rows in %.1f s -> %s\n", nnew, ss_time() - t0, o->out_csv);
+  return print_csv_table(o->out_csv, man);
+}
+
+/* --table1 --manifest: the landmark sets default to those the manifest has (best only when every
+ * mesh has landmark files) */
+static int run_manifest(ss_table1_options *o, const char *path, int lm_given, int quiet) {
+  ss_manifest man;
+  ss_error e;
+  if (o->cache_dir && cli_is_std(o->cache_dir)) return cli_error("--cache takes a folder, not '-'");
+  if (cli_is_std(o->out_csv)) return cli_error("--out: the Table 1 CSV is also the resume state and is read back; give a file name");
+  if (ss_manifest_read(path, &man, &e)) return cli_error("%s", e.msg);
+  if (!lm_given) {
+    int best = 1;
+    for (int i = 0; i < man.nmeshes; i++) best &= man.meshes[i].landmarks || man.groups[man.meshes[i].group].landmarks;
+    o->lm_mask = (best ? 1 << SS_LM_BEST : 0) | 1 << SS_LM_GT | 1 << SS_LM_FPS;
+  }
+  o->manifest = &man;
+  int rc = run_table1(o, quiet, &man);
+  ss_manifest_free(&man);
+  return rc;
+}
+
 int cmd_eval(int argc, char **argv) {
   if (argc >= 2 && !strcmp(argv[1], "merge")) return cmd_merge(argc - 1, argv + 1);
   ss_table1_options o;
@@ -460,6 +566,7 @@ int cmd_eval(int argc, char **argv) {
   int table1 = 0, coherency = 0, timings = 0, quiet = 0, nshapes = 100;
   const char *figures = NULL;
   int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0;
+  const char *mpath = NULL;
   cli_args A;
   cli_args_init(&A, argc, argv, USAGE, OPTS);
   while (cli_next(&A)) {
@@ -486,6 +593,11 @@ int cmd_eval(int argc, char **argv) {
         return cli_bad(&A, "--size: WxH per panel, each between 16 and 4096");
     }
     else if (cli_is(&A, "--data")) o.data_dir = v;
+    else if (cli_is(&A, "--manifest")) mpath = v;
+    else if (cli_is(&A, "--pairing")) {
+      if (strcmp(v, "paper") && strcmp(v, "confident")) return cli_bad(&A, "--pairing: paper or confident");
+      o.confident_pairing = !strcmp(v, "confident");
+    }
     else if (cli_is(&A, "--out") || cli_is(&A, "-o")) o.out_csv = v;
     else if (cli_is(&A, "--cache")) o.cache_dir = v;
     else if (cli_is(&A, "--pairs")) { if (cli_parse_int(v, 1, 900, &o.npairs)) return cli_bad(&A, "--pairs: integer in [1,900]"); }
@@ -512,7 +624,11 @@ int cmd_eval(int argc, char **argv) {
   if (A.rc >= 0) return A.rc;
   if (table1 + coherency + timings + !!figures != 1)
     return cli_bad(&A, "choose one of --table1, --coherency, --timings, --figures");
-  if (!o.data_dir) return cli_bad(&A, "--data DIR is required");
+  if (mpath && !table1) return cli_bad(&A, "--manifest works with --table1 (and merge)");
+  if (mpath && o.data_dir) return cli_bad(&A, "--manifest and --data: one data set per run");
+  if (!o.data_dir && !mpath) return cli_bad(&A, "--data DIR (or --manifest FILE) is required");
+  if (mpath && cli_is_std(mpath)) return cli_bad(&A, "--manifest: a file (its folder anchors the paths in it), not '-'");
+  if (mpath) return run_manifest(&o, mpath, lm_given, quiet);
   const char *dirs[3] = {o.data_dir, figures, o.cache_dir};
   if (cli_count_std(dirs, 3)) return cli_bad(&A, "--data, --figures and --cache take folders, not '-'");
   if (table1 && cli_is_std(o.out_csv))
@@ -522,24 +638,5 @@ int cmd_eval(int argc, char **argv) {
                        fig_h, gallery_only && gallery == 0 ? 10 : gallery, !gallery_only, o.seed, o.k);
   if (coherency) return run_coherency(o.data_dir, o.jobs);
   if (timings) return run_timings(o.data_dir, nshapes);
-#ifdef __GLIBC__
-  /* every match allocates and frees tens of MB of probe / operator buffers: keep them in the heap
-   * instead of mmap/munmap-ing them each time (page faults were ~20 % of the run's CPU) */
-  mallopt(M_MMAP_THRESHOLD, 512 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#endif
-  eval_output eo = {!quiet && isatty(2), 0};
-  if (!quiet) {
-    o.progress = eval_progress;
-    o.log = eval_log;
-    o.user = &eo;
-  }
-  ss_error e;
-  int nnew = 0;
-  double t0 = ss_time();
-  ss_status st = ss_table1_run(&o, &nnew, &e);
-  if (eo.on_line) fputc('\n', stderr);
-  if (st) return cli_error("%s", e.msg);
-  if (!quiet) fprintf(stderr, "eval: %d new rows in %.1f s -> %s\n", nnew, ss_time() - t0, o.out_csv);
-  return print_csv_table(o.out_csv);
+  return run_table1(&o, quiet, NULL);
 }

@@ -349,7 +349,7 @@ static void test_adapter(void) {
     ss_geodesic_mesh *gm = NULL;
     double sum[3], sum_sym[3];
     CHECK(ss_geodesic_mesh_build(&Y.mesh, &gm, &e) == SS_OK);
-    CHECK(ev_batch_errors(gm, n, sym, 3, (const int *const *)maps, sum, sum_sym, &e) == SS_OK);
+    CHECK(ev_batch_errors(gm, n, sym, NULL, 3, (const int *const *)maps, sum, sum_sym, &e) == SS_OK);
     for (int mth = 0; mth < 3; mth++) {
       double mean, mean_sym, scale = sqrt(ss_mesh_area(&Y.mesh));
       CHECK(ss_map_geodesic_error(&Y.mesh, n, maps[mth], NULL, NULL, NULL, &mean, &e) == SS_OK);

@@ -133,6 +133,70 @@ typedef struct ss_table1_none {
 } ss_table1_none;
 SS_API ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_none *t, ss_error *err);
 
+/* ---- Manifests: Table 1 on any data set (manifest.c; format in README.md, "Evaluation on any data
+ * set") ------------------------------------------------------------------------------------------ */
+
+/* how the pairs of a group are chosen */
+typedef enum ss_manifest_pairs {
+  SS_MANIFEST_PAIRS_ALL = 0,    /* every ordered pair of distinct meshes of the group (default) */
+  SS_MANIFEST_PAIRS_RANDOM = 1, /* n of those, drawn without replacement from the group's seed */
+  SS_MANIFEST_PAIRS_FIRST = 2,  /* the reference mesh to every other mesh of the group */
+  SS_MANIFEST_PAIRS_LISTED = 3  /* only the group's `pair A B` lines */
+} ss_manifest_pairs;
+
+typedef struct ss_manifest_mesh {
+  char *name;      /* unique in the manifest (default: the file name without folder and extension) */
+  char *path;      /* the mesh file, resolved against the manifest's folder */
+  char *landmarks; /* its own landmark file (resolved; NULL: none) */
+  char *symmetry;  /* its own left-right symmetry map (resolved; NULL: the group's, if any) */
+  int group;
+} ss_manifest_mesh;
+
+typedef struct ss_manifest_group {
+  char *name;
+  int first, count;       /* its meshes: first .. first + count - 1 (manifest order) */
+  int gt_maps;            /* 0: ground truth = identity (equal vertex counts); 1: per-pair map files */
+  int reference;          /* manifest index of the FPS reference (default the group's first mesh) */
+  int fps_seed;           /* vertex of the reference the FPS starts from (default 0) */
+  char *landmarks;        /* one landmark file valid on every mesh (identity only; NULL: none) */
+  char *symmetry;         /* one symmetry map valid on every mesh (identity only; NULL: none) */
+  ss_manifest_pairs pairs;
+  int random_n;           /* SS_MANIFEST_PAIRS_RANDOM */
+  uint64_t random_seed;
+} ss_manifest_group;
+
+typedef struct ss_manifest_map {
+  int x, y;   /* manifest indices: the ground truth x -> y (line i = image on y of vertex i of x) */
+  char *path; /* resolved */
+} ss_manifest_map;
+
+typedef struct ss_manifest {
+  int nmeshes, ngroups, nmaps;
+  ss_manifest_mesh *meshes;
+  ss_manifest_group *groups;
+  ss_manifest_map *maps;     /* sorted by (x, y) */
+  int npairs, *px, *py;      /* the ordered pairs to run (manifest indices), group by group */
+} ss_manifest;
+
+/* Reads and checks a manifest (syntax, names, groups, pairs; every pair of a `gt maps` group must
+ * have its map line). Files it names are not opened here: the runner reads them. A malformed line
+ * is SS_ERR_PARSE "PATH:LINE: what"; an unreadable file SS_ERR_IO. Free with ss_manifest_free. */
+SS_API ss_status ss_manifest_read(const char *path, ss_manifest *m, ss_error *err);
+SS_API ss_status ss_manifest_read_memory(const char *text, size_t len, const char *name, const char *base_dir,
+                                         ss_manifest *m, ss_error *err);
+SS_API void ss_manifest_free(ss_manifest *m);
+/* manifest index of a mesh name, -1 when absent */
+SS_API int ss_manifest_find(const ss_manifest *m, const char *name);
+/* the ground-truth map file of x -> y (NULL: identity, or no such line) */
+SS_API const char *ss_manifest_map_path(const ss_manifest *m, int x, int y);
+
+/* Per group, landmark set and method: mean error (and symmetric error) over the rows whose pair lies
+ * in the group (rows summed in canonical order, as ss_table1_aggregate). mean, mean_sym, count:
+ * ngroups x 4 x SS_EVAL_NMETHODS, index (g * 4 + lmset) * SS_EVAL_NMETHODS + method. Rows of pairs
+ * outside the manifest (an index beyond it, or two groups) are SS_ERR_INVALID. */
+SS_API ss_status ss_manifest_aggregate(const ss_manifest *m, const ss_eval_row *rows, int n, double *mean,
+                                       double *mean_sym, int *count, ss_error *err);
+
 /* ---- The Table 1 runner ----------------------------------------------------------------------- */
 
 typedef struct ss_table1_progress {
@@ -145,6 +209,15 @@ typedef void (*ss_table1_log_fn)(void *user, const char *line);
 
 typedef struct ss_table1_options {
   const char *data_dir;   /* folder with faust/tr_reg_NNN.off and faust/landmarks_best.txt */
+  /* a data set of one's own instead of FAUST (NULL: FAUST under data_dir). Its pairs replace the
+   * policies (rows have policy "random", x / y = manifest indices; npairs is not used); landmark sets:
+   * best = the manifest's landmark files, gt = FPS (Appendix A) on each group's reference carried by
+   * the ground truth, fps = each mesh's own FPS from vertex 0, none as for FAUST. Borrowed. */
+  const ss_manifest *manifest;
+  /* pairing rule of the paper's ASA / DIFF rows: 0 (default) the paper's (its Table 1), 1 the
+   * library's confidence rules (ss_pairing_default_options, min_landmarks included) — write such
+   * rows to another CSV: the row key does not record the rule */
+  int confident_pairing;
   const char *out_csv;    /* results file: rows already there are skipped (resume); new rows appended */
   const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there, one file
                              per shape with its key (library version, input mesh hash, options) and

@@ -16,8 +16,8 @@ static int int_cmp(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, int nmaps, const int *const *maps,
-                          double *sum, double *sum_sym, ss_error *err) {
+ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, const int *gt, int nmaps,
+                          const int *const *maps, double *sum, double *sum_sym, ss_error *err) {
   if (nmaps <= 0) return SS_OK;
   ss_status st = SS_OK;
   /* per vertex x: the sorted distinct images, at off[x] .. off[x+1) of img */
@@ -46,22 +46,24 @@ ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, in
   if (!src || !dst || !dst2 || !d || !ds) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
   /* d(image, x), grouped by image (as ss_geodesic_pairs does) */
   for (int x = 0; x < nv; x++)
-    for (int q = off[x]; q < off[x + 1]; q++) src[q] = img[q], dst[q] = x;
+    for (int q = off[x]; q < off[x + 1]; q++) src[q] = img[q], dst[q] = gt ? gt[x] : x;
   if ((st = ss_geodesic_pairs(gm, &acc, src, dst, (int)nq, d, err))) goto done;
   /* symmetric error min(d(image, x), d(image, sym x)): when a lower bound on d(image, sym x) (straight
    * distance, landmark fields) already exceeds d(image, x), the minimum is d(image, x) (a good map's
    * every vertex, a bad map's many); otherwise one query from the image stopping at the nearer */
   size_t nn = 0;
-  for (int x = 0; x < nv; x++)
+  for (int x = 0; x < nv; x++) {
+    const int t = gt ? gt[x] : x;
     for (int q = off[x]; q < off[x + 1]; q++) {
-      if (ss_geodesic_lower_bound(gm, acc, img[q], sym[x]) > d[q] * (1 + 1e-9)) {
+      if (ss_geodesic_lower_bound(gm, acc, img[q], sym[t]) > d[q] * (1 + 1e-9)) {
         ds[q] = d[q];
         continue;
       }
       src[nn] = img[q], dst[nn] = q; /* dst: where the answer goes */
-      dst2[2 * nn] = x, dst2[2 * nn + 1] = sym[x];
+      dst2[2 * nn] = t, dst2[2 * nn + 1] = sym[t];
       nn++;
     }
+  }
   if (nn > 0) {
     double *dn = malloc(sizeof(double) * nn);
     if (!dn) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }

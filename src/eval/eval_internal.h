@@ -24,6 +24,9 @@ typedef struct ev_shape {
    * with its own kref eigenpairs (computed with that count, so the paper methods' k eigenpairs stay
    * exactly what they were; both sets live in the same cache entry) */
   ss_shape_prep rprep;
+  /* a manifest's shape: its own BEST / GT landmarks (own_lm = 1); FAUST shapes use the context's */
+  int own_lm;
+  int best[EV_NL], gt[EV_NL];
 } ev_shape;
 
 typedef struct ev_context {
@@ -44,6 +47,12 @@ void ev_shape_free(ev_shape *s);
  * was there but not used (damaged, truncated, written for another key): the caller reports it; else "". */
 ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, const ev_context *ctx, ev_shape *s,
                         char *note, size_t nnote, ss_error *err);
+
+/* The same for any mesh file: label names the shape in messages and in the cache file's name; best /
+ * gt (NULL: the context's) are its own landmarks, checked against its vertex count. FAUST shapes are
+ * ev_shape_load(data_dir, ...) = this with DATA/faust/tr_reg_<id>.off (their cache key unchanged). */
+ss_status ev_shape_load_file(const char *path, const char *label, const char *cache_dir, int id, const int *best,
+                             const int *gt, const ev_context *ctx, ev_shape *s, char *note, size_t nnote, ss_error *err);
 
 /* The same for a shape whose mesh (s->mesh, s->id) is already set: segmentation + eigenpairs
  * (ss_shape_prep_compute), FPS landmarks seeded at vertex 0, landmark fields, and with ctx->kref the
@@ -82,11 +91,12 @@ ss_status ev_match_methods_pairs(const ev_context *ctx, const ev_shape *X, const
 /* s->sig for the landmark-free rows (once per shape, not cached on disk). */
 ss_status ev_shape_signature(ev_shape *s, const ev_context *ctx, ss_error *err);
 
-/* Exact error sums of nmaps maps onto one target (ground truth identity): sum[r] = Σ_x d(maps[r][x], x),
- * sum_sym[r] = Σ_x min(d(maps[r][x], x), d(maps[r][x], sym[x])), every distinct (image, vertex) pair
- * queried once (batch_errors.c). */
-ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, int nmaps, const int *const *maps,
-                          double *sum, double *sum_sym, ss_error *err);
+/* Exact error sums of nmaps maps of one source (nv vertices) onto one target, ground truth gt (nv
+ * target vertices; NULL: the identity): sum[r] = Σ_x d(maps[r][x], gt x), sum_sym[r] = Σ_x
+ * min(d(maps[r][x], gt x), d(maps[r][x], sym[gt x])) (sym: the target's), every distinct (image,
+ * vertex) pair queried once (batch_errors.c). */
+ss_status ev_batch_errors(const ss_geodesic_mesh *gm, int nv, const int *sym, const int *gt, int nmaps,
+                          const int *const *maps, double *sum, double *sum_sym, ss_error *err);
 
 /* s->rprep for ctx->kref > 0: ctx->kref eigenpairs of the mesh (ss_mesh_eigs), the segmentation and
  * masses of s->prep. No-op when already there or kref = 0. */
@@ -97,6 +107,29 @@ ss_status ev_shape_probes(ev_shape *s, const ev_context *ctx, int lm_mask, ss_er
 
 /* Landmarks of a set on shape s (input vertices). */
 const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset);
+
+/* FPS landmarks (ev_fps_landmarks) of the mesh file `path`, seeded at seed_vertex: segments it first
+ * (gt_landmarks.c). */
+ss_status ev_fps_file(const char *path, int seed_vertex, const ev_context *ctx, int *lm, ss_error *err);
+
+/* What a manifest gives the runner beyond its meshes (manifest_data.c): per shape the BEST landmarks
+ * (its file or the group's; when lm_mask has best), the GT landmarks (FPS on the group's reference,
+ * carried by the ground truth; when lm_mask has gt) and the target-side symmetry map (its file, the
+ * group's, else the identity, filled in by ev_manifest_symmetry once the vertex counts are known). */
+typedef struct ev_manifest_data {
+  int n;
+  int (*best)[EV_NL], (*gt)[EV_NL];
+  int **sym;  /* n: the symmetry map of each shape (nv ints; shared between a group's meshes) */
+  int *owned; /* n: 1 when sym[i] is sym[i]'s owner (freed with it) */
+  int *symn;  /* n: the lines of each symmetry file read (0: none) */
+} ev_manifest_data;
+ss_status ev_manifest_data_load(const ss_manifest *m, const ev_context *ctx, int lm_mask, ev_manifest_data *d,
+                                ss_error *err);
+/* the symmetry maps, checked against the prepared shapes' vertex counts (nv[i]); identity where none */
+ss_status ev_manifest_symmetry(const ss_manifest *m, const int *nv, ev_manifest_data *d, ss_error *err);
+void ev_manifest_data_free(ev_manifest_data *d);
+/* the ground-truth map x -> y of a `gt maps` group, checked (nvx lines, values < nvy); *map malloc'd */
+ss_status ev_manifest_gt_map(const ss_manifest *m, int x, int y, int nvx, int nvy, int **map, ss_error *err);
 
 /* GT landmarks for a seed (gt_landmarks.c): FPS on the seeded-random FAUST shape *shape, seeded at
  * vertex 0 (the Table 1 runner's and the figures' GT set). */

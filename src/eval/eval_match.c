@@ -11,6 +11,7 @@
 #include <time.h>
 
 const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset) {
+  if (s->own_lm && (lmset == SS_LM_BEST || lmset == SS_LM_GT)) return lmset == SS_LM_BEST ? s->best : s->gt;
   return lmset == SS_LM_BEST ? ctx->best : lmset == SS_LM_GT ? ctx->gt : lmset == SS_LM_FPS ? s->fps : NULL;
 }
 
@@ -133,9 +134,11 @@ static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_
   if (lmset == SS_LM_NONE) { /* landmark-free: the automatic pairing, its centres as the landmarks */
     if ((st = auto_landmarks(ctx, X, Y, &pr, &autoX, &autoY, err))) return st;
     lmX = autoX, lmY = autoY, nl = pr.n;
-  } else if ((st = ss_pair_critical_points(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &pr, err))) {
+  } else if ((st = ss_pair_critical_points_conf(pX->seg.m, pY->seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset], &ctx->mopt.pairing,
+                                                &pr, err))) { /* the paper's rule unless the run asks for the safeguards */
     return st;
   }
+  if (nl < ctx->mopt.pairing.min_landmarks) ss_segment_pairs_free(&pr); /* too few landmarks: no segment probes */
   *paired = pr.n;
   ss_fmap_probes ownX = {0}, ownY = {0}, xX = {0}, xY = {0};
   ss_fmap_system *sys = NULL;

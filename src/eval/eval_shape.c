@@ -133,20 +133,37 @@ static uint64_t mesh_hash(const ss_mesh *m) {
   return fnv1a(h, m->F, sizeof(int) * 3 * (size_t)m->nf);
 }
 
-static void cache_key(const ev_context *c, int id, const ss_mesh *mesh, char *key, size_t n) {
+/* The shape's identity in the key: "faust NNN" for FAUST (the key of earlier versions, so their
+ * entries stay valid), "file" for any other mesh, which the mesh hash and the landmarks identify
+ * (the same mesh under two names or manifests shares its entry). */
+static void cache_key(const ev_context *c, const ev_shape *s, int faust, const ss_mesh *mesh, char *key, size_t n) {
   const ss_segment_options *o = &c->mopt.seg;
   const uint16_t probe = 1;
+  const int *b = ev_landmarks(c, s, SS_LM_BEST), *g = ev_landmarks(c, s, SS_LM_GT);
+  char who[32];
+  if (faust) snprintf(who, sizeof who, "faust %03d", s->id);
+  else snprintf(who, sizeof who, "file");
   snprintf(key, n,
-           CACHE_TAG " lib %d.%d.%d %s int%d double%d faust %03d mesh %d %d %016llx kev %d faces %d nostream %d "
+           CACHE_TAG " lib %d.%d.%d %s int%d double%d %s mesh %d %d %016llx kev %d faces %d nostream %d "
            "cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d gt %d %d %d %d %d\n",
            SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, *(const unsigned char *)&probe ? "le" : "be",
-           (int)sizeof(int), (int)sizeof(double), id, mesh->nv, mesh->nf, (unsigned long long)mesh_hash(mesh), c->kev,
-           o->target_faces, o->no_streamline, o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt, c->best[0],
-           c->best[1], c->best[2], c->best[3], c->best[4], c->gt[0], c->gt[1], c->gt[2], c->gt[3], c->gt[4]);
+           (int)sizeof(int), (int)sizeof(double), who, mesh->nv, mesh->nf, (unsigned long long)mesh_hash(mesh), c->kev,
+           o->target_faces, o->no_streamline, o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt, b[0], b[1], b[2],
+           b[3], b[4], g[0], g[1], g[2], g[3], g[4]);
 }
 
-static void cache_path(const char *dir, const char *key, int id, char *path, size_t n) {
-  snprintf(path, n, "%s/faust_%03d_%016llx.bin", dir, id, (unsigned long long)fnv1a(FNV_INIT, key, strlen(key)));
+/* DIR/faust_NNN_<key hash>.bin, or DIR/<label>_<key hash>.bin (label's characters outside
+ * [A-Za-z0-9._-] as '_', at most 64) */
+static void cache_path(const char *dir, const char *key, const char *label, char *path, size_t n) {
+  char name[72];
+  size_t j = 0;
+  for (const char *c = label; *c && j < 64; c++)
+    name[j++] = (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '.' ||
+                        *c == '-' || *c == '_'
+                    ? *c
+                    : '_';
+  name[j] = 0;
+  snprintf(path, n, "%s/%s_%016llx.bin", dir, name, (unsigned long long)fnv1a(FNV_INIT, key, strlen(key)));
 }
 
 /* a growing byte buffer (writing) / a cursor over one (reading) */
@@ -302,18 +319,32 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
   if (!ok || rename(tmp, path)) remove(tmp);
 }
 
-ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, const ev_context *ctx, ev_shape *s,
-                        char *note, size_t nnote, ss_error *err) {
+static ss_status shape_load(const char *path, const char *label, const char *shown, int faust, const char *cache_dir, int id,
+                            const int *best, const int *gt, const ev_context *ctx, ev_shape *s, char *note, size_t nnote,
+                            ss_error *err) {
   memset(s, 0, sizeof *s);
   if (note && nnote) note[0] = 0;
   s->id = id;
-  char path[4096], key[1024], cpath[4200], why[512] = "";
-  snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", data_dir, id);
+  if (best || gt) {
+    s->own_lm = 1;
+    memcpy(s->best, best ? best : ctx->best, sizeof s->best);
+    memcpy(s->gt, gt ? gt : ctx->gt, sizeof s->gt);
+  }
+  char key[1024], cpath[4200], why[512] = "";
   ss_status st = ss_read_mesh(path, &s->mesh, err);
   if (st) return st;
+  for (int set = 0; set < 2 && s->own_lm; set++)
+    for (int i = 0; i < EV_NL; i++) {
+      int v = set ? s->gt[i] : s->best[i];
+      if (v < 0 || v >= s->mesh.nv) {
+        st = ss_fail(err, SS_ERR_INVALID, "%s: %s landmark %d is vertex %d, the mesh has %d vertices", path,
+                     set ? "gt" : "best", i + 1, v, s->mesh.nv);
+        goto fail;
+      }
+    }
   if (cache_dir) {
-    cache_key(ctx, id, &s->mesh, key, sizeof key);
-    cache_path(cache_dir, key, id, cpath, sizeof cpath);
+    cache_key(ctx, s, faust, &s->mesh, key, sizeof key);
+    cache_path(cache_dir, key, label, cpath, sizeof cpath);
     int r = cache_load(cpath, key, ctx, s, why, sizeof why);
     if (r > 0) {
       if (ctx->kref <= 0 || s->rprep.evecs) return SS_OK;
@@ -323,7 +354,7 @@ ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, con
       return SS_OK;
     }
     if (r < 0 && note && nnote)
-      snprintf(note, nnote, "eval cache: %s: %s; not used, recomputing tr_reg_%03d and rewriting the entry", cpath, why, id);
+      snprintf(note, nnote, "eval cache: %s: %s; not used, recomputing %s and rewriting the entry", cpath, why, shown);
   }
   if ((st = ev_shape_prepare(s, ctx, err))) goto fail;
   if (cache_dir) cache_store(cpath, key, s);
@@ -331,6 +362,20 @@ ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, con
 fail:
   ev_shape_free(s);
   return st;
+}
+
+ss_status ev_shape_load(const char *data_dir, const char *cache_dir, int id, const ev_context *ctx, ev_shape *s,
+                        char *note, size_t nnote, ss_error *err) {
+  char path[4096], label[32], shown[32];
+  snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", data_dir, id);
+  snprintf(label, sizeof label, "faust_%03d", id);
+  snprintf(shown, sizeof shown, "tr_reg_%03d", id);
+  return shape_load(path, label, shown, 1, cache_dir, id, NULL, NULL, ctx, s, note, nnote, err);
+}
+
+ss_status ev_shape_load_file(const char *path, const char *label, const char *cache_dir, int id, const int *best,
+                             const int *gt, const ev_context *ctx, ev_shape *s, char *note, size_t nnote, ss_error *err) {
+  return shape_load(path, label, label, 0, cache_dir, id, best, gt, ctx, s, note, nnote, err);
 }
 
 ss_status ev_shape_prepare(ev_shape *s, const ev_context *ctx, ss_error *err) {
