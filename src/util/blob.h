@@ -16,6 +16,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* The starting value of the eval cache since its first version: FNV-1a's published 64-bit offset
+ * basis 14695981039346656037 with its last digit missing. Kept, so existing cache entries (their key
+ * checksums and file names) stay valid; the multiplier is FNV's 64-bit prime. */
 #define SSI_FNV_INIT 1469598103934665603ull
 #define SSI_BLOB_MAX_KEY 4096 /* longest key line, '\n' included */
 
