@@ -80,6 +80,7 @@ static ss_status read_bytes(const char *path, const unsigned char *b, size_t n, 
   fclose(f);
   ss_prepared_shape s;
   ss_status st = ss_prepared_shape_read(path, &s, e);
+  ss_prepared_shape_free(&s);
   ss_status sm = ss_prepared_shape_read_memory(b, n, path, &s, e); /* the same answer from memory */
   ss_prepared_shape_free(&s);
   return st == sm ? st : (ss_status)99;
