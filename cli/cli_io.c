@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_shape.h"
 #include "specseg/render.h"
 
 #define STDIN_NAME "<stdin>"
@@ -131,6 +132,10 @@ ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb
   ss_status st = stream_input(path, &is, &b, &n, err);
   if (st || !is) return st ? st : ss_read_mesh_colors(path, m, rgb, err);
   return ss_read_mesh_colors_memory(b, n, cli_in_name(path), m, rgb, err);
+}
+
+ss_status cli_read_stream(const char *path, int *is_stream, const char **buf, size_t *len, ss_error *err) {
+  return stream_input(path, is_stream, buf, len, err);
 }
 
 /* ---- .npy vectors ---------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
  *                   [--zoomout-step S] [--zoomout-samples N] [--descr-k K] -o MAP.txt [--fmap C.npy]
  *                   [--pairs PAIRS.txt] [--timings] */
 #include "cli.h"
+#include "cli_shape.h"
 #include "specseg/match.h"
 
 #include <errno.h>
@@ -26,7 +27,8 @@ static const char USAGE[] =
     "thresholds is reported in a 'note:' line (the map may be wrong).\n"
     "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
-    "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
+    "  X, Y                OFF, OBJ or PLY files, or prepared shapes (specseg prepare, .sss: the same\n"
+    "                      map, without preparing them again); one input may be - (standard input)\n"
     "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
     "                      j on Y); without it, landmark-free (see above)\n"
     "  -o, --output FILE   the map: line i = vertex of Y that is the image of vertex i of X (required)\n"
@@ -117,30 +119,31 @@ int cmd_match(int argc, char **argv) {
   const char *xn = cli_in_name(xp), *yn = cli_in_name(yp), *lmn = lmp ? cli_in_name(lmp) : "";
 
   ss_error err = {{0}};
-  ss_mesh X = {0}, Y = {0};
+  cli_shape SX = {0}, SY = {0}; /* a mesh, or a prepared shape (then matched as such) */
+  const ss_mesh *const X = &SX.ps.mesh, *const Y = &SY.ps.mesh;
   ss_match_result res = {0};
   int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
   if (lmp && cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
-  if (cli_read_mesh(xp, &X, &err) || cli_read_mesh(yp, &Y, &err)) {
+  if (cli_read_shape(xp, &SX, &err) || cli_read_shape(yp, &SY, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
   double t_read = ss_time() - t0;
   for (int i = 0; i < nl; i++) { /* clear messages before the expensive part */
-    if (lx[i] >= X.nv) {
-      rc = cli_error("%s:%d: landmark vertex %d not on X (%s has %d vertices)", lmn, lline[i], lx[i], xn, X.nv);
+    if (lx[i] >= X->nv) {
+      rc = cli_error("%s:%d: landmark vertex %d not on X (%s has %d vertices)", lmn, lline[i], lx[i], xn, X->nv);
       goto done;
     }
-    if (ly[i] >= Y.nv) {
-      rc = cli_error("%s:%d: landmark vertex %d not on Y (%s has %d vertices)", lmn, lline[i], ly[i], yn, Y.nv);
+    if (ly[i] >= Y->nv) {
+      rc = cli_error("%s:%d: landmark vertex %d not on Y (%s has %d vertices)", lmn, lline[i], ly[i], yn, Y->nv);
       goto done;
     }
   }
   for (int s = 0; s < 2; s++) { /* what the pipeline repairs internally */
     ss_mesh_report rep;
-    if (!ss_mesh_check(s ? &Y : &X, &rep, NULL)) {
+    if (!ss_mesh_check(s ? Y : X, &rep, NULL)) {
       if (rep.nonmanifold_vertices)
         cli_warn("%s: %d pinched (non-manifold) vertices: split internally for the segmentation", s ? yn : xn,
                  rep.nonmanifold_vertices);
@@ -150,7 +153,8 @@ int cmd_match(int argc, char **argv) {
     }
   }
   char dropped[1024];
-  if (ss_match_warn(&X, &Y, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)) {
+  if (SX.prepared || SY.prepared ? cli_match_shapes(&SX, &SY, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)
+                                 : ss_match_warn(X, Y, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
@@ -190,8 +194,8 @@ int cmd_match(int argc, char **argv) {
             "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
             res.autopair.mirror_other, res.autopair.confident ? ", confident" : ", NOT confident");
-  fprintf(report, "%d -> %d vertices, %d landmarks%s, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv,
-          Y.nv, res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", res.pairs.n, res.pairs.nx, res.pairs.ny,
+  fprintf(report, "%d -> %d vertices, %d landmarks%s, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X->nv,
+          Y->nv, res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", res.pairs.n, res.pairs.nx, res.pairs.ny,
           o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
           o.refine == SS_REFINE_NONE ? "" : ", refined: ",
           res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "",
@@ -199,8 +203,8 @@ int cmd_match(int argc, char **argv) {
   if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
 done:
   ss_match_result_free(&res);
-  ss_mesh_free(&X);
-  ss_mesh_free(&Y);
+  cli_shape_free(&SX);
+  cli_shape_free(&SY);
   free(lx);
   free(ly);
   free(lline);

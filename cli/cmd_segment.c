@@ -1,6 +1,7 @@
 /* specseg segment MESH -o LABELS.txt [--centers CENTERS.txt] [--ply OUT.ply] [--faces N]
  *                 [--no-streamline] [--timings] */
 #include "cli.h"
+#include "cli_shape.h"
 #include "specseg/render.h"
 #include "specseg/segment.h"
 
@@ -16,7 +17,9 @@ static const char USAGE[] =
     "the Fiedler function, intrinsic Voronoi cells, labels mapped back to the input's vertices. Prints\n"
     "a summary line (on stderr when an output goes to standard output).\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                OFF, OBJ or PLY file, or a prepared shape (specseg prepare, .sss: its stored\n"
+    "                      segmentation, the same output; --faces / --no-streamline must match it);\n"
+    "                      - reads standard input\n"
     "  -o, --output FILE   labels: one segment index (0..m-1) per input vertex, a line (required)\n"
     "  --centers FILE      line s = input vertex at the centre of segment s\n"
     "  --ply FILE          the input mesh coloured by segment, binary PLY with an int vertex property\n"
@@ -69,10 +72,30 @@ int cmd_segment(int argc, char **argv) {
   ss_segmentation seg = {0};
   int rc = SS_EXIT_OK;
   double t0 = ss_time();
-  if (cli_read_mesh(in, &m, &err)) return cli_error("%s", err.msg);
+  cli_shape S;
+  if (cli_read_shape(in, &S, &err)) return cli_error("%s", err.msg);
   double t_read = ss_time() - t0;
-  char warnings[2048];
-  if (ss_segment_warn(&m, &opt, &seg, warnings, sizeof warnings, &err)) {
+  char warnings[2048] = "";
+  if (S.prepared) { /* the stored segmentation (nothing computed here: its timings are 0) */
+    const ss_segment_options *so = &S.ps.seg;
+    /* the output is the one from the mesh with these options only */
+    if (opt.no_streamline != so->no_streamline || (!so->no_streamline && opt.target_faces != so->target_faces)) {
+      char was[64];
+      if (so->no_streamline) snprintf(was, sizeof was, "--no-streamline");
+      else snprintf(was, sizeof was, "--faces %d", so->target_faces);
+      rc = cli_error("%s: was prepared with %s; give the same options (or the mesh)", cli_in_name(in), was);
+      cli_shape_free(&S);
+      return rc;
+    }
+    m = S.ps.mesh, seg = S.ps.prep.seg; /* moved out */
+    memset(&S.ps.mesh, 0, sizeof m), memset(&S.ps.prep.seg, 0, sizeof seg);
+    seg.t_smooth = seg.t_remesh = seg.t_psi = seg.t_spectrum = seg.t_critical = seg.t_ivd = seg.t_total = 0;
+  } else {
+    m = S.ps.mesh;
+    memset(&S.ps.mesh, 0, sizeof m);
+  }
+  cli_shape_free(&S);
+  if (!seg.labels && ss_segment_warn(&m, &opt, &seg, warnings, sizeof warnings, &err)) {
     rc = cli_error("%s: %s", cli_in_name(in), err.msg);
     goto done;
   }

@@ -1,4 +1,5 @@
 #include "cli.h"
+#include "cli_shape.h"
 
 #include <cblas.h>
 #include <errno.h>
@@ -71,6 +72,7 @@ static const command commands[] = {
     {"remesh", cmd_remesh, "isotropic remeshing"},
     {"geodesic", cmd_geodesic, "geodesic distances from source vertices"},
     {"segment", cmd_segment, "coherent spectral segmentation"},
+    {"prepare", cmd_prepare, "prepare a shape once for many matches (a .sss file match / segment take)"},
     {"match", cmd_match, "point-to-point map between two shapes (functional maps)"},
     {"pair", cmd_pair, "landmark-free pairing of two shapes' segments, with its confidence"},
     {"error", cmd_error, "geodesic error of a map"},

@@ -310,6 +310,72 @@ SS_API ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const
                                size_t warnings_size, ss_error *err);
 SS_API void ss_match_result_free(ss_match_result *r);
 
+/* ---- Prepared shapes and their files (shape_file.c) -------------------------------------------- *
+ * What a match needs from one shape, computed once (specseg prepare) and matched many times: the
+ * input mesh, its ss_shape_prep (the segmentation with its streamlined work mesh, Ψ, critical
+ * points, iVd labels and centre distances; K eigenpairs and masses of the input), the options they
+ * were computed with and, for one-component meshes, the landmark-free pairing's centre signature.
+ *
+ * File format (version SS_PREPARED_SHAPE_VERSION), the design of the eval cache (util/blob.h):
+ *   line 1: "specseg-shape VERSION BYTEORDER intN doubleN lib X.Y.Z mesh NV NF HASH kev K
+ *            seg FACES NOSTREAM CLEANUP NEIGS CMCF_STEPS CMCF_DT SANITIZE sig 0|1 [AUTOPAIR OPTIONS]"
+ *            (HASH: FNV-1a 64 of the mesh's nv, nf, V, F; doubles printed exactly, %.17g);
+ *   line 2: "payload BYTES fnv1a64 CHECKSUM" (of line 1 followed by the payload);
+ *   then the raw native arrays: mesh, eigenpairs, masses, segmentation, signature.
+ * A file of another format version, byte order or type sizes, cut short, longer, with any byte
+ * changed (checksum) or with contents out of range is refused with SS_ERR_PARSE and the reason; it is
+ * never used partly. */
+#define SS_PREPARED_SHAPE_VERSION 1
+
+typedef struct ss_prepared_shape {
+  ss_mesh mesh;                 /* the input mesh (owned) */
+  ss_shape_prep prep;           /* prep.mesh points to `mesh` */
+  ss_segment_options seg;       /* the options prep.seg was computed with */
+  int has_signature;            /* 1: sig holds the centre signature, computed with `autopair` */
+  ss_autopair_options autopair;
+  ss_centre_signature sig;      /* sig.prep points to `prep` */
+} ss_prepared_shape;
+
+/* Prepares one shape.
+ *  m: the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face or
+ *     vertex the sanitizer would drop).
+ *  seg_opts: segmentation options (NULL: ss_segment_default_options).
+ *  kev: eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (120 for the default match).
+ *  autopair: options of the landmark-free pairing's centre signature (NULL: none computed); it is
+ *     computed only for a mesh of one component (the landmark-free match of several keeps the
+ *     largest one and prepares that).
+ * out: filled (ss_prepared_shape_free); zeroed on failure. */
+SS_API ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev,
+                                           const ss_autopair_options *autopair, ss_prepared_shape *out, ss_error *err);
+/* Writes s to path (the format above; through a temporary file renamed into place). */
+SS_API ss_status ss_prepared_shape_write(const char *path, const ss_prepared_shape *s, ss_error *err);
+/* Reads a prepared-shape file into out (ss_prepared_shape_free; zeroed on failure). SS_ERR_IO: no
+ * such file; SS_ERR_PARSE: not a prepared shape, another format version / machine, damaged. */
+SS_API ss_status ss_prepared_shape_read(const char *path, ss_prepared_shape *out, ss_error *err);
+/* The same from size bytes in memory; name is used in messages. */
+SS_API ss_status ss_prepared_shape_read_memory(const void *data, size_t size, const char *name, ss_prepared_shape *out,
+                                               ss_error *err);
+/* 1 when the n bytes at head (the start of a file) begin like a prepared-shape file. */
+SS_API int ss_is_prepared_shape(const void *head, size_t n);
+SS_API void ss_prepared_shape_free(ss_prepared_shape *s);
+
+/* Eigenpairs each shape needs for ss_match_prepared with opts (NULL: the defaults) and nl landmarks
+ * (0: landmark-free, which adds the pairing's descr_k and orient_k): max(k, ZoomOut's kmax when
+ * refining, descr_k, seg_descr_k with segment probes). 120 for the defaults. */
+SS_API int ss_match_eigenpairs(const ss_match_options *opts, int nl);
+
+/* ss_match_warn on two prepared shapes: the same map, pairs and notes as ss_match_warn(&X->mesh,
+ * &Y->mesh, ...) with opts->seg = the shapes' options, when each was prepared with exactly
+ * ss_match_eigenpairs(opts, nl) eigenpairs (more: a match in the larger basis, as ss_match_prepared
+ * gives it). lmX, lmY: nl input vertices (nl = 0: landmark-free; the stored signatures are used when
+ * computed with opts->autopair). A shape whose components ss_match_warn would not all keep (several
+ * components, some without a landmark; landmark-free: more than one) is prepared again from its
+ * mesh, and warnings says so. Fails with SS_ERR_INVALID, naming the shape, when one has fewer
+ * eigenpairs than the match needs. opts may be NULL (the defaults; opts->seg is not used). */
+SS_API ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared_shape *Y, int nl, const int *lmX,
+                                          const int *lmY, const ss_match_options *opts, ss_match_result *out,
+                                          char *warnings, size_t warnings_size, ss_error *err);
+
 #ifdef __cplusplus
 }
 #endif

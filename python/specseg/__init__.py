@@ -33,7 +33,7 @@ from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_
 from ._version import __version__
 
 __all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
-           "remesh", "segment", "Segmentation", "geodesic", "match", "Match", "pair", "Pairing", "error", "render", "write_png",
+           "remesh", "segment", "Segmentation", "geodesic", "match", "Match", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
            "label_colors", "align_labels", "library_version", "library_path", "render_library_path"]
 
 #: Path of the loaded core library (libspecseg.so...).
@@ -470,9 +470,15 @@ confident : bool or None
 _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
-def match(VX, FX, VY, FY, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None, segment_profile=None):
+def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None,
+          segment_profile=None):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
+
+    ``match(X, Y, landmarks, ...)`` with two `Shape` objects (`prepare`, `Shape.load`) matches the
+    prepared shapes without preparing them again: the same result as from their meshes when each was
+    prepared with the eigenpairs this match needs (`Shape.k`; the default prepare fits the default
+    match), an error naming the shape when one has fewer.
 
     Parameters
     ----------
@@ -524,16 +530,36 @@ def match(VX, FX, VY, FY, landmarks=None, landmarks_y=None, probes="diff", k=Non
     profiles = {"indicator": 0, "tent": 1, "soft": 2}
     if segment_profile is not None and segment_profile not in profiles:
         raise ValueError("segment_profile must be indicator, tent or soft (got %r)" % (segment_profile,))
-    mx, VX, FX = _clib.as_mesh(VX, FX)
-    my, VY, FY = _clib.as_mesh(VY, FY)
+    shapes = isinstance(VX, Shape) or isinstance(FX, Shape)
+    if shapes:
+        if not (isinstance(VX, Shape) and isinstance(FX, Shape)):
+            raise ValueError("match takes two Shape objects or two meshes (VX, FX, VY, FY)")
+        X, Y = VX, FX
+        X._check(), Y._check()
+        # match(X, Y, landmarks, landmarks_y): the positions of VY and FY
+        if VY is not None:
+            if landmarks is not None:
+                raise ValueError("landmarks given twice")
+            landmarks, VY = VY, None
+        if FY is not None:
+            if landmarks_y is not None:
+                raise ValueError("landmarks_y given twice")
+            landmarks_y, FY = FY, None
+        nX, nY = X.n, Y.n
+    else:
+        if VY is None or FY is None:
+            raise ValueError("match needs VX, FX, VY, FY (or two Shape objects)")
+        mx, VX, FX = _clib.as_mesh(VX, FX)
+        my, VY, FY = _clib.as_mesh(VY, FY)
+        nX, nY = VX.shape[0], VY.shape[0]
     if landmarks is None:
         if landmarks_y is not None:
             raise ValueError("landmarks_y without landmarks")
         lx = ly = np.zeros(0, dtype=np.int32)
     else:
         lx = np.atleast_1d(landmarks)
-        lx = _indices(lx, lx.size, "landmarks", VX.shape[0])
-        ly = _indices(lx if landmarks_y is None else landmarks_y, lx.size, "landmarks_y", VY.shape[0])
+        lx = _indices(lx, lx.size, "landmarks", nX)
+        ly = _indices(lx if landmarks_y is None else landmarks_y, lx.size, "landmarks_y", nY)
         if lx.size == 0:
             raise ValueError("landmarks is empty: give at least one landmark vertex (or None: landmark-free)")
     o = _clib.ss_match_options()
@@ -546,8 +572,12 @@ def match(VX, FX, VY, FY, landmarks=None, landmarks_y=None, probes="diff", k=Non
     if segment_profile is not None:
         o.segment_profile = profiles[segment_profile]
     r, e = _clib.ss_match_result(), _err()
-    st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
-                      C.byref(o), C.byref(r), C.byref(e))
+    if shapes:
+        st = lib.ss_match_prepared_shapes(C.byref(X._s), C.byref(Y._s), lx.size, _clib.ptr(lx, C.c_int),
+                                          _clib.ptr(ly, C.c_int), C.byref(o), C.byref(r), None, 0, C.byref(e))
+    else:
+        st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
+                          C.byref(o), C.byref(r), C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array
@@ -558,6 +588,188 @@ def match(VX, FX, VY, FY, landmarks=None, landmarks_y=None, probes="diff", k=Non
                      confident=None if not r.autopair.used else bool(r.autopair.confident))
     finally:
         lib.ss_match_result_free(C.byref(r))
+
+
+class Shape:
+    """A prepared shape: what `match` needs from one shape, computed once (`prepare`) or read from a
+    prepared-shape file (`Shape.load`, written by `save` or ``specseg prepare``): the mesh, its
+    segmentation (with the streamlined work mesh), k Laplace-Beltrami eigenpairs and the masses, and
+    for one-component meshes the landmark-free pairing's signature. The file format is the C
+    library's (versioned and checksummed); a damaged or other-version file raises SpecsegError.
+
+    Attributes
+    ----------
+    V : numpy.ndarray of float64, shape (n, 3)
+        The input mesh's vertices (a copy).
+    F : numpy.ndarray of int32, shape (m, 3)
+        Its triangles.
+    n : int
+        Vertex count.
+    k : int
+        Eigenpairs it carries (a match needs `k_needed`).
+    labels : numpy.ndarray of int32, shape (n,)
+        The segment of each vertex (as `segment`).
+    centers : numpy.ndarray of int32, shape (s,)
+        The input vertex at the centre of each segment.
+    eigenvalues : numpy.ndarray of float64, shape (k,)
+    has_signature : bool
+        Whether the landmark-free pairing's signature is stored.
+    """
+
+    def __init__(self):
+        self._s = _clib.ss_prepared_shape()
+        self._live = False
+
+    def _check(self):
+        if not self._live:
+            raise ValueError("this Shape holds nothing (use specseg.prepare or Shape.load)")
+
+    @classmethod
+    def load(cls, path):
+        """The prepared shape in the file at `path` (SpecsegError when missing, damaged or of another
+        format version)."""
+        if not _clib.has("ss_prepared_shape_read"):
+            raise NotImplementedError("this libspecseg (%s) has no prepared shapes" % library_path)
+        sh, e = cls(), _err()
+        _check(lib.ss_prepared_shape_read(os.fsencode(path), C.byref(sh._s), C.byref(e)), e)
+        sh._live = True
+        return sh
+
+    def save(self, path):
+        """Writes the prepared shape to `path` (the format ``specseg match`` / ``segment`` read)."""
+        self._check()
+        e = _err()
+        _check(lib.ss_prepared_shape_write(os.fsencode(path), C.byref(self._s), C.byref(e)), e)
+
+    def __del__(self):
+        if getattr(self, "_live", False):
+            lib.ss_prepared_shape_free(C.byref(self._s))
+            self._live = False
+
+    @property
+    def n(self):
+        self._check()
+        return self._s.mesh.nv
+
+    @property
+    def k(self):
+        self._check()
+        return self._s.prep.kev
+
+    @property
+    def V(self):
+        self._check()
+        return np.ctypeslib.as_array(self._s.mesh.V, shape=(self._s.mesh.nv, 3)).copy()
+
+    @property
+    def F(self):
+        self._check()
+        return np.ctypeslib.as_array(self._s.mesh.F, shape=(self._s.mesh.nf, 3)).copy()
+
+    @property
+    def labels(self):
+        self._check()
+        return _clib.copy_array(self._s.prep.seg.labels, self._s.prep.seg.nv, np.int32)
+
+    @property
+    def centers(self):
+        self._check()
+        return _clib.copy_array(self._s.prep.seg.centers, self._s.prep.seg.m, np.int32)
+
+    @property
+    def eigenvalues(self):
+        self._check()
+        return _clib.copy_array(self._s.prep.evals, self._s.prep.kev, np.float64)
+
+    @property
+    def has_signature(self):
+        self._check()
+        return bool(self._s.has_signature)
+
+    def __repr__(self):
+        if not self._live:
+            return "Shape(empty)"
+        return "Shape(n=%d, k=%d, segments=%d%s)" % (self.n, self.k, self._s.prep.seg.m,
+                                                     ", signature" if self.has_signature else "")
+
+
+def k_needed(landmarks=True, k=None, zoomout=None):
+    """Eigenpairs a prepared shape needs for `match` with these options (120 for the defaults, with or
+    without landmarks).
+
+    Parameters
+    ----------
+    landmarks : bool, optional
+        Whether the match has landmarks (False: landmark-free, which also needs the pairing's).
+    k : int, optional
+        The match's basis size (library default 50).
+    zoomout : int, optional
+        The match's ZoomOut size (library default 120).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+        k or zoomout outside the int32 range.
+    """
+    o = _clib.ss_match_options()
+    lib.ss_match_default_options(C.byref(o))
+    if k is not None:
+        o.fmap.k = _as_int32(k, "k")
+    if zoomout is not None:
+        o.fmap.zoomout_kmax = _as_int32(zoomout, "zoomout")
+    return lib.ss_match_eigenpairs(C.byref(o), 1 if landmarks else 0)
+
+
+def prepare(V, F, k=None, target_faces=None, no_streamline=False, signature=True):
+    """Prepares a shape once for many matches (``specseg prepare``): segmentation, k eigenpairs, masses
+    and (one component) the landmark-free pairing's signature.
+
+    Parameters
+    ----------
+    V : array_like of float, shape (n, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles, 0-based vertex indices.
+    k : int, optional
+        Eigenpairs, 3 <= k < n (default: what the default `match` needs, 120).
+    target_faces : int, optional
+        The segmentation's remeshing target (library default 15000).
+    no_streamline : bool, optional
+        Segment straight on the input.
+    signature : bool, optional
+        Compute the landmark-free pairing's signature (default True).
+
+    Returns
+    -------
+    Shape
+
+    Raises
+    ------
+    ValueError
+        Wrong shapes, face indices out of range.
+    SpecsegError
+        The library refused the mesh (e.g. one its sanitizer would change) or k, or a stage failed.
+    """
+    if not _clib.has("ss_prepared_shape_compute"):
+        raise NotImplementedError("this libspecseg (%s) has no prepared shapes" % library_path)
+    m, V, F = _clib.as_mesh(V, F)
+    so = _clib.ss_segment_options()
+    lib.ss_segment_default_options(C.byref(so))
+    if target_faces is not None:
+        so.target_faces = _as_int32(target_faces, "target_faces")
+    so.no_streamline = 1 if no_streamline else 0
+    o = _clib.ss_match_options()
+    lib.ss_match_default_options(C.byref(o))
+    kev = lib.ss_match_eigenpairs(C.byref(o), 0) if k is None else _as_int32(k, "k")
+    sh, e = Shape(), _err()
+    _check(lib.ss_prepared_shape_compute(C.byref(m), C.byref(so), kev, C.byref(o.autopair) if signature else None,
+                                         C.byref(sh._s), C.byref(e)), e)
+    sh._live = True
+    return sh
 
 
 Pairing = namedtuple("Pairing", "pairs_x pairs_y centers_x centers_y energy gap mirror mirror_other confident exact")

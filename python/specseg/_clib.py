@@ -147,6 +147,24 @@ class ss_match_result(C.Structure):
                 ("refine_energy", C.c_double * 4), ("notes", C.c_char * 256), ("autopair", ss_autopair_info)]
 
 
+class ss_shape_prep(C.Structure):
+    _fields_ = [("mesh", C.POINTER(ss_mesh)), ("seg", ss_segmentation), ("kev", C.c_int),
+                ("evals", C.POINTER(C.c_double)), ("evecs", C.POINTER(C.c_double)), ("M", C.POINTER(C.c_double)),
+                ("area", C.c_double), ("t_segment", C.c_double), ("t_eigs", C.c_double)]
+
+
+class ss_centre_signature(C.Structure):
+    _fields_ = [("m", C.c_int), ("nd", C.c_int), ("centers", C.POINTER(C.c_int)), ("descr", C.POINTER(C.c_double)),
+                ("D", C.POINTER(C.c_double)), ("volume_ratio", C.c_double), ("orient_sign", C.c_double),
+                ("normals", C.POINTER(C.c_double)), ("prep", C.POINTER(ss_shape_prep)), ("sigma", C.POINTER(C.c_int)),
+                ("sigma_score", C.c_double)]
+
+
+class ss_prepared_shape(C.Structure):
+    _fields_ = [("mesh", ss_mesh), ("prep", ss_shape_prep), ("seg", ss_segment_options), ("has_signature", C.c_int),
+                ("autopair", ss_autopair_options), ("sig", ss_centre_signature)]
+
+
 class ss_render_options(C.Structure):
     _fields_ = [("width", C.c_int), ("height", C.c_int), ("azimuth", C.c_double), ("elevation", C.c_double),
                 ("background", C.c_ubyte * 3), ("supersample", C.c_int), ("margin", C.c_double),
@@ -164,7 +182,8 @@ class ss_render_scene(C.Structure):
 
 # checked against ss_struct_size (core) and ss_render_struct_size (render library) at load time
 CORE_MIRRORS = [ss_error, ss_mesh, ss_sparse, ss_cmcf_options, ss_remesh_options, ss_segment_options,
-                ss_segmentation, ss_fmap_match_options, ss_match_options, ss_segment_pairs, ss_match_result]
+                ss_segmentation, ss_fmap_match_options, ss_match_options, ss_segment_pairs, ss_match_result,
+                ss_autopair_options, ss_shape_prep, ss_centre_signature, ss_prepared_shape]
 RENDER_MIRRORS = [ss_render_options, ss_render_scene]
 
 
@@ -456,6 +475,15 @@ _sig(lib, "ss_pair_auto", _i, _PM, _PM, C.POINTER(ss_match_options), C.POINTER(s
      C.POINTER(C.POINTER(C.c_int)), C.POINTER(C.POINTER(C.c_int)), C.POINTER(ss_autopair_info), _PE)
 _sig(lib, "ss_segment_pairs_free", None, C.POINTER(ss_segment_pairs))
 _sig(lib, "ss_match_result_free", None, C.POINTER(ss_match_result))
+_PS = C.POINTER(ss_prepared_shape)
+_sig(lib, "ss_match_eigenpairs", _i, C.POINTER(ss_match_options), _i)
+_sig(lib, "ss_prepared_shape_compute", _i, _PM, C.POINTER(ss_segment_options), _i, C.POINTER(ss_autopair_options), _PS,
+     _PE)
+_sig(lib, "ss_prepared_shape_write", _i, C.c_char_p, _PS, _PE)
+_sig(lib, "ss_prepared_shape_read", _i, C.c_char_p, _PS, _PE)
+_sig(lib, "ss_prepared_shape_free", None, _PS)
+_sig(lib, "ss_match_prepared_shapes", _i, _PS, _PS, _i, _PI, _PI, C.POINTER(ss_match_options), C.POINTER(ss_match_result),
+     C.c_char_p, C.c_size_t, _PE)
 _sig(render_lib, "ss_render_default_options", None, C.POINTER(ss_render_options))
 _sig(render_lib, "ss_render_scene_init", None, C.POINTER(ss_render_scene), _PM)
 _sig(render_lib, "ss_render", _i, C.POINTER(ss_render_scene), C.POINTER(ss_render_options), C.POINTER(C.c_ubyte), _PE)

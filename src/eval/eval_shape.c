@@ -2,6 +2,7 @@
  * own FPS landmarks and the landmark distance fields at its critical points for the three landmark
  * sets — all of it depends on the shape only, so it is computed once and optionally cached on disk. */
 #include "eval_internal.h"
+#include "util/blob.h"
 #include "specseg/io.h"
 #include "specseg/spectrum.h"
 #include "specseg/streamline.h"
@@ -119,26 +120,11 @@ ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
 
 #define CACHE_TAG "specseg-eval-v4"
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n) {
-  const unsigned char *p = data;
-  for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
-  return h;
-}
-#define FNV_INIT 1469598103934665603ull
-
-static uint64_t mesh_hash(const ss_mesh *m) {
-  uint64_t h = fnv1a(FNV_INIT, &m->nv, sizeof m->nv);
-  h = fnv1a(h, &m->nf, sizeof m->nf);
-  h = fnv1a(h, m->V, sizeof(double) * 3 * (size_t)m->nv);
-  return fnv1a(h, m->F, sizeof(int) * 3 * (size_t)m->nf);
-}
-
 /* The shape's identity in the key: "faust NNN" for FAUST (the key of earlier versions, so their
  * entries stay valid), "file" for any other mesh, which the mesh hash and the landmarks identify
  * (the same mesh under two names or manifests shares its entry). */
 static void cache_key(const ev_context *c, const ev_shape *s, int faust, const ss_mesh *mesh, char *key, size_t n) {
   const ss_segment_options *o = &c->mopt.seg;
-  const uint16_t probe = 1;
   const int *b = ev_landmarks(c, s, SS_LM_BEST), *g = ev_landmarks(c, s, SS_LM_GT);
   char who[32];
   if (faust) snprintf(who, sizeof who, "faust %03d", s->id);
@@ -146,8 +132,8 @@ static void cache_key(const ev_context *c, const ev_shape *s, int faust, const s
   snprintf(key, n,
            CACHE_TAG " lib %d.%d.%d %s int%d double%d %s mesh %d %d %016llx kev %d faces %d nostream %d "
            "cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d gt %d %d %d %d %d\n",
-           SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, *(const unsigned char *)&probe ? "le" : "be",
-           (int)sizeof(int), (int)sizeof(double), who, mesh->nv, mesh->nf, (unsigned long long)mesh_hash(mesh), c->kev,
+           SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, ssi_byte_order(),
+           (int)sizeof(int), (int)sizeof(double), who, mesh->nv, mesh->nf, (unsigned long long)ssi_mesh_hash(mesh), c->kev,
            o->target_faces, o->no_streamline, o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt, b[0], b[1], b[2],
            b[3], b[4], g[0], g[1], g[2], g[3], g[4]);
 }
@@ -163,75 +149,20 @@ static void cache_path(const char *dir, const char *key, const char *label, char
                     ? *c
                     : '_';
   name[j] = 0;
-  snprintf(path, n, "%s/%s_%016llx.bin", dir, name, (unsigned long long)fnv1a(FNV_INIT, key, strlen(key)));
+  snprintf(path, n, "%s/%s_%016llx.bin", dir, name, (unsigned long long)ssi_fnv1a(SSI_FNV_INIT, key, strlen(key)));
 }
 
-/* a growing byte buffer (writing) / a cursor over one (reading) */
-typedef struct cbuf {
-  unsigned char *p;
-  size_t n, cap, pos;
-  int bad;
-} cbuf;
-
-static void put(cbuf *b, const void *data, size_t n) {
-  if (b->bad) return;
-  if (b->n + n > b->cap) {
-    size_t cap = b->cap ? b->cap : 1 << 16;
-    while (cap < b->n + n) cap *= 2;
-    unsigned char *q = realloc(b->p, cap);
-    if (!q) { b->bad = 1; return; }
-    b->p = q, b->cap = cap;
-  }
-  memcpy(b->p + b->n, data, n);
-  b->n += n;
-}
-
-static int get(cbuf *b, void *data, size_t n) {
-  if (b->bad || n > b->n - b->pos) return b->bad = 1, 0;
-  memcpy(data, b->p + b->pos, n);
-  b->pos += n;
-  return 1;
-}
-
-#define PUT(ptr, cnt) put(&b, (ptr), sizeof *(ptr) * (size_t)(cnt))
-#define GET(ptr, cnt) get(&b, (ptr), sizeof *(ptr) * (size_t)(cnt))
+#define PUT(ptr, cnt) SSI_PUT(&b, (ptr), (cnt))
+#define GET(ptr, cnt) SSI_GET(&b, (ptr), (cnt))
 
 /* 1: loaded; 0: no file (nothing said); -1: the file is there but not usable (why: in note) */
 static int cache_load(const char *path, const char *key, const ev_context *ctx, ev_shape *s, char *note,
                       size_t nnote) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return 0;
-  char line[1024], head[128];
-  size_t len = 0;
-  unsigned long long sum = 0;
-  char tail;
-  cbuf b = {0};
-  int ok = 0;
-  if (!fgets(line, sizeof line, f) || !strchr(line, '\n'))
-    snprintf(note, nnote, "no key line");
-  else if (strcmp(line, key)) {
-    line[strcspn(line, "\n")] = 0;
-    snprintf(note, nnote, "written for another version, mesh or options (key '%.300s')", line);
-  } else if (!fgets(head, sizeof head, f) || sscanf(head, "payload %zu fnv1a64 %16llx%c", &len, &sum, &tail) != 3 ||
-             tail != '\n' || len > ((size_t)1 << 34))
-    snprintf(note, nnote, "no payload line (length and checksum)");
-  else if (!(b.p = malloc(len ? len : 1)))
-    snprintf(note, nnote, "out of memory for %zu bytes", len);
-  else if ((b.n = fread(b.p, 1, len, f)) != len)
-    snprintf(note, nnote, "truncated: %zu of %zu payload bytes", b.n, len);
-  else if (fgetc(f) != EOF)
-    snprintf(note, nnote, "longer than its %zu payload bytes", len);
-  else {
-    uint64_t h = fnv1a(fnv1a(FNV_INIT, key, strlen(key)), b.p, len);
-    if (h != sum)
-      snprintf(note, nnote, "checksum mismatch (stored %016llx, contents %016llx)", sum, (unsigned long long)h);
-    else
-      ok = 1;
-  }
-  fclose(f);
-  if (!ok) return free(b.p), -1;
+  ssi_blob b;
+  int r = ssi_blob_read(path, key, NULL, 0, &b, note, nnote);
+  if (r <= 0) return r;
 
-  int nv = 0, kev = 0, m = 0, wn = 0;
+  int ok, nv = 0, kev = 0, m = 0, wn = 0;
   ss_shape_prep *p = &s->prep;
   ok = GET(&nv, 1) && GET(&kev, 1) && GET(&m, 1) && GET(&wn, 1) && nv == s->mesh.nv && kev >= 3 && kev < nv &&
        m >= 1 && m <= nv && wn >= 1 && wn <= 16 * nv + 1000000;
@@ -266,11 +197,10 @@ static int cache_load(const char *path, const char *key, const ev_context *ctx, 
     if (!ok) free(rev), free(rph), rev = rph = NULL;
   } else if (ok && kr > 0) { /* another run's refined eigenpairs: skipped */
     size_t skip = sizeof(double) * ((size_t)kr + (size_t)nv * kr + 1);
-    ok = skip <= b.n - b.pos;
-    b.pos += ok ? skip : 0;
+    ok = ssi_blob_skip(&b, skip);
   }
   ok = ok && b.pos == b.n;
-  free(b.p);
+  ssi_blob_free(&b);
   if (!ok) {
     snprintf(note, nnote, "checksum right but contents out of range (%d vertices, %d eigenpairs, %d segments)", nv, kev, m);
     ss_shape_prep_free(p);
@@ -296,7 +226,7 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
   const ss_shape_prep *p = &s->prep;
   if (!p->seg.psi || !p->seg.work_dist) return;
   int nv = s->mesh.nv, m = p->seg.m, wn = p->seg.work.nv;
-  cbuf b = {0};
+  ssi_blob b = {0};
   PUT(&nv, 1), PUT(&p->kev, 1), PUT(&m, 1), PUT(&wn, 1);
   PUT(p->evals, p->kev), PUT(p->evecs, (size_t)nv * p->kev), PUT(p->M, nv), PUT(p->seg.labels, nv);
   PUT(p->seg.centers, m), PUT(p->seg.psi, nv), PUT(p->seg.work_dist, wn), PUT(s->fps, EV_NL);
@@ -306,17 +236,9 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
   int kr = r->evecs ? r->kev : 0;
   PUT(&kr, 1);
   if (kr > 0) PUT(r->evals, kr), PUT(r->evecs, (size_t)nv * kr), PUT(&r->t_eigs, 1);
-  char tmp[4300];
-  snprintf(tmp, sizeof tmp, "%.4200s.tmp%ld", path, (long)getpid());
-  FILE *f = b.bad ? NULL : fopen(tmp, "wb");
-  if (!f) { free(b.p); return; } /* the cache is an optimisation: a read-only folder only costs time */
-  uint64_t h = fnv1a(fnv1a(FNV_INIT, key, strlen(key)), b.p, b.n);
-  int ok = fputs(key, f) >= 0 && fprintf(f, "payload %zu fnv1a64 %016llx\n", b.n, (unsigned long long)h) > 0 &&
-           fwrite(b.p, 1, b.n, f) == b.n;
-  ok = !fclose(f) && ok;
-  free(b.p);
-  /* rename is atomic: concurrent shards never see a half-written file */
-  if (!ok || rename(tmp, path)) remove(tmp);
+  /* the cache is an optimisation: a read-only folder only costs time */
+  (void)ssi_blob_write(path, key, &b);
+  ssi_blob_free(&b);
 }
 
 static ss_status shape_load(const char *path, const char *label, const char *shown, int faust, const char *cache_dir, int id,

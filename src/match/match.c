@@ -64,6 +64,17 @@ static int match_kev(const ss_match_options *o) {
   return kev;
 }
 
+int ss_match_eigenpairs(const ss_match_options *opts, int nl) {
+  ss_match_options d;
+  if (!opts) ss_match_default_options(&d), opts = &d;
+  int kev = match_kev(opts);
+  if (nl == 0) { /* the landmark-free pairing's descriptors and orientation test */
+    if (opts->autopair.descr_k > kev) kev = opts->autopair.descr_k;
+    if (opts->autopair.orient_k > kev) kev = opts->autopair.orient_k;
+  }
+  return kev;
+}
+
 /* the selection energy of SS_REFINE_BEST for the point map X -> Y (see match.h) */
 static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o, int k, int kz,
                                const ss_fmap_probes *bX, const ss_fmap_probes *bY, const int *map, double *E, ss_error *err) {
@@ -566,11 +577,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   int have_x = 0, have_y = 0;
   if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
-  int kev = match_kev(&o);
-  if (nl == 0) { /* the landmark-free pairing's descriptors and orientation test */
-    if (o.autopair.descr_k > kev) kev = o.autopair.descr_k;
-    if (o.autopair.orient_k > kev) kev = o.autopair.orient_k;
-  }
+  int kev = ss_match_eigenpairs(&o, nl);
   if ((st = ss_shape_prep_compute(PX, &o.seg, kev, &pX, err))) { name_shape(err, "X (the first mesh)"); goto done; }
   have_x = 1;
   if ((st = ss_shape_prep_compute(PY, &o.seg, kev, &pY, err))) { name_shape(err, "Y (the second mesh)"); goto done; }

@@ -23,6 +23,10 @@ size_t ss_struct_size(const char *name) {
       {"ss_match_options", sizeof(ss_match_options)},
       {"ss_segment_pairs", sizeof(ss_segment_pairs)},
       {"ss_match_result", sizeof(ss_match_result)},
+      {"ss_autopair_options", sizeof(ss_autopair_options)},
+      {"ss_shape_prep", sizeof(ss_shape_prep)},
+      {"ss_centre_signature", sizeof(ss_centre_signature)},
+      {"ss_prepared_shape", sizeof(ss_prepared_shape)},
   };
   if (!name) return 0;
   for (size_t i = 0; i < sizeof T / sizeof T[0]; i++)

@@ -120,6 +120,47 @@ else:
     except ValueError:
         check(True, "match: unknown segment profile refused")
 
+# --- prepared shapes: prepare once, match many (the same map as from the arrays and the CLI) ---
+if NO_MATCH or not hasattr(specseg.lib, "ss_prepared_shape_compute"):
+    print("SKIP: prepared shapes (%s)" % ("--no-match" if NO_MATCH else "no ss_prepared_shape_compute"))
+else:
+    S = specseg.prepare(V, F)
+    check(S.n == n and S.k == specseg.k_needed() == 120 and np.array_equal(S.V, V) and np.array_equal(S.F, F),
+          "prepare: %r" % S)
+    check(np.array_equal(S.labels, seg.labels) and np.array_equal(S.centers, seg.centers), "prepare: the segmentation")
+    rp = specseg.match(S, S, lm, k=20)
+    check(np.array_equal(rp.map, r.map) and np.array_equal(rp.C, r.C), "match(Shape, Shape): the map from the arrays")
+    S.save(path("s.sss"))
+    S2 = specseg.Shape.load(path("s.sss"))
+    check(np.array_equal(specseg.match(S2, S2, landmarks=lm, k=20).map, r.map), "Shape.save / load: the same map")
+    cli("match", path("s.sss"), path("s.sss"), "--landmarks", path("lm.txt"), "--k", 20, "-o", path("mp.txt"))
+    check(np.array_equal(np.loadtxt(path("mp.txt"), dtype=np.int64), mc), "specseg match on the saved Shape: the CLI's map")
+    cli("prepare", MESH, "-o", path("c.sss"))
+    S3 = specseg.Shape.load(path("c.sss"))
+    # (the CLI runs OpenBLAS on one thread: the last bits of the eigenpairs may differ from here)
+    check(np.array_equal(S3.labels, S.labels), "Shape.load of specseg prepare: labels")
+    check(np.allclose(S3.eigenvalues, S.eigenvalues, rtol=1e-9, atol=1e-12),
+          "Shape.load of specseg prepare: eigenvalues %s" % np.abs(S3.eigenvalues - S.eigenvalues).max())
+    S30 = specseg.prepare(V, F, k=30, signature=False)
+    try:
+        specseg.match(S30, S, lm, k=20)
+        check(False, "match: a Shape with too few eigenpairs accepted")
+    except specseg.SpecsegError as ex:
+        check("prepared with 30 eigenpairs" in str(ex), "too few eigenpairs: %s" % ex)
+    with open(path("s.sss"), "r+b") as f:
+        f.seek(os.path.getsize(path("s.sss")) // 2)
+        f.write(b"\xff\x00")
+    try:
+        specseg.Shape.load(path("s.sss"))
+        check(False, "Shape.load of a damaged file succeeded")
+    except specseg.SpecsegError as ex:
+        check("damaged prepared shape" in str(ex), "damaged file: %s" % ex)
+    try:
+        specseg.match(S, (V, F), lm)
+        check(False, "match(Shape, arrays) accepted")
+    except ValueError:
+        check(True, "")
+
 # --- render: background, shape, the labels' colours appear ---
 img = specseg.render(V, F, labels=seg.labels, size=(120, 160))
 check(img.shape == (160, 120, 3) and img.dtype == np.uint8, "render: shape")

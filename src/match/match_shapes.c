@@ -1,0 +1,113 @@
+/* Matching two prepared shapes (ss_prepared_shape) with the result ss_match_warn gives from their
+ * meshes: what ss_match_warn does before ss_match_prepared (landmark checks, the components it keeps,
+ * the eigenpairs it computes) is checked here against what the shapes carry. See match.h. */
+#include "specseg/match.h"
+#include "mesh/mesh_topology.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const NAME[2] = {"X (the first shape)", "Y (the second shape)"};
+
+/* 1 when ss_match_warn keeps every component of m (one component, or every one holds a landmark;
+ * landmark-free: one component); 0 when it would match a part; -1 out of memory */
+static int keeps_whole(const ss_mesh *m, int nl, const int *lm) {
+  int *comp = malloc(sizeof(int) * (size_t)m->nv);
+  int nc = comp ? ssi_mesh_components(m, comp) : -1, whole = 1;
+  if (nc < 0) return free(comp), -1;
+  if (nc > 1) {
+    unsigned char *has = calloc((size_t)nc, 1);
+    if (!has) return free(comp), -1;
+    for (int i = 0; i < nl; i++)
+      if (comp[lm[i]] >= 0) has[comp[lm[i]]] = 1;
+    for (int c = 0; c < nc; c++) whole = whole && has[c] && nl > 0;
+    free(has);
+  }
+  free(comp);
+  return whole;
+}
+
+static int same_autopair(const ss_autopair_options *a, const ss_autopair_options *b) {
+  return a->descr_k == b->descr_k && a->n_energies == b->n_energies && a->sigma_factor == b->sigma_factor &&
+         a->descr_radius == b->descr_radius && a->w_descr == b->w_descr && a->w_geo == b->w_geo &&
+         a->exact_max == b->exact_max && a->orient_k == b->orient_k && a->orient_descr_k == b->orient_descr_k &&
+         a->min_gap == b->min_gap && a->min_mirror == b->min_mirror;
+}
+
+static int same_seg(const ss_segment_options *a, const ss_segment_options *b) {
+  return a->target_faces == b->target_faces && a->no_streamline == b->no_streamline &&
+         a->cleanup_rings == b->cleanup_rings && a->n_eigs == b->n_eigs && a->cmcf_steps == b->cmcf_steps &&
+         a->cmcf_dt == b->cmcf_dt && a->sanitize == b->sanitize;
+}
+
+ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared_shape *Y, int nl, const int *lmX,
+                                   const int *lmY, const ss_match_options *opts, ss_match_result *out, char *warnings,
+                                   size_t warnings_size, ss_error *err) {
+  if (warnings && warnings_size) warnings[0] = '\0';
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_match_options o;
+  if (opts) o = *opts;
+  else ss_match_default_options(&o);
+  const ss_prepared_shape *S[2] = {X, Y};
+  for (int s = 0; s < 2; s++)
+    if (!S[s] || !S[s]->mesh.V || !S[s]->prep.evecs || !S[s]->prep.seg.centers || S[s]->prep.seg.nv != S[s]->mesh.nv)
+      return ss_fail(err, SS_ERR_INVALID, "match: %s: not a prepared shape", NAME[s]);
+  if (nl < 0 || (nl > 0 && (!lmX || !lmY))) return ss_fail(err, SS_ERR_INVALID, "match: bad landmarks");
+  for (int i = 0; i < nl; i++) {
+    if (lmX[i] < 0 || lmX[i] >= X->mesh.nv)
+      return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on X [0,%d)", i, lmX[i], X->mesh.nv);
+    if (lmY[i] < 0 || lmY[i] >= Y->mesh.nv)
+      return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->mesh.nv);
+  }
+  int whole[2];
+  for (int s = 0; s < 2; s++)
+    if ((whole[s] = keeps_whole(&S[s]->mesh, nl, s ? lmY : lmX)) < 0)
+      return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  if (!whole[0] || !whole[1]) {
+    /* ss_match_warn matches a part of the mesh (the components with landmarks; landmark-free the
+     * largest): that part is prepared again, as from the meshes */
+    if (!same_seg(&X->seg, &Y->seg))
+      return ss_fail(err, SS_ERR_INVALID,
+                     "match: the shapes were prepared with different segmentation options, and %s has components "
+                     "the match drops (it prepares the kept ones again): prepare both with the same options",
+                     NAME[whole[0] ? 1 : 0]);
+    o.seg = X->seg;
+    ss_status st = ss_match_warn(&X->mesh, &Y->mesh, nl, lmX, lmY, &o, out, warnings, warnings_size, err);
+    if (!st && warnings && warnings_size) {
+      size_t n = strlen(warnings);
+      snprintf(warnings + n, warnings_size - n, "%s%s%s%s: prepared data not used (the kept components were prepared "
+               "again)", n ? "; " : "", !whole[0] ? "X" : "", !whole[0] && !whole[1] ? " and " : "", !whole[1] ? "Y" : "");
+    }
+    return st;
+  }
+  const int need = ss_match_eigenpairs(&o, nl);
+  for (int s = 0; s < 2; s++)
+    if (S[s]->prep.kev < need)
+      return ss_fail(err, SS_ERR_INVALID,
+                     "match: %s was prepared with %d eigenpairs but this match needs %d (k %d, ZoomOut %d, "
+                     "descriptors %d%s): prepare it with at least %d",
+                     NAME[s], S[s]->prep.kev, need, o.fmap.k, o.refine != SS_REFINE_NONE ? o.fmap.zoomout_kmax : 0,
+                     o.fmap.descr_k, nl == 0 ? ", landmark-free pairing" : "", need);
+  for (int i = 0; i < 2 * nl; i++) { /* a landmark on a crumb has no place on the segmentation */
+    const ss_prepared_shape *p = i < nl ? X : Y;
+    int v = i < nl ? lmX[i] : lmY[i - nl];
+    if (p->prep.seg.psi && p->prep.seg.psi[v] < 0)
+      return ss_fail(err, SS_ERR_INVALID,
+                     "match: %s: landmark %d (vertex %d) is on no segmented part of the shape (a component under 1%% "
+                     "of the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
+                     i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, v);
+  }
+  /* the shapes as ss_match_prepared takes them, pointing into X and Y (which may have been copied);
+   * no segmentation or eigensolve happens in this call */
+  ss_shape_prep px = X->prep, py = Y->prep;
+  px.mesh = &X->mesh, py.mesh = &Y->mesh;
+  px.t_segment = px.t_eigs = py.t_segment = py.t_eigs = 0;
+  if (nl > 0) return ss_match_prepared(&px, &py, nl, lmX, lmY, &o, out, err);
+  ss_centre_signature sx = X->sig, sy = Y->sig;
+  sx.prep = &px, sy.prep = &py;
+  const int use_x = X->has_signature && same_autopair(&X->autopair, &o.autopair);
+  const int use_y = Y->has_signature && same_autopair(&Y->autopair, &o.autopair);
+  return ss_match_prepared_auto(&px, &py, use_x ? &sx : NULL, use_y ? &sy : NULL, &o, out, err);
+}

@@ -1,0 +1,273 @@
+/* Prepared shapes: what a match needs from one shape (mesh, segmentation, eigenpairs, masses,
+ * centre signature), computed once, written to and read from a versioned, checksummed file
+ * (util/blob.h: the eval cache's format). See match.h. */
+#include "specseg/match.h"
+#include "mesh/mesh_topology.h"
+#include "util/blob.h"
+
+#include <errno.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TAG "specseg-shape"
+
+void ss_prepared_shape_free(ss_prepared_shape *s) {
+  if (!s) return;
+  ss_centre_signature_free(&s->sig);
+  ss_shape_prep_free(&s->prep);
+  ss_mesh_free(&s->mesh);
+  memset(s, 0, sizeof *s);
+}
+
+int ss_is_prepared_shape(const void *head, size_t n) {
+  return head && n >= sizeof TAG && !memcmp(head, TAG " ", sizeof TAG);
+}
+
+ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev,
+                                    const ss_autopair_options *autopair, ss_prepared_shape *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "prepare: NULL output");
+  memset(out, 0, sizeof *out);
+  if (!m) return ss_fail(err, SS_ERR_INVALID, "prepare: NULL mesh");
+  if (seg_opts) out->seg = *seg_opts;
+  else ss_segment_default_options(&out->seg);
+  ss_status st = ss_mesh_copy(m, &out->mesh, err);
+  if (!st) st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
+  if (!st && autopair) {
+    int *comp = malloc(sizeof(int) * (size_t)out->mesh.nv);
+    int nc = comp ? ssi_mesh_components(&out->mesh, comp) : -1;
+    free(comp);
+    if (nc < 0) st = ss_fail(err, SS_ERR_NOMEM, "prepare: out of memory");
+    else if (nc == 1) {
+      out->autopair = *autopair;
+      if (!(st = ss_centre_signature_compute(&out->prep, autopair, &out->sig, err))) out->has_signature = 1;
+    }
+  }
+  if (st) {
+    ss_prepared_shape_free(out);
+    return st;
+  }
+  return SS_OK;
+}
+
+/* ---- the file ---------------------------------------------------------------------------------- */
+
+static void make_key(const ss_prepared_shape *s, char *key, size_t n) {
+  const ss_segment_options *o = &s->seg;
+  const ss_autopair_options *a = &s->autopair;
+  int len = snprintf(key, n,
+                     TAG " %d %s int%d double%d lib %d.%d.%d mesh %d %d %016llx kev %d seg %d %d %d %d %d %.17g %d sig %d",
+                     SS_PREPARED_SHAPE_VERSION, ssi_byte_order(), (int)sizeof(int), (int)sizeof(double),
+                     SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, s->mesh.nv, s->mesh.nf,
+                     (unsigned long long)ssi_mesh_hash(&s->mesh), s->prep.kev, o->target_faces, o->no_streamline,
+                     o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt, o->sanitize, s->has_signature ? 1 : 0);
+  if (s->has_signature && len > 0 && (size_t)len < n)
+    len += snprintf(key + len, n - (size_t)len, " autopair %d %d %.17g %.17g %.17g %.17g %d %d %d %.17g %.17g",
+                    a->descr_k, a->n_energies, a->sigma_factor, a->descr_radius, a->w_descr, a->w_geo, a->exact_max,
+                    a->orient_k, a->orient_descr_k, a->min_gap, a->min_mirror);
+  if (len > 0 && (size_t)len + 1 < n) key[len] = '\n', key[len + 1] = 0;
+}
+
+/* an array: its element count (int64; -1 for NULL), then its elements */
+static void put_arr(ssi_blob *b, const void *p, size_t count, size_t size) {
+  int64_t c = p ? (int64_t)count : -1;
+  SSI_PUT(b, &c, 1);
+  if (p) ssi_blob_put(b, p, count * size);
+}
+
+/* 1: read (NULL when stored as NULL and may_null); 0: bad */
+static int get_arr(ssi_blob *b, void *pp, size_t count, size_t size, int may_null) {
+  void **out = pp;
+  *out = NULL;
+  int64_t c;
+  if (!SSI_GET(b, &c, 1)) return 0;
+  if (c == -1) return may_null;
+  if (c < 0 || (uint64_t)c != (uint64_t)count || (count && size > (b->n - b->pos) / count)) return b->bad = 1, 0;
+  void *p = malloc(count ? count * size : 1);
+  if (!p) return b->bad = 1, 0;
+  if (!ssi_blob_get(b, p, count * size)) return free(p), 0;
+  *out = p;
+  return 1;
+}
+
+ss_status ss_prepared_shape_write(const char *path, const ss_prepared_shape *s, ss_error *err) {
+  if (!path || !s) return ss_fail(err, SS_ERR_INVALID, "prepare: NULL argument");
+  const ss_mesh *m = &s->mesh;
+  const ss_shape_prep *p = &s->prep;
+  const ss_segmentation *g = &p->seg;
+  if (!m->V || !m->F || m->nv < 1 || !p->evals || !p->evecs || !p->M || p->kev < 1 || !g->labels || !g->centers ||
+      g->nv != m->nv || g->m < 1)
+    return ss_fail(err, SS_ERR_INVALID, "prepare: %s: the shape is not prepared", path);
+  const size_t nv = (size_t)m->nv, kev = (size_t)p->kev, gm = (size_t)g->m, wn = (size_t)g->work.nv;
+  char key[SSI_BLOB_MAX_KEY];
+  make_key(s, key, sizeof key);
+  ssi_blob b = {0};
+  SSI_PUT(&b, &m->nv, 1), SSI_PUT(&b, &m->nf, 1);
+  put_arr(&b, m->V, 3 * nv, sizeof(double)), put_arr(&b, m->F, 3 * (size_t)m->nf, sizeof(int));
+  SSI_PUT(&b, &p->kev, 1);
+  put_arr(&b, p->evals, kev, sizeof(double)), put_arr(&b, p->evecs, nv * kev, sizeof(double));
+  put_arr(&b, p->M, nv, sizeof(double));
+  SSI_PUT(&b, &p->area, 1), SSI_PUT(&b, &p->t_segment, 1), SSI_PUT(&b, &p->t_eigs, 1);
+  SSI_PUT(&b, &g->nv, 1), SSI_PUT(&b, &g->m, 1), SSI_PUT(&b, &g->empty_segments, 1), SSI_PUT(&b, &g->ncrit_raw, 1);
+  SSI_PUT(&b, &g->lambda2, 1);
+  put_arr(&b, g->labels, nv, sizeof(int)), put_arr(&b, g->centers, gm, sizeof(int));
+  SSI_PUT(&b, &g->work.nv, 1), SSI_PUT(&b, &g->work.nf, 1);
+  put_arr(&b, g->work.V, 3 * wn, sizeof(double)), put_arr(&b, g->work.F, 3 * (size_t)g->work.nf, sizeof(int));
+  put_arr(&b, g->psi, nv, sizeof(int)), put_arr(&b, g->phi, wn, sizeof(double));
+  put_arr(&b, g->crit, gm, sizeof(int)), put_arr(&b, g->crit_type, gm, 1);
+  put_arr(&b, g->work_labels, wn, sizeof(int)), put_arr(&b, g->work_dist, wn, sizeof(double));
+  const double t[8] = {g->t_read, g->t_smooth, g->t_remesh, g->t_psi, g->t_spectrum, g->t_critical, g->t_ivd, g->t_total};
+  SSI_PUT(&b, t, 8);
+  if (s->has_signature) {
+    const ss_centre_signature *c = &s->sig;
+    SSI_PUT(&b, &c->m, 1), SSI_PUT(&b, &c->nd, 1);
+    SSI_PUT(&b, &c->volume_ratio, 1), SSI_PUT(&b, &c->orient_sign, 1), SSI_PUT(&b, &c->sigma_score, 1);
+    put_arr(&b, c->centers, (size_t)c->m, sizeof(int)), put_arr(&b, c->descr, (size_t)c->m * c->nd, sizeof(double));
+    put_arr(&b, c->D, (size_t)c->m * c->m, sizeof(double)), put_arr(&b, c->normals, 3 * nv, sizeof(double));
+    put_arr(&b, c->sigma, (size_t)c->m, sizeof(int));
+  }
+  if (b.bad) {
+    ssi_blob_free(&b);
+    return ss_fail(err, SS_ERR_NOMEM, "prepare: %s: out of memory", path);
+  }
+  int rc = ssi_blob_write(path, key, &b);
+  ssi_blob_free(&b);
+  if (rc) return ss_fail(err, SS_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
+  return SS_OK;
+}
+
+/* The head of line 1: the format and the machine. 0: fine; else the reason in why. */
+static int check_head(const char *line, char *why, size_t n) {
+  int version = 0, si = 0, sd = 0, pos = 0;
+  char order[3] = "";
+  if (strncmp(line, TAG " ", sizeof TAG)) return snprintf(why, n, "not a specseg prepared-shape file"), 1;
+  if (sscanf(line, TAG " %d%n", &version, &pos) != 1)
+    return snprintf(why, n, "no format version after '" TAG "'"), 1;
+  if (version != SS_PREPARED_SHAPE_VERSION)
+    return snprintf(why, n, "format version %d; this library (%s) reads version %d only: prepare the shape again", version,
+                    ss_version(), SS_PREPARED_SHAPE_VERSION),
+           1;
+  if (sscanf(line + pos, " %2s int%d double%d", order, &si, &sd) != 3)
+    return snprintf(why, n, "no byte order and type sizes"), 1;
+  if (strcmp(order, ssi_byte_order()) || si != (int)sizeof(int) || sd != (int)sizeof(double))
+    return snprintf(why, n, "written on a machine with %s byte order, %d-byte int and %d-byte double (this one: %s, %d, %d)",
+                    order, si, sd, ssi_byte_order(), (int)sizeof(int), (int)sizeof(double)),
+           1;
+  return 0;
+}
+
+/* the contents, range-checked; 0: fine */
+static int parse_payload(ssi_blob *b, const char *key, ss_prepared_shape *s, char *why, size_t n) {
+  ss_mesh *m = &s->mesh;
+  ss_shape_prep *p = &s->prep;
+  ss_segmentation *g = &p->seg;
+  ss_segment_options *o = &s->seg;
+  ss_autopair_options *a = &s->autopair;
+  int knv, knf, kkev, sig, pos = 0;
+  unsigned long long khash;
+  char lib[32];
+  if (sscanf(key, TAG " %*d %*2s int%*d double%*d lib %31s mesh %d %d %16llx kev %d seg %d %d %d %d %d %lf %d sig %d%n",
+             lib, &knv, &knf, &khash, &kkev, &o->target_faces, &o->no_streamline, &o->cleanup_rings, &o->n_eigs,
+             &o->cmcf_steps, &o->cmcf_dt, &o->sanitize, &sig, &pos) != 13 ||
+      (sig != 0 && sig != 1))
+    return snprintf(why, n, "key line not understood"), 1;
+  if (sig && sscanf(key + pos, " autopair %d %d %lf %lf %lf %lf %d %d %d %lf %lf", &a->descr_k, &a->n_energies,
+                    &a->sigma_factor, &a->descr_radius, &a->w_descr, &a->w_geo, &a->exact_max, &a->orient_k,
+                    &a->orient_descr_k, &a->min_gap, &a->min_mirror) != 11)
+    return snprintf(why, n, "key line: no pairing options"), 1;
+  int ok = SSI_GET(b, &m->nv, 1) && SSI_GET(b, &m->nf, 1) && m->nv == knv && m->nf == knf && m->nv >= 4 && m->nf >= 1;
+  const size_t nv = ok ? (size_t)m->nv : 0;
+  ok = ok && get_arr(b, &m->V, 3 * nv, sizeof(double), 0) && get_arr(b, &m->F, 3 * (size_t)m->nf, sizeof(int), 0);
+  for (size_t i = 0; ok && i < 3 * (size_t)m->nf; i++) ok = m->F[i] >= 0 && m->F[i] < m->nv;
+  if (ok && ssi_mesh_hash(m) != khash) return snprintf(why, n, "the mesh does not have the hash of the key line"), 1;
+  ok = ok && SSI_GET(b, &p->kev, 1) && p->kev == kkev && p->kev >= 3 && p->kev < m->nv;
+  const size_t kev = ok ? (size_t)p->kev : 0;
+  ok = ok && get_arr(b, &p->evals, kev, sizeof(double), 0) && get_arr(b, &p->evecs, nv * kev, sizeof(double), 0) &&
+       get_arr(b, &p->M, nv, sizeof(double), 0) && SSI_GET(b, &p->area, 1) && SSI_GET(b, &p->t_segment, 1) &&
+       SSI_GET(b, &p->t_eigs, 1);
+  ok = ok && SSI_GET(b, &g->nv, 1) && SSI_GET(b, &g->m, 1) && SSI_GET(b, &g->empty_segments, 1) &&
+       SSI_GET(b, &g->ncrit_raw, 1) && SSI_GET(b, &g->lambda2, 1) && g->nv == m->nv && g->m >= 1 && g->m <= m->nv;
+  const size_t gm = ok ? (size_t)g->m : 0;
+  ok = ok && get_arr(b, &g->labels, nv, sizeof(int), 0) && get_arr(b, &g->centers, gm, sizeof(int), 0) &&
+       SSI_GET(b, &g->work.nv, 1) && SSI_GET(b, &g->work.nf, 1) && g->work.nv >= 1 && g->work.nf >= 1;
+  const size_t wn = ok ? (size_t)g->work.nv : 0;
+  ok = ok && get_arr(b, &g->work.V, 3 * wn, sizeof(double), 0) &&
+       get_arr(b, &g->work.F, 3 * (size_t)g->work.nf, sizeof(int), 0) && get_arr(b, &g->psi, nv, sizeof(int), 1) &&
+       get_arr(b, &g->phi, wn, sizeof(double), 1) && get_arr(b, &g->crit, gm, sizeof(int), 0) &&
+       get_arr(b, &g->crit_type, gm, 1, 1) && get_arr(b, &g->work_labels, wn, sizeof(int), 1) &&
+       get_arr(b, &g->work_dist, wn, sizeof(double), 1);
+  double t[8];
+  ok = ok && SSI_GET(b, t, 8);
+  if (ok) {
+    g->t_read = t[0], g->t_smooth = t[1], g->t_remesh = t[2], g->t_psi = t[3], g->t_spectrum = t[4];
+    g->t_critical = t[5], g->t_ivd = t[6], g->t_total = t[7];
+  }
+  for (size_t i = 0; ok && i < nv; i++) ok = g->labels[i] >= 0 && g->labels[i] < g->m && (!g->psi || (g->psi[i] >= -1 && g->psi[i] < g->work.nv));
+  for (size_t i = 0; ok && i < gm; i++)
+    ok = g->centers[i] >= 0 && g->centers[i] < m->nv && g->crit[i] >= 0 && g->crit[i] < g->work.nv &&
+         (!g->crit_type || (g->crit_type[i] >= SS_CRIT_REGULAR && g->crit_type[i] <= SS_CRIT_SADDLE));
+  for (size_t i = 0; ok && i < 3 * (size_t)g->work.nf; i++) ok = g->work.F[i] >= 0 && g->work.F[i] < g->work.nv;
+  for (size_t i = 0; ok && g->work_labels && i < wn; i++) ok = g->work_labels[i] >= -1 && g->work_labels[i] < g->m;
+  for (size_t i = 0; ok && i < kev; i++) ok = isfinite(p->evals[i]);
+  if (ok && sig) {
+    ss_centre_signature *c = &s->sig;
+    ok = SSI_GET(b, &c->m, 1) && SSI_GET(b, &c->nd, 1) && c->m == g->m && c->nd >= 1 && c->nd <= 1000000 &&
+         SSI_GET(b, &c->volume_ratio, 1) && SSI_GET(b, &c->orient_sign, 1) && SSI_GET(b, &c->sigma_score, 1);
+    ok = ok && get_arr(b, &c->centers, gm, sizeof(int), 0) && get_arr(b, &c->descr, gm * c->nd, sizeof(double), 0) &&
+         get_arr(b, &c->D, gm * gm, sizeof(double), 0) && get_arr(b, &c->normals, 3 * nv, sizeof(double), 0) &&
+         get_arr(b, &c->sigma, gm, sizeof(int), 0);
+    for (size_t i = 0; ok && i < gm; i++) ok = c->centers[i] == g->centers[i] && c->sigma[i] >= 0 && c->sigma[i] < c->m;
+    s->has_signature = ok;
+  }
+  ok = ok && !b->bad && b->pos == b->n;
+  if (!ok) return snprintf(why, n, "checksum right but contents out of range or of the wrong size"), 1;
+  p->mesh = m;
+  s->sig.prep = s->has_signature ? p : NULL;
+  return 0;
+}
+
+static ss_status read_common(int from_file, const char *path, const void *data, size_t size, const char *name,
+                             ss_prepared_shape *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "prepared shape: NULL output");
+  memset(out, 0, sizeof *out);
+  char why[700] = "", key[SSI_BLOB_MAX_KEY];
+  /* the format and the machine first: a file of another version is reported as such */
+  char head[SSI_BLOB_MAX_KEY] = "";
+  if (from_file) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open: %s", name, strerror(errno));
+    if (!fgets(head, sizeof head, f)) head[0] = 0;
+    fclose(f);
+  } else {
+    size_t k = size < sizeof head - 1 ? size : sizeof head - 1;
+    if (k) memcpy(head, data, k);
+    head[k] = 0;
+  }
+  if (check_head(head, why, sizeof why))
+    return ss_fail(err, SS_ERR_PARSE, "%s: %s; not used", name, why);
+  ssi_blob b;
+  int r = from_file ? ssi_blob_read(path, NULL, key, sizeof key, &b, why, sizeof why)
+                    : ssi_blob_read_memory(data, size, NULL, key, sizeof key, &b, why, sizeof why);
+  if (r == 0) return ss_fail(err, SS_ERR_IO, "%s: cannot open", name);
+  if (r < 0) return ss_fail(err, SS_ERR_PARSE, "%s: damaged prepared shape: %s; not used (prepare it again)", name, why);
+  int bad = parse_payload(&b, key, out, why, sizeof why);
+  ssi_blob_free(&b);
+  if (bad) {
+    ss_prepared_shape_free(out);
+    return ss_fail(err, SS_ERR_PARSE, "%s: damaged prepared shape: %s; not used (prepare it again)", name, why);
+  }
+  return SS_OK;
+}
+
+ss_status ss_prepared_shape_read(const char *path, ss_prepared_shape *out, ss_error *err) {
+  if (!path) return ss_fail(err, SS_ERR_INVALID, "prepared shape: NULL path");
+  return read_common(1, path, NULL, 0, path, out, err);
+}
+
+ss_status ss_prepared_shape_read_memory(const void *data, size_t size, const char *name, ss_prepared_shape *out,
+                                        ss_error *err) {
+  if (!data && size) return ss_fail(err, SS_ERR_INVALID, "prepared shape: NULL data");
+  return read_common(0, NULL, data ? data : "", size, name ? name : "<memory>", out, err);
+}

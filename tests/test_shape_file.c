@@ -1,0 +1,261 @@
+/* Prepared shapes (match/shape_file.c, match/match_shapes.c) and the checksummed-file helper they
+ * share with the eval cache (util/blob.c): a round trip is bit-identical and matches exactly as the
+ * meshes do; damaged, truncated, extended or other-version files are refused with a reason. */
+#include "testlib.h"
+#include "specseg/specseg.h"
+#include "specseg/synth.h"
+#include "util/blob.h"
+
+#include <unistd.h>
+
+/* head, left hand, right hand, left foot, right foot of the rest pose (as test_match.c) */
+static void humanoid_landmarks(const ss_mesh *m, int lm[5]) {
+  double best[5] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < m->nv; i++) {
+    const double *p = m->V + 3 * (size_t)i;
+    double score[5] = {p[1], p[0], -p[0], p[0] > 0.05 ? -p[1] + 0.1 * p[2] : -INFINITY,
+                       p[0] < -0.05 ? -p[1] + 0.1 * p[2] : -INFINITY};
+    for (int l = 0; l < 5; l++)
+      if (score[l] > best[l]) best[l] = score[l], lm[l] = i;
+  }
+}
+
+static int same_bytes(const void *a, const void *b, size_t n) {
+  if (!a || !b) return a == b;
+  return !memcmp(a, b, n);
+}
+
+static int same_shape(const ss_prepared_shape *a, const ss_prepared_shape *b) {
+  const ss_segmentation *g = &a->prep.seg, *h = &b->prep.seg;
+  size_t nv = (size_t)a->mesh.nv, wn = (size_t)g->work.nv, m = (size_t)g->m, k = (size_t)a->prep.kev;
+  int ok = a->mesh.nv == b->mesh.nv && a->mesh.nf == b->mesh.nf && a->prep.kev == b->prep.kev && g->m == h->m &&
+           g->work.nv == h->work.nv && g->work.nf == h->work.nf && a->has_signature == b->has_signature &&
+           !memcmp(&a->seg, &b->seg, sizeof a->seg) && a->prep.area == b->prep.area && g->lambda2 == h->lambda2 &&
+           g->ncrit_raw == h->ncrit_raw && g->empty_segments == h->empty_segments;
+  if (!ok) return 0;
+  ok = same_bytes(a->mesh.V, b->mesh.V, 24 * nv) && same_bytes(a->mesh.F, b->mesh.F, 12 * (size_t)a->mesh.nf) &&
+       same_bytes(a->prep.evals, b->prep.evals, 8 * k) && same_bytes(a->prep.evecs, b->prep.evecs, 8 * k * nv) &&
+       same_bytes(a->prep.M, b->prep.M, 8 * nv) && same_bytes(g->labels, h->labels, 4 * nv) &&
+       same_bytes(g->centers, h->centers, 4 * m) && same_bytes(g->work.V, h->work.V, 24 * wn) &&
+       same_bytes(g->work.F, h->work.F, 12 * (size_t)g->work.nf) && same_bytes(g->psi, h->psi, 4 * nv) &&
+       same_bytes(g->phi, h->phi, 8 * wn) && same_bytes(g->crit, h->crit, 4 * m) &&
+       same_bytes(g->crit_type, h->crit_type, m) && same_bytes(g->work_labels, h->work_labels, 4 * wn) &&
+       same_bytes(g->work_dist, h->work_dist, 8 * wn);
+  if (ok && a->has_signature) {
+    const ss_centre_signature *s = &a->sig, *t = &b->sig;
+    ok = s->m == t->m && s->nd == t->nd && s->volume_ratio == t->volume_ratio && s->orient_sign == t->orient_sign &&
+         s->sigma_score == t->sigma_score && same_bytes(s->descr, t->descr, 8 * (size_t)s->m * s->nd) &&
+         same_bytes(s->D, t->D, 8 * (size_t)s->m * s->m) && same_bytes(s->normals, t->normals, 24 * nv) &&
+         same_bytes(s->sigma, t->sigma, 4 * (size_t)s->m) && same_bytes(s->centers, t->centers, 4 * (size_t)s->m) &&
+         t->prep == &b->prep;
+  }
+  return ok && b->prep.mesh == &b->mesh;
+}
+
+static int same_result(const ss_match_result *a, const ss_match_result *b) {
+  return a->nX == b->nX && a->kc == b->kc && a->pairs.n == b->pairs.n && same_bytes(a->map, b->map, 4 * (size_t)a->nX) &&
+         same_bytes(a->C, b->C, 8 * (size_t)a->kc * a->kc) && same_bytes(a->pairs.sx, b->pairs.sx, 4 * (size_t)a->pairs.n) &&
+         same_bytes(a->pairs.sy, b->pairs.sy, 4 * (size_t)a->pairs.n) &&
+         same_bytes(a->centerX, b->centerX, 4 * (size_t)a->pairs.n) && a->refine_choice == b->refine_choice &&
+         !strcmp(a->notes, b->notes);
+}
+
+static unsigned char *slurp(const char *path, size_t *n) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  fseek(f, 0, SEEK_END);
+  long len = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  unsigned char *b = malloc((size_t)len + 1);
+  *n = b ? fread(b, 1, (size_t)len, f) : 0;
+  fclose(f);
+  return b;
+}
+
+/* the bytes b[0, n) as a file read back: the status and the message */
+static ss_status read_bytes(const char *path, const unsigned char *b, size_t n, ss_error *e) {
+  FILE *f = fopen(path, "wb");
+  if (!f) return SS_ERR_IO;
+  fwrite(b, 1, n, f);
+  fclose(f);
+  ss_prepared_shape s;
+  ss_status st = ss_prepared_shape_read(path, &s, e);
+  ss_prepared_shape_free(&s);
+  ss_status sm = ss_prepared_shape_read_memory(b, n, path, &s, e); /* the same answer from memory */
+  ss_prepared_shape_free(&s);
+  return st == sm ? st : (ss_status)99;
+}
+
+static void damage_tests(const char *good, const char *dir) {
+  size_t n = 0;
+  unsigned char *b = slurp(good, &n);
+  CHECK(b && n > 1000);
+  if (!b) return;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/damaged.sss", dir);
+  ss_error e = {{0}};
+  CHECK(read_bytes(path, b, n, &e) == SS_OK);
+  size_t key_end = (size_t)((unsigned char *)memchr(b, '\n', n) - b);
+  size_t head_end = (size_t)((unsigned char *)memchr(b + key_end + 1, '\n', n - key_end - 1) - b);
+  /* one flipped byte anywhere: in the options of the key line, in the payload line, in the payload */
+  size_t at[] = {key_end - 3, key_end + 12, head_end - 2, head_end + 1, head_end + 40, n / 2, n - 1};
+  for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
+    b[at[i]] ^= 0x01;
+    ss_status st = read_bytes(path, b, n, &e);
+    CHECK_MSG(st == SS_ERR_PARSE && strstr(e.msg, "not used"), "flip at %zu: %d %s", at[i], (int)st, e.msg);
+    b[at[i]] ^= 0x01;
+  }
+  /* truncated anywhere, or longer */
+  size_t cut[] = {0, 5, key_end, head_end + 1, n / 3, n - 1};
+  for (size_t i = 0; i < sizeof cut / sizeof cut[0]; i++) {
+    ss_status st = read_bytes(path, b, cut[i], &e);
+    CHECK_MSG(st == SS_ERR_PARSE, "cut at %zu: %d %s", cut[i], (int)st, e.msg);
+  }
+  CHECK(read_bytes(path, b, n / 3, &e) == SS_ERR_PARSE && strstr(e.msg, "truncated"));
+  unsigned char *longer = malloc(n + 1);
+  memcpy(longer, b, n), longer[n] = '\n';
+  CHECK(read_bytes(path, longer, n + 1, &e) == SS_ERR_PARSE && strstr(e.msg, "longer"));
+  free(longer);
+  CHECK(read_bytes(path, b, n / 2, &e) == SS_ERR_PARSE); /* and never partly filled: checked by ASan (no leak) */
+  /* another format version, another machine, not a prepared shape at all */
+  b[14] = '2';
+  CHECK(read_bytes(path, b, n, &e) == SS_ERR_PARSE && strstr(e.msg, "format version 2") && strstr(e.msg, "version 1"));
+  b[14] = '1';
+  unsigned char *c = memchr(b, 'l', key_end); /* "le" -> "be" */
+  if (c && c[1] == 'e') {
+    *c = 'b';
+    CHECK(read_bytes(path, b, n, &e) == SS_ERR_PARSE && strstr(e.msg, "byte order"));
+    *c = 'l';
+  }
+  const char *off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  CHECK(read_bytes(path, (const unsigned char *)off, strlen(off), &e) == SS_ERR_PARSE && strstr(e.msg, "not a specseg"));
+  CHECK(read_bytes(path, b, n, &e) == SS_OK); /* undamaged again */
+  ss_prepared_shape s;
+  snprintf(path, sizeof path, "%s/absent.sss", dir);
+  CHECK(ss_prepared_shape_read(path, &s, &e) == SS_ERR_IO);
+  CHECK(ss_is_prepared_shape(b, n) && !ss_is_prepared_shape(off, strlen(off)) && !ss_is_prepared_shape(b, 5));
+  free(b);
+}
+
+/* the helper the eval cache uses: its exact-key mode and messages */
+static void blob_tests(const char *dir) {
+  char path[4200], note[512];
+  snprintf(path, sizeof path, "%s/blob.bin", dir);
+  ssi_blob b = {0}, r;
+  double v[3] = {1.5, -2, 3e300};
+  int k = 7;
+  SSI_PUT(&b, v, 3), SSI_PUT(&b, &k, 1);
+  CHECK(!b.bad && b.n == 28);
+  CHECK(ssi_blob_write(path, "tag-v1 x 1\n", &b) == 0);
+  ssi_blob_free(&b);
+  double w[3];
+  int kk = 0;
+  CHECK(ssi_blob_read(path, "tag-v1 x 1\n", NULL, 0, &r, note, sizeof note) == 1);
+  CHECK(SSI_GET(&r, w, 3) && SSI_GET(&r, &kk, 1) && !memcmp(v, w, sizeof v) && kk == 7 && r.pos == r.n);
+  CHECK(!SSI_GET(&r, &kk, 1) && r.bad); /* past the end */
+  ssi_blob_free(&r);
+  CHECK(ssi_blob_read(path, "tag-v1 x 2\n", NULL, 0, &r, note, sizeof note) == -1 && strstr(note, "another version"));
+  CHECK(ssi_blob_read("/nonexistent/blob.bin", NULL, NULL, 0, &r, note, sizeof note) == 0);
+  /* FNV-1a 64 from the eval cache's starting value (see blob.h), computed independently */
+  CHECK(ssi_fnv1a(SSI_FNV_INIT, "a", 1) == 0x44bd8ad473cd9906ull);
+  CHECK(ssi_fnv1a(14695981039346656037ull, "a", 1) == 0xaf63dc4c8601ec8cull); /* the published FNV-1a 64 of "a" */
+  remove(path);
+}
+
+int main(void) {
+  ss_error e = {{0}};
+  char dir[] = "/tmp/test_shape_file_XXXXXX";
+  if (!mkdtemp(dir)) return 1;
+  blob_tests(dir);
+
+  ss_mesh X = {0}, Y = {0};
+  CHECK(ss_synth_humanoid(0, &X, &e) == SS_OK);
+  CHECK(ss_synth_humanoid(2, &Y, &e) == SS_OK);
+  int lm[5];
+  humanoid_landmarks(&X, lm);
+  ss_match_options o;
+  ss_match_default_options(&o);
+  CHECK(ss_match_eigenpairs(NULL, 5) == 120 && ss_match_eigenpairs(NULL, 0) == 120);
+  const int kev = ss_match_eigenpairs(&o, 5);
+
+  /* prepare, write, read back: bit-identical */
+  ss_prepared_shape PX, PY, RX, RY;
+  CHECK(ss_prepared_shape_compute(&X, NULL, kev, &o.autopair, &PX, &e) == SS_OK);
+  CHECK(ss_prepared_shape_compute(&Y, NULL, kev, &o.autopair, &PY, &e) == SS_OK);
+  CHECK(PX.has_signature && PY.has_signature && PX.prep.kev == kev);
+  char px[4200], py[4200];
+  snprintf(px, sizeof px, "%s/x.sss", dir);
+  snprintf(py, sizeof py, "%s/y.sss", dir);
+  CHECK(ss_prepared_shape_write(px, &PX, &e) == SS_OK);
+  CHECK(ss_prepared_shape_write(py, &PY, &e) == SS_OK);
+  CHECK(ss_prepared_shape_read(px, &RX, &e) == SS_OK);
+  CHECK_MSG(ss_prepared_shape_read(py, &RY, &e) == SS_OK, "%s", e.msg);
+  CHECK(same_shape(&PX, &RX) && same_shape(&PY, &RY));
+
+  /* matching the read shapes gives what the meshes give: with landmarks and landmark-free */
+  for (int nl = 5; nl >= 0; nl -= 5) {
+    ss_match_result a = {0}, c = {0}, d = {0};
+    char wa[512], wc[512];
+    CHECK(ss_match_warn(&X, &Y, nl, lm, lm, &o, &a, wa, sizeof wa, &e) == SS_OK);
+    CHECK_MSG(ss_match_prepared_shapes(&RX, &RY, nl, lm, lm, &o, &c, wc, sizeof wc, &e) == SS_OK, "%s", e.msg);
+    CHECK_MSG(same_result(&a, &c), "nl %d: the map from the prepared files differs from the meshes'", nl);
+    CHECK(!strcmp(wa, wc) && c.t_segment == 0 && c.t_eigs == 0);
+    /* a shallow copy of a prepared shape (its inner pointers left behind) matches the same */
+    ss_prepared_shape CX = RX;
+    CX.prep.mesh = NULL, CX.sig.prep = NULL;
+    CHECK(ss_match_prepared_shapes(&CX, &RY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
+    ss_match_result_free(&a), ss_match_result_free(&c), ss_match_result_free(&d);
+  }
+
+  /* too few eigenpairs for the match: refused, naming the shape and the count */
+  {
+    ss_prepared_shape SX;
+    ss_match_result r = {0};
+    CHECK(ss_prepared_shape_compute(&X, NULL, 60, NULL, &SX, &e) == SS_OK && !SX.has_signature);
+    CHECK(ss_match_prepared_shapes(&SX, &RY, 5, lm, lm, &o, &r, NULL, 0, &e) == SS_ERR_INVALID &&
+          strstr(e.msg, "X (the first shape) was prepared with 60 eigenpairs") && strstr(e.msg, "needs 120"));
+    ss_match_options small = o;
+    small.fmap.zoomout_kmax = 55, small.fmap.descr_k = 50;
+    CHECK_MSG(ss_match_prepared_shapes(&SX, &RY, 5, lm, lm, &small, &r, NULL, 0, &e) == SS_OK, "%s", e.msg);
+    ss_match_result_free(&r);
+    ss_prepared_shape_free(&SX);
+  }
+
+  /* a second component (a small sphere beside the body): ss_match_warn matches the body only when
+   * landmark-free, and the prepared shape gives the same by preparing that part again */
+  {
+    ss_mesh S = {0}, Z = {0};
+    CHECK(ss_synth_icosphere(2, &S, &e) == SS_OK);
+    CHECK(ss_mesh_alloc(&Z, X.nv + S.nv, X.nf + S.nf, &e) == SS_OK);
+    memcpy(Z.V, X.V, 24 * (size_t)X.nv), memcpy(Z.F, X.F, 12 * (size_t)X.nf);
+    for (int i = 0; i < S.nv; i++)
+      for (int j = 0; j < 3; j++) Z.V[3 * (size_t)(X.nv + i) + j] = 0.05 * S.V[3 * (size_t)i + j] + (j == 0 ? 3.0 : 0.0);
+    for (int f = 0; f < 3 * S.nf; f++) Z.F[3 * (size_t)X.nf + f] = S.F[f] + X.nv;
+    ss_prepared_shape PZ, PW;
+    ss_match_result a = {0}, c = {0};
+    char wa[1024], wc[1024];
+    ss_match_options q = o; /* smaller and unrefined: this part is about which components are matched */
+    q.seg.target_faces = 3000, q.refine = SS_REFINE_NONE, q.fmap.descr_k = q.fmap.k = 30;
+    q.autopair.descr_k = q.autopair.orient_descr_k = 40;
+    const int kq = ss_match_eigenpairs(&q, 0);
+    CHECK(kq == 40);
+    CHECK_MSG(ss_prepared_shape_compute(&Z, &q.seg, kq, &q.autopair, &PZ, &e) == SS_OK, "%s", e.msg);
+    CHECK(ss_prepared_shape_compute(&Y, &q.seg, kq, &q.autopair, &PW, &e) == SS_OK);
+    CHECK(!PZ.has_signature && PW.has_signature); /* two components, one */
+    CHECK(ss_match_warn(&Z, &Y, 0, NULL, NULL, &q, &a, wa, sizeof wa, &e) == SS_OK);
+    CHECK_MSG(ss_match_prepared_shapes(&PZ, &PW, 0, NULL, NULL, &q, &c, wc, sizeof wc, &e) == SS_OK, "%s", e.msg);
+    CHECK(same_result(&a, &c) && strstr(wc, wa) == wc && strstr(wc, "prepared data not used"));
+    ss_match_result_free(&a), ss_match_result_free(&c);
+    ss_prepared_shape_free(&PZ), ss_prepared_shape_free(&PW);
+    ss_mesh_free(&S), ss_mesh_free(&Z);
+  }
+
+  damage_tests(px, dir);
+
+  ss_prepared_shape_free(&PX), ss_prepared_shape_free(&PY), ss_prepared_shape_free(&RX), ss_prepared_shape_free(&RY);
+  ss_mesh_free(&X), ss_mesh_free(&Y);
+  char cmd[4300];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd)) fprintf(stderr, "could not remove %s\n", dir);
+  TEST_MAIN_END();
+}
