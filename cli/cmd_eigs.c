@@ -14,7 +14,7 @@ static const char USAGE[] =
     "stiffness W, lumped mass M), one a line (%.17g) on standard output. Vertices without area get 0\n"
     "in every eigenvector (with a warning).\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -k K                number of eigenpairs, 1 <= K < vertices (required)\n"
     "  --evecs FILE.npy    also write the eigenvectors, a vertices x K float64 .npy\n"
     "  --mass KIND         barycentric (default) or voronoi (mixed Voronoi areas)\n"

@@ -12,7 +12,7 @@ static const char USAGE[] =
     "'mean_error: E' (on stderr when -o is -).\n"
     "\n"
     "  MAP.txt             line i = vertex of Y that is the image of vertex i of X\n"
-    "  Y                   the target mesh: OFF, OBJ or PLY\n"
+    "  Y                   the target mesh (OFF, OBJ, PLY, STL, glTF, ...)\n"
     "  --gt GT.txt         the ground-truth map, same format (default: the identity)\n"
     "  --sym SYM.txt       a left-right symmetry map of X (line i = mirror of vertex i): the error of x is\n"
     "                      the smaller of the errors to GT(x) and GT(mirror of x), the paper's symmetric\n"

@@ -13,7 +13,8 @@ static const char USAGE[] =
     "degenerate and duplicate faces, unreferenced and non-finite vertices, misoriented edges, faces the\n"
     "pipeline would re-orient), the Euler characteristic and, for a closed manifold, the genus.\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input (format from the content)\n";
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input (format from\n"
+    "                      the content)\n";
 
 static const char *const OPTS[] = {NULL};
 

@@ -17,7 +17,7 @@ static const char USAGE[] =
     "the paired coherent segments as extra probe functions. Prints a summary line (on stderr when an\n"
     "output goes to standard output).\n"
     "\n"
-    "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
+    "  X, Y                mesh files (OFF, OBJ, PLY, STL, glTF, ...); one input may be - (standard input)\n"
     "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
     "                      j on Y) (required)\n"
     "  -o, --output FILE   the map: line i = vertex of Y that is the image of vertex i of X (required)\n"

@@ -12,7 +12,7 @@ static const char USAGE[] =
     "deg, % of vertices of valence 6, largest vertex distance to the input surface / input bbox\n"
     "diagonal, seconds.\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -o OUT              output mesh, .off or .ply (binary); - writes OFF to standard output\n"
     "  --faces N           target triangle count, >= 4 (default 15000)\n"
     "  --iterations K      remeshing rounds, 1..1000 (default 5)\n";

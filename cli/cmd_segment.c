@@ -16,7 +16,7 @@ static const char USAGE[] =
     "the Fiedler function, intrinsic Voronoi cells, labels mapped back to the input's vertices. Prints\n"
     "a summary line (on stderr when an output goes to standard output).\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -o, --output FILE   labels: one segment index (0..m-1) per input vertex, a line (required)\n"
     "  --centers FILE      line s = input vertex at the centre of segment s\n"
     "  --ply FILE          the input mesh coloured by segment, binary PLY with an int vertex property\n"

@@ -11,7 +11,7 @@ static const char USAGE[] =
     "the shape centred and scaled to unit area before each step. The result keeps the connectivity,\n"
     "the input's area and centroid.\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -o OUT              output mesh, .off or .ply (binary); - writes OFF to standard output\n"
     "  --steps N           flow steps, 0..100000 (default 12)\n"
     "  --dt D              time step, > 0 (default 2.2e-5; 1e-5 with --bbox)\n"
