@@ -23,7 +23,8 @@ extern "C" {
  * content. The scene is flattened: the meshes of every node, in depth-first order, with the node's
  * accumulated transform applied to their vertices (a mesh instanced twice appears twice); polygons are
  * triangulated, points and lines dropped; then vertices with exactly equal coordinates are welded
- * (O(n log n), by a sort; the vertices keep the order of their first occurrence), which joins STL's
+ * (O(n log n), by a sort; each kept vertex is the first of its group in the order the
+ * scene lists them, for STL facet by facet), which joins STL's
  * per-facet vertex soup and the vertices other formats split at normal creases or texture seams into
  * one connected mesh. Coordinates are assimp's float32 values. Without assimp these files fail with
  * SS_ERR_UNSUPPORTED and a message naming libassimp-dev. Imports through assimp are serialised by a
