@@ -45,6 +45,22 @@ SS_API ss_status ss_wks_filter(int n, int k, const double *evals, const double *
 SS_API ss_status ss_wks_landmarks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
                                   double sigma_factor, int nl, const int *lm, double *out, ss_error *err);
 
+/* ------------------------------------------------------------------ heat kernel (hks.c) */
+
+/* The HKS time filters (Sun, Ovsjanikov, Guibas 2009), in the WKS's style: nt times t_j log-spaced from
+ * 4 ln 10 / λ_max to 4 ln 10 / λ_min (λ_min, λ_max: the first non-zero and the largest of the k
+ * eigenvalues; e^{−λ t} then spans 1e-4 at either end, as in the reference code and pyFM), ascending
+ * (nt = 1: their geometric mean). Writes the nt x k matrix G, G[j,i] = exp(−λ_i t_j), 0 for the
+ * (numerically) zero eigenvalues (|λ| ≤ 1e-8·λ_max) as the WKS filters, so the constant function does
+ * not enter; times (nt, may be NULL) receives t_j. Needs k ≥ 2 and a non-zero eigenvalue. */
+SS_API ss_status ss_hks_filters(const double *evals, int k, int nt, double *G, double *times, ss_error *err);
+
+/* HKS descriptors: out (n x nt, column-major), out[x,j] = Σ_i G[j,i] φ_i(x)², each column then
+ * normalised to unit L²(M) norm (M: n lumped masses) as ss_wks does (instead of pyFM's division by the
+ * heat trace: the scale of each column is lost either way). */
+SS_API ss_status ss_hks(int n, int k, const double *evals, const double *evecs, const double *M, int nt, double *out,
+                        ss_error *err);
+
 /* ------------------------------------------------------- functional map (fmap_solve.c) */
 
 /* Spectral coefficients A = Φᵀ M F (k x p) of p functions F (n x p), Φ the first k columns of evecs. */
