@@ -298,8 +298,8 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
     const slot *X = &S[a], *Y = &S[b];
     ss_error e;
     ss_segment_pairs pr;
-    ss_fmap_shape sX = {&X->m, X->prep.M, X->prep.evals, X->prep.evecs, X->prep.kev};
-    ss_fmap_shape sY = {&Y->m, Y->prep.M, Y->prep.evals, Y->prep.evecs, Y->prep.kev};
+    ss_fmap_shape sX = {&X->m, X->prep.M, X->prep.evals, X->prep.evecs, X->prep.kev, NULL, 0};
+    ss_fmap_shape sY = {&Y->m, Y->prep.M, Y->prep.evals, Y->prep.evecs, Y->prep.kev, NULL, 0};
     ss_fmap_probes bX, bY;
     ss_fmap_weights w;
     ss_fmap_system *sys = NULL;

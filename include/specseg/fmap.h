@@ -181,13 +181,18 @@ SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const doubl
 /* ----------------------------------------------------------- pipeline (fmap_match.c) */
 
 /* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric
- * masses of the mesh, as ss_mesh_eigs uses) and eigenpairs (kev of them, evecs nv x kev). */
+ * masses of the mesh, as ss_mesh_eigs uses) and eigenpairs (kev of them, evecs nv x kev). descr (may
+ * be NULL with ndescr = 0): the caller's own descriptors, nv x ndescr column-major (e.g. `specseg
+ * descriptors`, or any per-vertex features), column j corresponding to column j of the other shape's;
+ * they join the base probes (ss_fmap_base_probes) as they are, each normalised in L²(M). */
 typedef struct ss_fmap_shape {
   const ss_mesh *mesh;
   const double *M;
   const double *evals;
   const double *evecs;
   int kev;
+  const double *descr;
+  int ndescr;
 } ss_fmap_shape;
 
 typedef enum ss_probe_filter {
@@ -212,15 +217,19 @@ typedef struct ss_fmap_match_options {
    * the defaults were chosen: docs/tuning.md. */
   double w_extra;
   int extra_dcomm;
+  /* 1: no WKS columns among the base probes, so the shapes' own descriptors (ss_fmap_shape.descr)
+   * replace them; default 0 (WKS, then the shapes' descriptors, if any) */
+  int no_wks;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);
 
 /* Base probes of one shape (WKS descriptors and the wave-kernel maps of its nl landmarks lm), as
  * ss_fmap_match builds them: the virtual column list [WKS | landmark 1 | … | landmark nl]
- * (n_energies columns per item) sub-sampled by descr_step, each column normalised in L²(M); their
- * coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
- * multiplication operators. They depend on the shape and its landmarks only, so an evaluation can
+ * (n_energies columns per item; without the WKS item when opts->no_wks) sub-sampled by descr_step,
+ * then the shape's own s->ndescr descriptors (not sub-sampled), each column normalised in L²(M);
+ * their coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
+ * multiplication operators. No WKS, no landmark and no descriptor is an error. They depend on the shape and its landmarks only, so an evaluation can
  * build them once per shape and landmark set. opts NULL: defaults. */
 SS_API ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
                                      int with_operators, ss_fmap_probes *out, ss_error *err);
@@ -244,7 +253,8 @@ SS_API ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shap
 SS_API ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
                                       const double *Ck, int *map, double *C_out, ss_error *err);
 
-/* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape, the wave-kernel maps
+/* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape (unless opts->no_wks),
+ * the shapes' own descriptors (X->ndescr = Y->ndescr columns), the wave-kernel maps
  * of the landmarks (lmX[i] on X ↔ lmY[i] on Y), plus nextra paired functions (extraX nX x nextra,
  * extraY nY x nextra; e.g. segment indicators) used raw or wave-filtered. All descriptors are
  * normalised in L²(M) and sub-sampled by descr_step; the multiplication operators of the kept

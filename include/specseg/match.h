@@ -92,6 +92,11 @@ typedef struct ss_match_options {
   /* the profile of a paired segment's probe function (ASA and DIFF); default SS_PROFILE_TENT at the
    * default k = 50, SS_PROFILE_SOFT is better for k >= 60 (docs/tuning.md) */
   ss_segment_profile segment_profile;
+  /* the caller's own descriptors (default none): ndescr columns on each shape, descrX nX x ndescr and
+   * descrY nY x ndescr column-major, column j of one corresponding to column j of the other; probes
+   * beside the WKS (or instead of it with fmap.no_wks), as ss_fmap_shape.descr */
+  int ndescr;
+  const double *descrX, *descrY;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);

@@ -105,12 +105,13 @@ class ss_fmap_match_options(C.Structure):
     _fields_ = [("k", C.c_int), ("n_energies", C.c_int), ("sigma_factor", C.c_double), ("descr_step", C.c_int),
                 ("w_descr", C.c_double), ("w_lap", C.c_double), ("w_dcomm", C.c_double), ("fix_constant", C.c_int),
                 ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int),
-                ("w_extra", C.c_double), ("extra_dcomm", C.c_int)]
+                ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("no_wks", C.c_int)]
 
 
 class ss_match_options(C.Structure):
     _fields_ = [("probes", C.c_int), ("fmap", ss_fmap_match_options), ("seg", ss_segment_options),
-                ("segment_profile", C.c_int)]
+                ("segment_profile", C.c_int), ("ndescr", C.c_int), ("descrX", C.POINTER(C.c_double)),
+                ("descrY", C.POINTER(C.c_double))]
 
 
 class ss_segment_pairs(C.Structure):

@@ -18,6 +18,7 @@ void ss_fmap_match_default_options(ss_fmap_match_options *o) {
   o->zoomout_step = 1;
   o->w_extra = 0.5; /* tuned on FAUST; see docs/tuning.md */
   o->extra_dcomm = 0;
+  o->no_wks = 0;
 }
 
 ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) {

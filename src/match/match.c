@@ -39,6 +39,8 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   if (o.probes < SS_PROBES_STD || o.probes > SS_PROBES_DIFF)
     return ss_fail(err, SS_ERR_INVALID, "match: unknown probe set %d", (int)o.probes);
   if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
+  if (o.ndescr < 0 || (o.ndescr > 0 && (!o.descrX || !o.descrY)))
+    return ss_fail(err, SS_ERR_INVALID, "match: %d descriptors without their values", o.ndescr);
   const int nX = X->mesh->nv, nY = Y->mesh->nv, k = o.fmap.k, kz = o.fmap.zoomout_kmax;
   for (int i = 0; i < nl; i++) {
     if (lmX[i] < 0 || lmX[i] >= nX)
@@ -81,7 +83,8 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   out->map = malloc(sizeof(int) * (size_t)nX);
   Ck = malloc(sizeof(double) * (size_t)k * k);
   if (!out->map || !Ck) goto nomem;
-  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev}, sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev};
+  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr},
+                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr};
   ss_fmap_match_options fo = o.fmap;
   fo.zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
   if ((st = ss_fmap_match(&sX, &sY, nl, lmX, lmY, nextra, EX, EY,
