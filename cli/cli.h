@@ -22,8 +22,9 @@ int cli_parse_double(const char *s, double *out);
 
 /* ---- Argument scanning (cli_args.c): the one option scanner every subcommand uses. ----------------
  * A subcommand declares its options in a NULL-terminated list of names; a name ending in '=' takes a
- * value ("-o=", "--steps="), the others are flags ("--bbox"). A value is the next argument, whatever
- * it looks like ("--steps 3", "-o -"), or follows the first '=' of the same argument ("--steps=3").
+ * value ("-o=", "--steps="), one ending in "==" two ("--descriptors==": A.val and A.val2, the next two
+ * arguments, or "=V1" and the next one), the others are flags ("--bbox"). A value is the next argument,
+ * whatever it looks like ("--steps 3", "-o -"), or follows the first '=' of the same argument ("--steps=3").
  * Handled here once for all: -h / --help anywhere (the usage text on stdout, exit 0), unknown options,
  * "--name needs a value", "--name takes no value" (a flag given "=value"), all usage errors (exit 2).
  * Arguments that do not start with '-', and "-" itself (standard input / output), are positional.
@@ -50,6 +51,7 @@ typedef struct cli_args {
   const char *pos;          /* current positional argument, or NULL */
   const char *opt;          /* current option, as declared without its '=' (NULL for a positional) */
   const char *val;          /* its value (NULL for a flag) */
+  const char *val2;         /* the second value of a two-valued option ("name==") */
   char name[64];            /* storage for opt */
   int rc;                   /* -1 while scanning / at the end; SS_EXIT_OK after --help; SS_EXIT_USAGE */
 } cli_args;
@@ -87,6 +89,9 @@ int cli_is_npy(const char *path);
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);
+/* A float64 matrix from .npy (file, standard input or pipe): *a malloc'd rows x cols column-major; a
+ * 1-D array is one column. */
+ss_status cli_read_matrix(const char *path, double **a, int *rows, int *cols, ss_error *err);
 ss_status cli_write_ints(const char *path, const int *v, int n, ss_error *err);
 ss_status cli_write_doubles(const char *path, const double *v, int n, ss_error *err);
 /* A mesh by the extension of path; "-" writes format `std_ext` ("off" or "ply") to stdout. */
@@ -107,6 +112,7 @@ void cli_io_cleanup(void);
 /* Each subcommand: argv[0] is the subcommand name. */
 int cmd_info(int argc, char **argv);
 int cmd_eigs(int argc, char **argv);
+int cmd_descriptors(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_smooth(int argc, char **argv);
 int cmd_remesh(int argc, char **argv);

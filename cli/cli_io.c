@@ -288,6 +288,17 @@ ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, 
   return ss_read_landmarks_memory(b, len, cli_in_name(path), lx, ly, lines, n, columns, err);
 }
 
+ss_status cli_read_matrix(const char *path, double **a, int *rows, int *cols, ss_error *err) {
+  const char *b;
+  size_t len;
+  int is;
+  *a = NULL;
+  *rows = *cols = 0;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st) return st;
+  return is ? ss_read_npy_memory(b, len, cli_in_name(path), a, rows, cols, err) : ss_read_npy(path, a, rows, cols, err);
+}
+
 /* ---- standard output ------------------------------------------------------------------------------ */
 
 FILE *cli_open_out(const char *path) { return cli_is_std(path) ? stdout : fopen(path, "wb"); }
