@@ -11,7 +11,7 @@
 static const char USAGE[] =
     "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
-    "                     [--pairs PAIRS.txt] [--timings]\n"
+    "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
     "the paired coherent segments as extra probe functions. Prints a summary line (on stderr when an\n"
@@ -29,14 +29,22 @@ static const char USAGE[] =
     "  --zoomout KMAX      ZoomOut refinement up to KMAX >= K eigenfunctions (default: none)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
     "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
+    "  --descriptors DX.npy DY.npy\n"
+    "                      your own per-vertex descriptors as extra probes: (vertices of X) x d and\n"
+    "                      (vertices of Y) x d float64 arrays, column j of one corresponding to column j\n"
+    "                      of the other (e.g. 'specseg descriptors --wks/--hks', or any features); used\n"
+    "                      as they are (not sub-sampled), each normalised in L2, in the data and the\n"
+    "                      commutativity terms beside the WKS and the landmarks\n"
+    "  --no-wks            without the WKS: the descriptors given replace it\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
     "One of the output files may be - (standard output).\n";
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
-                                   "--segment-profile=", "--k=", "--zoomout=", "--timings", NULL};
+                                   "--segment-profile=", "--k=", "--zoomout=", "--timings", "--descriptors==",
+                                   "--no-wks", NULL};
 
 int cmd_match(int argc, char **argv) {
-  const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
+  const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL, *dxp = NULL, *dyp = NULL;
   int timings = 0;
   ss_match_options o;
   ss_match_default_options(&o);
@@ -74,6 +82,10 @@ int cmd_match(int argc, char **argv) {
         return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--timings")) {
       timings = 1;
+    } else if (cli_is(&A, "--descriptors")) {
+      dxp = v, dyp = A.val2;
+    } else if (cli_is(&A, "--no-wks")) {
+      o.fmap.no_wks = 1;
     }
   }
   if (A.rc >= 0) return A.rc;
@@ -82,8 +94,9 @@ int cmd_match(int argc, char **argv) {
   if (!outp) return cli_bad(&A, "missing -o MAP.txt");
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
-  const char *ins[3] = {xp, yp, lmp}, *outs[3] = {outp, fmapp, pairsp};
-  if (cli_count_std(ins, 3) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  if (o.fmap.no_wks && !dxp) return cli_bad(&A, "--no-wks needs --descriptors DX.npy DY.npy (they replace the WKS)");
+  const char *ins[5] = {xp, yp, lmp, dxp, dyp}, *outs[3] = {outp, fmapp, pairsp};
+  if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
   int to_stdout = cli_count_std(outs, 3);
   if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
   FILE *report = to_stdout ? stderr : stdout;
@@ -93,6 +106,7 @@ int cmd_match(int argc, char **argv) {
   ss_mesh X = {0}, Y = {0};
   ss_match_result res = {0};
   int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
+  double *DX = NULL, *DY = NULL;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
   if (cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
@@ -110,6 +124,23 @@ int cmd_match(int argc, char **argv) {
       rc = cli_error("%s:%d: landmark vertex %d not on Y (%s has %d vertices)", lmn, lline[i], ly[i], yn, Y.nv);
       goto done;
     }
+  }
+  if (dxp) { /* (nX x d) and (nY x d), corresponding columns */
+    int rx, cx, ry, cy;
+    if (cli_read_matrix(dxp, &DX, &rx, &cx, &err) || cli_read_matrix(dyp, &DY, &ry, &cy, &err)) {
+      rc = cli_error("%s", err.msg);
+      goto done;
+    }
+    if (rx != X.nv || ry != Y.nv) {
+      rc = cli_error("%s: %d rows, but %s has %d vertices", cli_in_name(rx != X.nv ? dxp : dyp), rx != X.nv ? rx : ry,
+                     rx != X.nv ? xn : yn, rx != X.nv ? X.nv : Y.nv);
+      goto done;
+    }
+    if (cx != cy) {
+      rc = cli_error("--descriptors: %s has %d columns, %s %d (they must correspond)", cli_in_name(dxp), cx, cli_in_name(dyp), cy);
+      goto done;
+    }
+    o.ndescr = cx, o.descrX = DX, o.descrY = DY;
   }
   for (int s = 0; s < 2; s++) { /* what the pipeline repairs internally */
     ss_mesh_report rep;
@@ -154,10 +185,12 @@ int cmd_match(int argc, char **argv) {
     fprintf(stderr, "timing: write %.6f\n", t_write);
     fprintf(stderr, "timing: total %.6f\n", ss_time() - t0);
   }
-  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s -> %s\n", X.nv, Y.nv, nl,
-         res.pairs.n, res.pairs.nx, res.pairs.ny,
-         o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
-         o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", cli_out_name(outp));
+  char dnote[64] = "";
+  if (o.ndescr) snprintf(dnote, sizeof dnote, ", %d own descriptors%s", o.ndescr, o.fmap.no_wks ? " (no WKS)" : "");
+  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv, Y.nv,
+          nl, res.pairs.n, res.pairs.nx, res.pairs.ny,
+          o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
+          o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", dnote, cli_out_name(outp));
 done:
   ss_match_result_free(&res);
   ss_mesh_free(&X);
@@ -165,5 +198,7 @@ done:
   free(lx);
   free(ly);
   free(lline);
+  free(DX);
+  free(DY);
   return rc;
 }
