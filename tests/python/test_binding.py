@@ -114,6 +114,22 @@ else:
     ms = np.loadtxt(path("ms.txt"), dtype=np.int64)
     rs = specseg.match(V, F, V, F, lm, k=20, segment_profile="soft")
     check(np.array_equal(rs.map, ms), "match: map with the soft segment profile")
+    # own descriptors: the kept WKS columns (k = 20, as the match's basis) with wks=False give the same map
+    Wd = specseg.wks(V, F, k=20)[:, ::5]
+    rd = specseg.match(V, F, V, F, lm, k=20, descriptors=(Wd, Wd), wks=False)
+    check(np.mean(rd.map == r.map) >= 0.999, "match: the WKS as own descriptors with wks=False")
+    np.save(path("wd.npy"), Wd)
+    cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "--descriptors", path("wd.npy"), path("wd.npy"),
+        "-o", path("md.txt"))
+    md = np.loadtxt(path("md.txt"), dtype=np.int64)
+    check(np.array_equal(specseg.match(V, F, V, F, lm, k=20, descriptors=(Wd, Wd)).map, md),
+          "match: descriptors beside the WKS as the CLI's --descriptors")
+    for bad in (dict(wks=False), dict(descriptors=(Wd, Wd[:, :2])), dict(descriptors=(Wd[:5], Wd))):
+        try:
+            specseg.match(V, F, V, F, lm, k=20, **bad)
+            check(False, "match: %s accepted" % list(bad))
+        except ValueError:
+            check(True, "")
     try:
         specseg.match(V, F, V, F, lm, k=20, segment_profile="round")
         check(False, "match: unknown segment profile accepted")
