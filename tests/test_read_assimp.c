@@ -253,6 +253,11 @@ int main(void) {
   write_stl(tmp("probe.stl"), &ico, 1);
   ss_status st = ss_read_mesh(tmp("probe.stl"), &r, &e);
   ss_mesh_free(&ico), ss_mesh_free(&r);
+  CHECK(ss_mesh_extension_supported("a/b.OFF") == 1 && ss_mesh_extension_supported("x.ply") == 1 &&
+        ss_mesh_extension_supported("x.obj") == 1 && ss_mesh_extension_supported("x.txt") == 0 &&
+        ss_mesh_extension_supported("stl") == 0 && ss_mesh_extension_supported("d.stl/x") == 0);
+  CHECK(ss_mesh_extension_supported("m.stl") == (st == SS_ERR_UNSUPPORTED ? 0 : 2));
+  CHECK(ss_mesh_extension_supported("m.GLB") == (st == SS_ERR_UNSUPPORTED ? 0 : 2));
   if (st == SS_ERR_UNSUPPORTED) {
     CHECK_MSG(strstr(e.msg, "libassimp-dev") && strstr(e.msg, "STL") && strstr(e.msg, "probe.stl"), "%s", e.msg);
     SKIP("this build has no assimp: STL / glTF reading not checked (%s)", e.msg);

@@ -30,6 +30,9 @@ extern "C" {
  * SS_ERR_UNSUPPORTED and a message naming libassimp-dev. Imports through assimp are serialised by a
  * process-wide lock (its error message is one global string); they are safe to call from any thread. */
 SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
+/* Does ss_read_mesh read files named like path by their extension? 1: OFF, OBJ or PLY (our readers);
+ * 2: a format read through assimp (only when the library was built with it); 0: no. */
+SS_API int ss_mesh_extension_supported(const char *path);
 SS_API ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);

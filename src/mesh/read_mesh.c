@@ -140,3 +140,12 @@ ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_er
   free(buf);
   return st;
 }
+
+int ss_mesh_extension_supported(const char *path) {
+  if (!path) return 0;
+  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply")) return 1;
+#ifdef SS_HAVE_ASSIMP
+  if (ssi_mesh_assimp_ext(path, NULL, 0)) return 2;
+#endif
+  return 0;
+}
