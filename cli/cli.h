@@ -2,6 +2,7 @@
 #ifndef SPECSEG_CLI_H
 #define SPECSEG_CLI_H
 
+#include <stdarg.h>
 #include <stdio.h>
 
 #include "specseg/specseg.h"
@@ -108,6 +109,104 @@ FILE *cli_open_out(const char *path);
 int cli_close_out(FILE *f);
 /* Frees the buffered standard input (main, before exiting). */
 void cli_io_cleanup(void);
+
+/* ---- Batches and JSON summaries (cli_batch.c) ------------------------------------------------------
+ * Every per-mesh command (info, eigs, descriptors, smooth, remesh, segment) takes several meshes, or
+ * folders (their files with a mesh extension, sorted by name), and runs them as a batch: -o names a
+ * folder (created if needed) that receives OUTDIR/NAME<suffix> per mesh (NAME: the file name without its
+ * extension; the command's default suffix, or --suffix), options naming other outputs take a suffix
+ * (--ply .ply); --jobs N meshes at once (default: the processors), each with its share of the OpenMP
+ * threads; a progress bar on stderr when it is a terminal; afterwards each mesh's report lines on
+ * stdout, in the order given, prefixed "MESH: ", and a summary line on stderr. A failed mesh does not
+ * stop the others (exit 1 at the end). One mesh with -o naming a folder (or ending in '/') is a batch
+ * too; otherwise one mesh runs exactly as before.
+ * --json (every per-mesh command, match, error, eval): instead of the report lines, one JSON object on
+ * stdout: {"command", "ok": meshes done, "failed", "seconds", "jobs", "results": [{"input", "ok",
+ * "seconds", "outputs": [...], "warnings": [...], "error" (when it failed), and the command's own
+ * counts and timings}]}.
+ *
+ * A command declares CLI_BATCH_OPTS among its options, hands every option to cli_batch_option first
+ * and every mesh to cli_batch_add, checks with cli_batch_setup, then cli_batch_run(b, job, cfg) calls
+ * job(j, cfg) per mesh (j->input), possibly on several threads at once: a job only reads cfg, names its
+ * outputs through cli_job_output / cli_job_extra, writes its report to cli_job_report and may add
+ * fields (cli_job_int / _num / _str); cli_error / cli_warn inside it are recorded in its JSON. */
+#define CLI_BATCH_OPTS "--jobs=", "--json", "--suffix="
+#define CLI_BATCH_HELP                                                                                          \
+  "Several meshes or folders run as a batch: -o OUTDIR receives NAME<suffix> per mesh; other outputs take a\n" \
+  "suffix (e.g. --ply .ply); one mesh with -o DIR/ too. A failed mesh does not stop the others.\n"            \
+  "  --jobs N            batch: meshes at once, 1..256 (default: the processors)\n"                           \
+  "  --suffix SUF        batch: the suffix of the main output (default above)\n"                              \
+  "  --json              a JSON summary on stdout (counts, timings, warnings, errors, output paths)\n"
+
+typedef struct cli_field {
+  char key[48];
+  int kind; /* 'i', 'd', 's', 'j' (JSON text), 'n' (null) */
+  long i;
+  double d;
+  char *s;
+} cli_field;
+
+typedef struct cli_batch cli_batch;
+
+typedef struct cli_job {
+  const cli_batch *b; /* NULL outside a batch run (match, error, eval) */
+  const char *input;  /* the mesh (NULL: no "input" key) */
+  int index, rc;
+  double t0, seconds;
+  char *error;
+  int noutputs, nwarnings, nfields;
+  char **outputs, **warnings;
+  cli_field *fields;
+  FILE *rep; /* the report in memory (batch, --json) */
+  char *rep_buf;
+  size_t rep_len;
+} cli_job;
+
+struct cli_batch {
+  const char *cmd;
+  int jobs, json;
+  const char *suffix, *outdir;
+  int batch;
+  int nin, cap;
+  char **in;
+};
+
+typedef int (*cli_job_fn)(cli_job *j, void *cfg);
+
+void cli_batch_init(cli_batch *b, const char *cmd);
+void cli_batch_free(cli_batch *b); /* the inputs (cli_batch_run frees them itself) */
+/* 1 when the current option is --jobs, --json or --suffix (handled; a bad value sets A->rc), else 0. */
+int cli_batch_option(cli_batch *b, cli_args *A);
+/* A positional mesh (a folder: its mesh files). -1 ok, else the exit code (a usage error was reported). */
+int cli_batch_add(cli_batch *b, cli_args *A, const char *mesh);
+/* After scanning: batch or single run; in a batch the checks (no '-', -o OUTDIR when need_out, the
+ * extras are suffixes, no output overwrites an input or another output) and the folder created.
+ * main_suffix: the main output's default suffix (NULL: none); extras: the other outputs' values.
+ * -1 ok, else the exit code. */
+int cli_batch_setup(cli_batch *b, cli_args *A, const char *outdir, int need_out, const char *main_suffix,
+                    const char *const *extras, int nextras);
+/* Runs the job on every mesh (frees the inputs); the exit code (1 when a mesh failed). */
+int cli_batch_run(cli_batch *b, cli_job_fn fn, void *cfg);
+/* The main output's path: `given` for one mesh, OUTDIR/NAME<suffix> in a batch (recorded for --json). */
+const char *cli_job_output(cli_job *j, const char *given, const char *suffix);
+/* Another output: `given` (NULL: none), in a batch OUTDIR/NAME<given>. */
+const char *cli_job_extra(cli_job *j, const char *given);
+/* Where the job's report goes: stdout (stderr when data_on_stdout or --json) for one mesh, memory in a batch. */
+FILE *cli_job_report(cli_job *j, int data_on_stdout);
+void cli_job_int(cli_job *j, const char *key, long v);
+void cli_job_num(cli_job *j, const char *key, double v);
+void cli_job_str(cli_job *j, const char *key, const char *v);
+/* A field whose value is JSON text as it is (an array or object the caller wrote, e.g. with
+ * open_memstream and cli_json_str / cli_json_num). */
+void cli_job_json(cli_job *j, const char *key, const char *json);
+void cli_json_str(FILE *f, const char *s); /* a JSON string literal, escaped */
+void cli_json_num(FILE *f, double v);      /* %.17g, or null for NaN / inf */
+/* A single run outside a batch (match, error, eval): begin records warnings and errors on this thread;
+ * end prints the JSON (when json) in the batch's format and returns rc. */
+void cli_job_begin(cli_job *j, const char *input);
+int cli_job_end(cli_job *j, const char *cmd, int rc, int json);
+/* "specseg: KIND: MSG" on stderr (the progress bar cleared and redrawn), recorded in the thread's job. */
+void cli_diag(const char *kind, const char *fmt, va_list ap);
 
 /* Each subcommand: argv[0] is the subcommand name. */
 int cmd_info(int argc, char **argv);

@@ -11,9 +11,7 @@
 int cli_error(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fputs("specseg: error: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  cli_diag("error", fmt, ap);
   va_end(ap);
   return SS_EXIT_FAIL;
 }
@@ -21,9 +19,7 @@ int cli_error(const char *fmt, ...) {
 int cli_usage(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fputs("specseg: usage: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  cli_diag("usage", fmt, ap);
   va_end(ap);
   return SS_EXIT_USAGE;
 }
@@ -31,9 +27,7 @@ int cli_usage(const char *fmt, ...) {
 void cli_warn(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fputs("specseg: warning: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  cli_diag("warning", fmt, ap);
   va_end(ap);
 }
 
