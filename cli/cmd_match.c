@@ -11,7 +11,7 @@
 static const char USAGE[] =
     "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
-    "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings]\n"
+    "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
     "the paired coherent segments as extra probe functions. Prints a summary line (on stderr when an\n"
@@ -37,15 +37,17 @@ static const char USAGE[] =
     "                      commutativity terms beside the WKS and the landmarks\n"
     "  --no-wks            without the WKS: the descriptors given replace it\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
+    "  --json              a JSON summary on standard output instead of the summary line (counts,\n"
+    "                      timings, warnings, errors, output paths)\n"
     "One of the output files may be - (standard output).\n";
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
                                    "--segment-profile=", "--k=", "--zoomout=", "--timings", "--descriptors==",
-                                   "--no-wks", NULL};
+                                   "--no-wks", "--json", NULL};
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL, *dxp = NULL, *dyp = NULL;
-  int timings = 0;
+  int timings = 0, json = 0;
   ss_match_options o;
   ss_match_default_options(&o);
   o.probes = SS_PROBES_DIFF;
@@ -86,6 +88,8 @@ int cmd_match(int argc, char **argv) {
       dxp = v, dyp = A.val2;
     } else if (cli_is(&A, "--no-wks")) {
       o.fmap.no_wks = 1;
+    } else if (cli_is(&A, "--json")) {
+      json = 1;
     }
   }
   if (A.rc >= 0) return A.rc;
@@ -99,8 +103,14 @@ int cmd_match(int argc, char **argv) {
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
   int to_stdout = cli_count_std(outs, 3);
   if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
+  if (to_stdout && json) return cli_bad(&A, "--json and an output to '-' both want standard output");
   FILE *report = to_stdout ? stderr : stdout;
   const char *xn = cli_in_name(xp), *yn = cli_in_name(yp), *lmn = cli_in_name(lmp);
+  cli_job J;
+  cli_job_begin(&J, NULL);
+  cli_job_str(&J, "x", xn);
+  cli_job_str(&J, "y", yn);
+  cli_job_str(&J, "landmarks_file", lmn);
 
   ss_error err = {{0}};
   ss_mesh X = {0}, Y = {0};
@@ -109,7 +119,7 @@ int cmd_match(int argc, char **argv) {
   double *DX = NULL, *DY = NULL;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
-  if (cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
+  if (cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_job_end(&J, "match", cli_error("%s", err.msg), json);
   if (cli_read_mesh(xp, &X, &err) || cli_read_mesh(yp, &Y, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
@@ -187,10 +197,19 @@ int cmd_match(int argc, char **argv) {
   }
   char dnote[64] = "";
   if (o.ndescr) snprintf(dnote, sizeof dnote, ", %d own descriptors%s", o.ndescr, o.fmap.no_wks ? " (no WKS)" : "");
-  fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv, Y.nv,
+  const char *pn = o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff";
+  cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
+  cli_job_int(&J, "vertices_x", X.nv), cli_job_int(&J, "vertices_y", Y.nv), cli_job_int(&J, "landmarks", nl);
+  cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);
+  cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
+  cli_job_int(&J, "zoomout", o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0);
+  cli_job_int(&J, "descriptors", o.ndescr), cli_job_int(&J, "wks", !o.fmap.no_wks);
+  cli_job_num(&J, "t_read", t_read), cli_job_num(&J, "t_segment", res.t_segment), cli_job_num(&J, "t_eigs", res.t_eigs);
+  cli_job_num(&J, "t_pair", res.t_pair), cli_job_num(&J, "t_fmap", res.t_fmap), cli_job_num(&J, "t_zoomout", res.t_zoomout);
+  cli_job_num(&J, "t_write", t_write);
+  if (!json) fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv, Y.nv,
           nl, res.pairs.n, res.pairs.nx, res.pairs.ny,
-          o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
-          o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", dnote, cli_out_name(outp));
+          pn, o.fmap.k, o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", dnote, cli_out_name(outp));
 done:
   ss_match_result_free(&res);
   ss_mesh_free(&X);
@@ -200,5 +219,5 @@ done:
   free(lline);
   free(DX);
   free(DY);
-  return rc;
+  return cli_job_end(&J, "match", rc, json);
 }
