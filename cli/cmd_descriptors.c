@@ -106,8 +106,8 @@ int cmd_descriptors(int argc, char **argv) {
   if (rc < 0 && A.rc >= 0) rc = A.rc;
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
   if (rc < 0 && !c.kind) rc = cli_bad(&A, "choose --wks or --hks");
-  if (rc < 0 && !c.out) rc = cli_bad(&A, "missing -o D.npy");
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.out, 1, c.kind == 1 ? ".wks.npy" : ".hks.npy", NULL, 0);
+  if (rc < 0 && !c.out) rc = cli_bad(&A, "missing -o D.npy");
   if (rc < 0 && !B.batch && !cli_is_std(c.out) && !cli_is_npy(c.out))
     rc = cli_bad(&A, "-o: descriptors are written as .npy, not '%s'", c.out);
   if (rc < 0 && B.batch && B.suffix && !cli_is_npy(B.suffix))

@@ -141,9 +141,9 @@ int cmd_segment(int argc, char **argv) {
   }
   if (rc < 0 && A.rc >= 0) rc = A.rc;
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "missing MESH");
-  if (rc < 0 && !c.labels) rc = cli_bad(&A, "missing -o LABELS.txt");
   const char *extras[2] = {c.centers, c.ply};
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.labels, 1, ".labels.txt", extras, 2);
+  if (rc < 0 && !c.labels) rc = cli_bad(&A, "missing -o LABELS.txt");
   if (rc < 0 && !B.batch) {
     const char *outs[3] = {c.labels, c.centers, c.ply};
     c.to_stdout = cli_count_std(outs, 3);

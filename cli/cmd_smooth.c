@@ -77,8 +77,8 @@ int cmd_smooth(int argc, char **argv) {
   }
   if (rc < 0 && A.rc >= 0) rc = A.rc;
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
-  if (rc < 0 && !c.out) rc = cli_bad(&A, "missing -o OUT");
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.out, 1, ".off", NULL, 0);
+  if (rc < 0 && !c.out) rc = cli_bad(&A, "missing -o OUT");
   if (rc < 0 && !B.batch && B.json && cli_is_std(c.out)) rc = cli_bad(&A, "--json and -o - both want standard output");
   if (rc >= 0) {
     cli_batch_free(&B);
