@@ -160,6 +160,9 @@ int cmd_match(int argc, char **argv) {
                  rep.nonmanifold_vertices);
       if (!rep.oriented && rep.orientable)
         cli_warn("%s: faces not consistently oriented: %d re-oriented internally", s ? yn : xn, rep.reorient_faces);
+      if (rep.boundary_loops && !o.seg.no_streamline)
+        cli_warn("%s: %d hole%s (boundary loop%s) closed internally for the segmentation", s ? yn : xn,
+                 rep.boundary_loops, rep.boundary_loops > 1 ? "s" : "", rep.boundary_loops > 1 ? "s" : "");
     }
   }
   if (ss_match(&X, &Y, nl, lx, ly, &o, &res, &err)) {
