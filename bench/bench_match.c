@@ -6,6 +6,11 @@
  *               [--zo-pairs N] [--timed-pairs N]   (ZoomOut / whole-match timing on the first N pairs only)
  *               [--profile P] [--wextra W]          (ss_match_options.segment_profile, fmap.w_extra)
  *               [--try SPEC]... [--diag]            (segment-probe experiments, see run_variants below)
+ *   bench_match --split tune|held [--lm best|gt] [--pairs N] [--seed S] [--cfg NAME:SPEC]...
+ *               held-out protocol (see run_split below): random pairs among FAUST subjects 0-4
+ *               (tune, shapes 000-049) or 5-9 (held, 050-099), each ss_match_prepared configuration
+ *               on every pair, per-pair errors, means, ratios to the first configuration, CPU s;
+ *               [--sel NAME:A,B,C,D:K:W]... the refinement's selection rule applied to configurations
  * Errors: mean over x of d_Y(Π(x), x) / √area(Y), exact geodesics (ss_map_geodesic_error).
  * Accuracy runs reuse one ss_shape_prep per shape (segmentation + 100 eigenpairs); the timed run
  * is a separate, complete ss_match per pair (DIFF, no ZoomOut). */
@@ -389,15 +394,235 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
   return 0;
 }
 
+/* ---- --split: configurations of ss_match_prepared on a named pair set ---------------------------
+ * Pairs: next_pair's LCG from --seed, both shapes in [lo, lo + 50) (tune: subjects 0-4, held:
+ * subjects 5-9), distinct. Landmarks: BEST (landmarks_best.txt) or GT-like (landmarks_gt_authors.txt,
+ * the authors' FPS set; identity ground truth makes it valid on every shape). Each --cfg NAME:SPEC
+ * is ss_match_default_options changed by SPEC, comma-separated key=value:
+ *   paper=1 (start from ss_match_paper_options instead), probes=std|asa|diff, k=K, dk=DESCR_K,
+ *   zo=KMAX (fmap.zoomout_kmax), zstep=S, zs=N (fmap.zoomout_samples), single=0|1 (refine_single),
+ *   prof=0|1|2, wextra=W, refine=none|zo|best, wlap=W
+ *   (refine_w_lap), pair=paper|default, ratio=R, mutual=0|1, rel=E, minlm=N (pairing options)
+ * Without --cfg: the paper's STD and DIFF (unrefined, descr_k = k) and the library's default. CPU: process CPU seconds of the
+ * ss_match_prepared call (all threads), shapes prepared beforehand and not counted. */
+typedef struct config {
+  char name[32], spec[200];
+  ss_match_options o;
+  double sum, cpu;
+  int wins; /* pairs where it is below the first configuration */
+} config;
+
+static int apply_spec(const char *spec, ss_match_options *o) {
+  char buf[200];
+  snprintf(buf, sizeof buf, "%s", spec);
+  for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+    char *eq = strchr(t, '=');
+    if (!eq) return 1;
+    *eq = 0;
+    const char *k = t, *v = eq + 1;
+    if (!strcmp(k, "probes")) {
+      if (!strcmp(v, "std")) o->probes = SS_PROBES_STD;
+      else if (!strcmp(v, "asa")) o->probes = SS_PROBES_ASA;
+      else if (!strcmp(v, "diff")) o->probes = SS_PROBES_DIFF;
+      else return 1;
+    } else if (!strcmp(k, "paper")) {
+      if (atoi(v)) ss_match_paper_options(o);
+    } else if (!strcmp(k, "refine")) {
+      if (!strcmp(v, "none")) o->refine = SS_REFINE_NONE;
+      else if (!strcmp(v, "zo")) o->refine = SS_REFINE_ZOOMOUT;
+      else if (!strcmp(v, "best")) o->refine = SS_REFINE_BEST;
+      else return 1;
+    } else if (!strcmp(k, "pair")) {
+      if (!strcmp(v, "paper")) ss_pairing_paper_options(&o->pairing);
+      else if (!strcmp(v, "default")) ss_pairing_default_options(&o->pairing);
+      else return 1;
+    } else if (!strcmp(k, "ratio")) o->pairing.min_ratio = atof(v);
+    else if (!strcmp(k, "mutual")) o->pairing.mutual = atoi(v);
+    else if (!strcmp(k, "rel")) o->pairing.max_rel_energy = atof(v);
+    else if (!strcmp(k, "minlm")) o->pairing.min_landmarks = atoi(v);
+    else if (!strcmp(k, "wlap")) o->refine_w_lap = atof(v);
+    else if (!strcmp(k, "zstep")) o->fmap.zoomout_step = atoi(v);
+    else if (!strcmp(k, "k")) o->fmap.k = atoi(v);
+    else if (!strcmp(k, "dk")) o->fmap.descr_k = atoi(v);
+    else if (!strcmp(k, "zo")) o->fmap.zoomout_kmax = atoi(v);
+    else if (!strcmp(k, "prof")) o->segment_profile = (ss_segment_profile)atoi(v);
+    else if (!strcmp(k, "wextra")) o->fmap.w_extra = atof(v);
+    else if (!strcmp(k, "zs")) o->fmap.zoomout_samples = atoi(v);
+    else if (!strcmp(k, "single")) o->refine_single = atoi(v);
+    else return 1;
+  }
+  return 0;
+}
+
+static int parse_config(const char *arg, config *c) {
+  memset(c, 0, sizeof *c);
+  const char *colon = strchr(arg, ':');
+  if (!colon || colon == arg || colon - arg >= (long)sizeof c->name) return 1;
+  memcpy(c->name, arg, (size_t)(colon - arg));
+  snprintf(c->spec, sizeof c->spec, "%s", colon + 1);
+  ss_match_default_options(&c->o);
+  return *c->spec && apply_spec(c->spec, &c->o);
+}
+
+static double process_cpu(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static int config_kev(const ss_match_options *o) {
+  int kev = o->fmap.k;
+  if (o->refine != SS_REFINE_NONE && o->fmap.zoomout_kmax > kev) kev = o->fmap.zoomout_kmax;
+  if (o->fmap.descr_k > kev) kev = o->fmap.descr_k;
+  return kev;
+}
+
+/* --sel NAME:A,B,C,D:K:W:WD — the refined default's rule applied afterwards to the maps of
+ * configurations A (STD start), B (its refinement), C (segment-aided start), D (its refinement)
+ * (0-based --cfg indices): lowest ss_p2p_energy (k0 = k of A, size K, w_lap W) + WD x
+ * ss_p2p_descr_residual (A's base probes at its k), a refinement only when not above its own start.
+ * Equals SS_REFINE_BEST when the configurations are its candidates, at no extra cost. */
+typedef struct selection {
+  char name[32];
+  int c[4], K;
+  double w, wd, sum, right, cmp;
+  int counts[4];
+} selection;
+
+static int parse_selection(const char *arg, selection *s) {
+  memset(s, 0, sizeof *s);
+  char nm[32];
+  if (sscanf(arg, "%31[^:]:%d,%d,%d,%d:%d:%lf:%lf", nm, &s->c[0], &s->c[1], &s->c[2], &s->c[3], &s->K, &s->w, &s->wd) != 8)
+    return 1;
+  snprintf(s->name, sizeof s->name, "%s", nm);
+  return s->K < 3 || s->w < 0 || s->wd < 0;
+}
+
+static int run_split(const char *dir, const char *split, const char *lmname, unsigned seed, int npairs, config *cf,
+                     int ncf, selection *sel, int nsel) {
+  const int lo = !strcmp(split, "tune") ? 0 : !strcmp(split, "held") ? 50 : -1;
+  if (lo < 0 || (strcmp(lmname, "best") && strcmp(lmname, "gt"))) {
+    fprintf(stderr, "--split tune|held, --lm best|gt\n");
+    return 2;
+  }
+  int *lm = NULL, nl = 0;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/faust/%s", dir, !strcmp(lmname, "best") ? "landmarks_best.txt" : "landmarks_gt_authors.txt");
+  ss_error e;
+  if (ss_read_ints(path, &lm, &nl, &e)) {
+    fprintf(stderr, "landmarks: %s\n", e.msg);
+    return 1;
+  }
+  int kev = 0;
+  for (int c = 0; c < ncf; c++)
+    if (config_kev(&cf[c].o) > kev) kev = config_kev(&cf[c].o);
+  printf("FAUST split %s (shapes %03d-%03d), %d pairs, seed %u, %s landmarks (%d), eigenpairs %d\n", split, lo, lo + 49,
+         npairs, seed, lmname, nl, kev);
+  for (int c = 0; c < ncf; c++) printf("  %-10s %s\n", cf[c].name, cf[c].spec[0] ? cf[c].spec : "(defaults)");
+  for (int q = 0; q < nsel; q++)
+    for (int i = 0; i < 4; i++)
+      if (sel[q].c[i] < 0 || sel[q].c[i] >= ncf) { fprintf(stderr, "--sel %s: no configuration %d\n", sel[q].name, sel[q].c[i]); return 2; }
+  for (int q = 0; q < nsel; q++) if (sel[q].K > kev) kev = sel[q].K;
+  slot *S = calloc(100, sizeof(slot));
+  double *errs = malloc(sizeof(double) * (size_t)ncf);
+  int **maps = calloc((size_t)ncf, sizeof(int *));
+  unsigned r = seed;
+  ss_match_options so;
+  ss_match_default_options(&so);
+  for (int p = 0; p < npairs; p++) {
+    int a, b;
+    do next_pair(&r, &a, &b);
+    while (a / 50 != lo / 50 || b / 50 != lo / 50);
+    if (load(dir, a, &so, kev, &S[a]) || load(dir, b, &so, kev, &S[b])) return 1;
+    printf("pair %2d: %3d -> %3d", p, a, b);
+    for (int c = 0; c < ncf; c++) {
+      ss_match_result res;
+      double c0 = process_cpu();
+      if (ss_match_prepared(&S[a].prep, &S[b].prep, nl, lm, lm, &cf[c].o, &res, &e)) {
+        fprintf(stderr, "pair %d-%d %s: %s\n", a, b, cf[c].name, e.msg);
+        return 1;
+      }
+      cf[c].cpu += process_cpu() - c0;
+      if (ss_map_geodesic_error(&S[b].m, res.nX, res.map, NULL, NULL, NULL, &errs[c], &e)) {
+        fprintf(stderr, "pair %d-%d: %s\n", a, b, e.msg);
+        return 1;
+      }
+      cf[c].sum += errs[c];
+      cf[c].wins += errs[c] < errs[0];
+      printf("  %s %.4f", cf[c].name, errs[c]);
+      if (res.refine_choice >= 0) printf(" [%c%s]", res.refine_choice < 2 ? 'S' : 'D', res.refine_choice & 1 ? "+ZO" : "");
+      free(maps[c]);
+      maps[c] = res.map;
+      res.map = NULL;
+      ss_match_result_free(&res);
+    }
+    const ss_shape_prep *pX = &S[a].prep, *pY = &S[b].prep;
+    for (int q = 0; q < nsel; q++) {
+      double E[4], best = INFINITY, R = 0;
+      int ch = -1;
+      const ss_fmap_match_options *fo = &cf[sel[q].c[0]].o.fmap;
+      ss_fmap_shape sX = {&S[a].m, pX->M, pX->evals, pX->evecs, pX->kev, NULL, 0}, sY = {&S[b].m, pY->M, pY->evals, pY->evecs, pY->kev, NULL, 0};
+      ss_fmap_probes bX = {0}, bY = {0};
+      if (sel[q].wd > 0 &&
+          (ss_fmap_base_probes(&sX, nl, lm, fo, 0, &bX, &e) || ss_fmap_base_probes(&sY, nl, lm, fo, 0, &bY, &e))) {
+        fprintf(stderr, "probes: %s\n", e.msg);
+        return 1;
+      }
+      for (int i = 0; i < 4; i++) {
+        if (ss_p2p_energy(pY->mesh->nv, pX->mesh->nv, pY->evals, pX->evals, pY->evecs, pX->evecs, pX->M, maps[sel[q].c[i]],
+                          fo->k, sel[q].K, 1, sel[q].w, &E[i], NULL, NULL, &e) ||
+            (sel[q].wd > 0 && ss_p2p_descr_residual(pY->mesh->nv, pX->mesh->nv, pY->evecs, pX->evecs, pX->M, &bY, &bX,
+                                                    maps[sel[q].c[i]], &R, &e))) {
+          fprintf(stderr, "energy: %s\n", e.msg);
+          return 1;
+        }
+        E[i] += sel[q].wd * R;
+      }
+      ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
+      for (int i = 0; i < 4; i++)
+        if (E[i] < best && (!(i & 1) || E[i] <= E[i - 1])) best = E[i], ch = i;
+      double ev = errs[sel[q].c[ch]];
+      sel[q].sum += ev;
+      sel[q].counts[ch]++;
+      /* did it pick the better of the two refined maps (B, D)? */
+      double eb = errs[sel[q].c[1]], ed = errs[sel[q].c[3]];
+      int pick_d = E[3] < E[1];
+      if (eb != ed) sel[q].cmp++, sel[q].right += (pick_d == (ed < eb));
+      printf("  %s %.4f [%d]", sel[q].name, ev, ch);
+    }
+    printf("\n");
+    fflush(stdout);
+  }
+  printf("split %s, %s landmarks, %d pairs, seed %u: mean error, x %s, better than %s on, CPU s/pair\n", split, lmname,
+         npairs, seed, cf[0].name, cf[0].name);
+  for (int c = 0; c < ncf; c++)
+    printf("  %-10s %.4f  x %.3f  %2d/%d  %.3f s\n", cf[c].name, cf[c].sum / npairs, cf[c].sum / cf[0].sum, cf[c].wins,
+           npairs, cf[c].cpu / npairs);
+  for (int q = 0; q < nsel; q++)
+    printf("  %-10s %.4f  x %.3f  (choices S %d, S+ZO %d, D %d, D+ZO %d; energy picks the better of the two refined maps on "
+           "%.0f/%.0f pairs where they differ)\n",
+           sel[q].name, sel[q].sum / npairs, sel[q].sum / cf[0].sum, sel[q].counts[0], sel[q].counts[1], sel[q].counts[2],
+           sel[q].counts[3], sel[q].right, sel[q].cmp);
+  for (int i = 0; i < 100; i++)
+    if (S[i].loaded) ss_shape_prep_free(&S[i].prep), ss_mesh_free(&S[i].m);
+  for (int c = 0; c < ncf; c++) free(maps[c]);
+  free(S), free(errs), free(lm), free(maps);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   const char *dir = SS_DATA_DIR_DEFAULT;
   int npairs = 30, timing = 1, verbose = 0, zo_pairs = 1 << 30, timed_pairs = 1 << 30;
   unsigned seed = 7;
   ss_match_options o;
-  ss_match_default_options(&o);
+  ss_match_paper_options(&o); /* the paper's STD / ASA / DIFF; DIFF+ZO: ZoomOut of DIFF alone */
   o.fmap.zoomout_kmax = 100;
   variant var[64];
-  int nvar = 0, diag = 0;
+  int nvar = 0, diag = 0, ncf = 0;
+  const char *split = NULL, *lmname = "best";
+  static config cf[32];
+  static selection sel[16];
+  int nsel = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : "0";
     if (!strcmp(a, "--data")) dir = v, i++;
@@ -417,6 +642,16 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--timed-pairs")) timed_pairs = atoi(v), i++;
     else if (!strcmp(a, "--verbose")) verbose = 1;
     else if (!strcmp(a, "--diag")) diag = 1;
+    else if (!strcmp(a, "--split")) split = v, i++;
+    else if (!strcmp(a, "--lm")) lmname = v, i++;
+    else if (!strcmp(a, "--sel") && nsel < 16) {
+      if (parse_selection(v, &sel[nsel++])) { fprintf(stderr, "bad --sel %s\n", v); return 2; }
+      i++;
+    }
+    else if (!strcmp(a, "--cfg") && ncf < 32) {
+      if (parse_config(v, &cf[ncf++])) { fprintf(stderr, "bad --cfg %s\n", v); return 2; }
+      i++;
+    }
     else if (!strcmp(a, "--try") && nvar < 64) {
       if (parse_variant(v, &var[nvar++])) { fprintf(stderr, "bad --try %s\n", v); return 2; }
       i++;
@@ -426,6 +661,14 @@ int main(int argc, char **argv) {
   if (npairs < 1 || o.fmap.k < 3 || (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)) {
     fprintf(stderr, "bad options\n");
     return 2;
+  }
+  if (split) {
+    if (!ncf) {
+      const char *def[3] = {"STD:paper=1,probes=std", "DIFF:paper=1,probes=diff", "default:"};
+      for (int c = 0; c < 3; c++) parse_config(def[c], &cf[c]);
+      ncf = 3;
+    }
+    return run_split(dir, split, lmname, seed, npairs, cf, ncf, sel, nsel);
   }
   int *lm = NULL, nl = 0;
   {
@@ -465,6 +708,7 @@ int main(int argc, char **argv) {
       ss_match_options ov = o;
       ov.probes = v == 0 ? SS_PROBES_STD : v == 1 ? SS_PROBES_ASA : SS_PROBES_DIFF;
       if (v < 3) ov.fmap.zoomout_kmax = 0;
+      else ov.refine = SS_REFINE_ZOOMOUT;
       if (v == 3 && (o.fmap.zoomout_kmax <= o.fmap.k || p >= zo_pairs)) { err4[3] = NAN; continue; }
       ss_match_result res;
       if (ss_match_prepared(&S[a].prep, &S[b].prep, nl, lm, lm, &ov, &res, &e) ||

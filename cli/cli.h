@@ -88,6 +88,7 @@ ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb
  * '<f8'), else text. */
 int cli_is_npy(const char *path);
 ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
+ss_status cli_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err); /* + line numbers */
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);
 /* A float64 matrix from .npy (file, standard input or pipe): *a malloc'd rows x cols column-major; a

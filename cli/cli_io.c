@@ -243,6 +243,29 @@ ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err) {
   return ss_read_ints_memory(b, len, cli_in_name(path), out, n, err);
 }
 
+ss_status cli_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err) {
+  const char *b;
+  size_t len;
+  *out = NULL;
+  *lines = NULL;
+  *n = 0;
+  if (wants_npy(path)) { /* "line" i + 1 = entry i, so messages still point at the entry */
+    ss_status st = read_npy_vec(path, 1, (void **)out, n, err);
+    if (st) return st;
+    if (!(*lines = malloc(sizeof(int) * (size_t)(*n > 0 ? *n : 1)))) {
+      free(*out);
+      *out = NULL;
+      return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", cli_in_name(path));
+    }
+    for (int i = 0; i < *n; i++) (*lines)[i] = i + 1;
+    return SS_OK;
+  }
+  int is;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st || !is) return st ? st : ss_read_ints_lines(path, out, lines, n, err);
+  return ss_read_ints_lines_memory(b, len, cli_in_name(path), out, lines, n, err);
+}
+
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err) {
   const char *b;
   size_t len;

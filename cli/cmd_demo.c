@@ -243,7 +243,7 @@ static int stage_match(demo_ctx *c) {
          lm[3], lm[4]);
   ss_error err = {{0}};
   ss_match_options o;
-  ss_match_default_options(&o);
+  ss_match_paper_options(&o); /* the demo shows the paper's DIFF (its shapes carry k eigenpairs) */
   o.fmap.k = 40;
   ss_shape_prep pa, pb;
   double t = ss_time();

@@ -16,12 +16,13 @@ static const char USAGE[] =
     "\n"
     "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  --wks               wave kernel signature (Aubry et al. 2011): N log-spaced energies, sigma = 7\n"
-    "                      energy spacings, as the WKS that 'specseg match' uses (its default K and N)\n"
+    "                      energy spacings, as the WKS that 'specseg match' uses (its default --descr-k\n"
+    "                      and N)\n"
     "  --hks               heat kernel signature (Sun et al. 2009): N log-spaced times from\n"
     "                      4 ln 10 / lambda_max to 4 ln 10 / lambda_1\n"
     "  -o FILE.npy         the descriptors (required); - writes the .npy to standard output; batch:\n"
     "                      OUTDIR, descriptors in OUTDIR/NAME.wks.npy or NAME.hks.npy\n"
-    "  -k K                eigenpairs, 3 <= K < vertices (default 50)\n"
+    "  -k K                eigenpairs, 3 <= K < vertices (default 100: match's default --descr-k)\n"
     "  -n N                energies / times, 1..10000 (default 100)\n" CLI_BATCH_HELP;
 
 static const char *const OPTS[] = {"--wks", "--hks", "-o=", "-k=", "-n=", CLI_BATCH_OPTS, NULL};
@@ -80,7 +81,7 @@ out:
 }
 
 int cmd_descriptors(int argc, char **argv) {
-  descr_cfg c = {NULL, 0, 50, 100};
+  descr_cfg c = {NULL, 0, 100, 100};
   cli_batch B;
   cli_batch_init(&B, "descriptors");
   cli_args A;

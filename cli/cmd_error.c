@@ -64,20 +64,39 @@ int cmd_error(int argc, char **argv) {
 
   ss_error err = {{0}};
   int *map = NULL, *gt = NULL, *sym = NULL, n = 0, ngt = 0, nsym = 0, rc = SS_EXIT_OK;
+  int *lmap = NULL, *lgt = NULL, *lsym = NULL; /* line numbers, for the range checks */
   double *e = NULL, mean = 0;
   ss_mesh Y = {0};
-  if (cli_read_ints(mapf, &map, &n, &err)) { rc = cli_error("%s", err.msg); goto done; }
+  if (cli_read_ints_lines(mapf, &map, &lmap, &n, &err)) { rc = cli_error("%s", err.msg); goto done; }
   if (n < 1) { rc = cli_error("%s: empty map", cli_in_name(mapf)); goto done; }
   if (gtf) {
-    if (cli_read_ints(gtf, &gt, &ngt, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    if (cli_read_ints_lines(gtf, &gt, &lgt, &ngt, &err)) { rc = cli_error("%s", err.msg); goto done; }
     if (ngt != n) { rc = cli_error("%s: %d lines, the map has %d", cli_in_name(gtf), ngt, n); goto done; }
   }
   if (symf) {
-    if (cli_read_ints(symf, &sym, &nsym, &err)) { rc = cli_error("%s", err.msg); goto done; }
+    if (cli_read_ints_lines(symf, &sym, &lsym, &nsym, &err)) { rc = cli_error("%s", err.msg); goto done; }
     if (nsym != n) { rc = cli_error("%s: %d lines, the map has %d", cli_in_name(symf), nsym, n); goto done; }
   }
   if (cli_read_mesh(yf, &Y, &err)) { rc = cli_error("%s", err.msg); goto done; }
   if (!gt && n > Y.nv) { rc = cli_error("identity ground truth: the map has %d vertices, %s only %d", n, cli_in_name(yf), Y.nv); goto done; }
+  /* entries out of range, named by file and line: maps and GT hold vertices of Y, SYM vertices of X */
+  for (int f = 0; f < 3; f++) {
+    const int *v = f == 0 ? map : f == 1 ? gt : sym, *ln = f == 0 ? lmap : f == 1 ? lgt : lsym;
+    const char *name = cli_in_name(f == 0 ? mapf : f == 1 ? gtf : symf);
+    int hi = f == 2 ? n : Y.nv;
+    for (int i = 0; v && i < n; i++)
+      if (v[i] < 0 || v[i] >= hi) {
+        if (f == 2)
+          rc = cli_error("%s:%d: vertex %d is not a vertex of X (the map has %d entries, so X has vertices 0..%d): a "
+                         "symmetry map's i-th entry is the mirror of vertex i of X",
+                         name, ln[i], v[i], n, n - 1);
+        else
+          rc = cli_error("%s:%d: vertex %d is not on the target (%s has vertices 0..%d): a map's i-th entry is the vertex "
+                         "of Y that vertex i of X goes to; is %s the map's target?",
+                         name, ln[i], v[i], cli_in_name(yf), Y.nv - 1, cli_in_name(yf));
+        goto done;
+      }
+  }
   if (!(e = malloc(sizeof(double) * n))) { rc = cli_error("out of memory"); goto done; }
   if (ss_map_geodesic_error(&Y, n, map, gt, sym, e, &mean, &err)) { rc = cli_error("%s", err.msg); goto done; }
   if (outf && cli_write_doubles(outf, e, n, &err)) { rc = cli_error("%s", err.msg); goto done; }
@@ -99,6 +118,7 @@ int cmd_error(int argc, char **argv) {
     if (fflush(report) != 0) rc = cli_error("cannot write to standard output");
   }
 done:
+  free(lmap), free(lgt), free(lsym);
   free(map);
   free(gt);
   free(sym);

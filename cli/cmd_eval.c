@@ -21,7 +21,7 @@
 static const char USAGE[] =
     "usage: specseg eval --table1 --data DIR [--pairs N] [--seed S] [--out RESULTS.csv] [--jobs N]\n"
     "                    [--cache DIR] [--shard I/N] [--error-samples N] [--k K]\n"
-    "                    [--policies random,subj,pose] [--landmarks best,gt,fps] [--methods std,asa,diff]\n"
+    "                    [--policies random,subj,pose] [--landmarks best,gt,fps] [--methods std,asa,diff,refined]\n"
     "                    [--quiet] [--json]\n"
     "       specseg eval merge CSV... [--out ALL.csv]\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
@@ -50,7 +50,8 @@ static const char USAGE[] =
     "  --k K               functional map basis size, 3..1000 (default 50)\n"
     "  --policies LIST     pairing policies, comma list of random,subj,pose (default all)\n"
     "  --landmarks LIST    landmark sets, comma list of best,gt,fps (default all; --figures: best)\n"
-    "  --methods LIST      probe sets, comma list of std,asa,diff (default all)\n"
+    "  --methods LIST      comma list of std,asa,diff (the paper's maps), refined (the default output of\n"
+    "                      specseg match) (default std,asa,diff)\n"
     "  --quiet             no progress bar or stage messages\n"
     "  --shapes N          --timings: FAUST shapes to time, 1..100 (default 100)\n"
     "  --pair X,Y          --figures: this FAUST pair (shape numbers 0..99) instead of the showcase pair\n"
@@ -85,12 +86,17 @@ static int parse_policy(const char *s) { return ss_pair_policy_parse(s); }
 static int parse_lm(const char *s) { return ss_lm_set_parse(s); }
 static int parse_method(const char *s) { return ss_eval_method_parse(s); }
 
-/* Table 1 in the paper's layout, ours beside the paper's, and the ordering checks. */
+/* Table 1 in the paper's layout, ours beside the paper's, the refined default's column when there
+ * are such rows, and the issue's ordering checks. */
 static void print_table(const ss_table1 *t, FILE *f) {
-  fprintf(f, "\n%-17s %17s %17s %17s  %5s  %s\n", "Table 1", "STD", "ASA", "DIFF", "pairs", "checks");
-  fprintf(f, "%-17s %17s %17s %17s\n", "scenario", "ours (paper)", "ours (paper)", "ours (paper)");
+  int ref = 0;
+  for (int i = 0; i < 12; i++) ref += t->count[i][SS_METHOD_REFINED];
+  fprintf(f, "\n%-17s %17s %17s %17s", "Table 1", "STD", "ASA", "DIFF");
+  if (ref) fprintf(f, " %9s", "REFINED");
+  fprintf(f, "  %5s  %s\n", "pairs", "checks");
+  fprintf(f, "%-17s %17s %17s %17s%s\n", "scenario", "ours (paper)", "ours (paper)", "ours (paper)", ref ? "      ours" : "");
   for (int i = 0; i < 12; i++) {
-    if (t->count[i][0] + t->count[i][1] + t->count[i][2] == 0) continue;
+    if (t->count[i][0] + t->count[i][1] + t->count[i][2] + t->count[i][3] == 0) continue;
     fprintf(f, "%-17s", ss_table1_row_names[i]);
     int n = 0;
     for (int c = 0; c < 3; c++) {
@@ -98,36 +104,51 @@ static void print_table(const ss_table1 *t, FILE *f) {
       else fprintf(f, "   %7s (%.3f)", "-", ss_table1_paper[i][c]);
       if (t->count[i][c] > n) n = t->count[i][c];
     }
+    if (ref) {
+      if (t->count[i][3]) fprintf(f, "   %7.4f", t->mean[i][3]);
+      else fprintf(f, "   %7s", "-");
+      if (t->count[i][3] > n) n = t->count[i][3];
+    }
     fprintf(f, "  %5d", n);
     if (t->count[i][0] && t->count[i][1] && t->count[i][2]) {
       const double *m = t->mean[i];
       fprintf(f, "  %s%s", m[2] <= m[1] && m[1] <= m[0] ? "DIFF<=ASA<=STD" : "order differs",
               (i % 3 != 2) ? (m[2] <= 0.8 * m[0] ? ", DIFF<=0.8STD" : ", DIFF>0.8STD") : "");
     }
+    if (t->count[i][0] && t->count[i][2] && t->count[i][3]) {
+      const double *m = t->mean[i];
+      fprintf(f, "%s%s", t->count[i][1] ? ", " : "  ", m[3] <= fmin(m[0], m[2]) ? "REFINED<=min(STD,DIFF)" : "REFINED>min(STD,DIFF)");
+    }
     fputc('\n', f);
   }
 }
 
-/* The table as a JSON array: one object per scenario with rows (ours, the paper's, the pair count). */
+/* The table as a JSON array: one object per scenario with rows (ours, the paper's, the pair count;
+ * the refined method has no paper value). */
 static void json_table(const ss_table1 *t, cli_job *J) {
   char *buf = NULL;
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
   if (!f) return;
-  static const char *const M[3] = {"std", "asa", "diff"};
+  static const char *const M[SS_EVAL_NMETHODS] = {"std", "asa", "diff", "refined"};
   fputc('[', f);
   int first = 1;
   for (int i = 0; i < 12; i++) {
-    if (t->count[i][0] + t->count[i][1] + t->count[i][2] == 0) continue;
+    int any = 0;
+    for (int c = 0; c < SS_EVAL_NMETHODS; c++) any += t->count[i][c];
+    if (!any) continue;
     fprintf(f, "%s{\"scenario\": ", first ? "" : ", ");
     first = 0;
     cli_json_str(f, ss_table1_row_names[i]);
-    for (int c = 0; c < 3; c++) {
+    for (int c = 0; c < SS_EVAL_NMETHODS; c++) {
       fprintf(f, ", \"%s\": ", M[c]);
       if (t->count[i][c]) cli_json_num(f, t->mean[i][c]);
       else fputs("null", f);
-      fprintf(f, ", \"%s_pairs\": %d, \"%s_paper\": ", M[c], t->count[i][c], M[c]);
-      cli_json_num(f, ss_table1_paper[i][c]);
+      fprintf(f, ", \"%s_pairs\": %d", M[c], t->count[i][c]);
+      if (c < 3) { /* the paper has no refined column */
+        fprintf(f, ", \"%s_paper\": ", M[c]);
+        cli_json_num(f, ss_table1_paper[i][c]);
+      }
     }
     fputc('}', f);
   }
@@ -193,7 +214,7 @@ static int cmd_merge(int argc, char **argv) {
       ss_eval_csv_format_row(&all[i], line, sizeof line);
       fprintf(f, "%s\n", line);
     }
-    if (cli_close_out(f)) { free(all); return cli_error("%s: write failed", cli_out_name(out)); }
+    if (cli_close_out(f)) { free(all); return cli_error("%s: write error: %s", cli_out_name(out), strerror(errno)); }
   }
   ss_table1 t;
   ss_status st = ss_table1_aggregate(all, n, &t, &e);
@@ -560,7 +581,7 @@ int cmd_eval(int argc, char **argv) {
       o.shard_i = si - 1, o.shard_n = sn;
     } else if (cli_is(&A, "--policies")) { if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_bad(&A, "--policies: comma list of random,subj,pose"); }
     else if (cli_is(&A, "--landmarks")) { lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_bad(&A, "--landmarks: comma list of best,gt,fps"); }
-    else if (cli_is(&A, "--methods")) { if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_bad(&A, "--methods: comma list of std,asa,diff"); }
+    else if (cli_is(&A, "--methods")) { if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_bad(&A, "--methods: comma list of std,asa,diff,refined"); }
   }
   if (A.rc >= 0) return A.rc;
   if (table1 + coherency + timings + !!figures != 1)

@@ -24,20 +24,6 @@ static const char USAGE[] =
 
 static const char *const OPTS[] = {"-s=", "--source=", "--method=", "--max-dist=", "-o=", "--output=", NULL};
 
-static int write_field(const char *path, const double *d, int n) {
-  if (cli_is_npy(path)) { /* (n, 1) float64; unreachable vertices are inf */
-    ss_error err;
-    return cli_write_doubles(path, d, n, &err) ? -1 : 0;
-  }
-  FILE *f = cli_open_out(path);
-  if (!f) return -1;
-  for (int i = 0; i < n; i++) {
-    if (isinf(d[i])) fputs("inf\n", f);
-    else fprintf(f, "%.17g\n", d[i]);
-  }
-  return cli_close_out(f);
-}
-
 int cmd_geodesic(int argc, char **argv) {
   const char *path = NULL, *out = NULL;
   int *src = NULL, ns = 0;
@@ -92,7 +78,7 @@ int cmd_geodesic(int argc, char **argv) {
   double *d = malloc(sizeof(double) * (size_t)(m.nv > 0 ? m.nv : 1));
   if (!d) { ss_mesh_free(&m); rc = cli_error("out of memory"); goto done; }
   if (ss_geodesic_distances(&m, method, src, ns, maxd, d, &err)) rc = cli_error("%s: %s", cli_in_name(path), err.msg);
-  else if (write_field(out, d, m.nv)) rc = cli_error("cannot write '%s'", cli_out_name(out));
+  else if (cli_write_doubles(out, d, m.nv, &err)) rc = cli_error("%s", err.msg);
   free(d);
   ss_mesh_free(&m);
 done:

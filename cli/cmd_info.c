@@ -1,5 +1,6 @@
 /* specseg info MESH: mesh statistics and checks, one "key: value" a line. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -45,6 +46,11 @@ static int info_job(cli_job *j, void *cfg) {
       {"duplicate_faces", r.duplicate_faces}, {"unreferenced_vertices", r.unreferenced_vertices},
       {"nonfinite_vertices", r.nonfinite_vertices}, {"misoriented_edges", r.misoriented_edges},
       {"reorient_faces", r.reorient_faces}, {"euler_characteristic", r.euler_characteristic}};
+  /* areas beyond the double range (coordinates ~1e155 and up, or ~1e-155 and down) */
+  if (r.nonfinite_vertices == 0 && (isinf(r.area) || (r.area == 0 && r.faces > r.degenerate_faces)))
+    cli_warn("%s: the area %s a double (bounding-box diagonal %.3g); the other commands accept coordinates up to "
+             "1e70 and extents down to 1e-70: scale the mesh",
+             cli_in_name(path), r.area > 0 ? "overflows" : "underflows", r.bbox_diagonal);
   fprintf(f, "vertices: %d\n", r.vertices);
   fprintf(f, "faces: %d\n", r.faces);
   fprintf(f, "area: %.10g\n", r.area);

@@ -1,5 +1,6 @@
-/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] -o MAP.txt
- *                   [--fmap C.npy] [--pairs PAIRS.txt] [--timings] */
+/* specseg match X Y --landmarks LM.txt [--probes std|asa|diff] [--k K] [--zoomout KMAX] [--no-refine]
+ *                   [--zoomout-step S] [--zoomout-samples N] [--descr-k K] -o MAP.txt [--fmap C.npy]
+ *                   [--pairs PAIRS.txt] [--timings] */
 #include "cli.h"
 #include "specseg/match.h"
 
@@ -11,11 +12,15 @@
 static const char USAGE[] =
     "usage: specseg match X Y --landmarks LM.txt -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
+    "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
-    "the paired coherent segments as extra probe functions. Prints a summary line (on stderr when an\n"
-    "output goes to standard output).\n"
+    "the paired coherent segments as extra probe functions. The output is refined: ZoomOut up to KMAX\n"
+    "eigenfunctions (on vertex samples of X, then once on every vertex) from the STD map and from the\n"
+    "segment-aided one, keeping the map of lowest unsupervised energy (orthonormality of its\n"
+    "functional map + preservation of the descriptors).\n"
+    "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
     "  X, Y                mesh files (OFF, OBJ, PLY, STL, glTF, ...); one input may be - (standard input)\n"
     "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
@@ -26,7 +31,13 @@ static const char USAGE[] =
     "  --segment-profile S the segments' probe functions: indicator, tent (1 - d/R from the centre;\n"
     "                      default) or soft (soft Voronoi membership; better than tent from k = 60 on)\n"
     "  --k K               basis size, 3..10000 (default 50)\n"
-    "  --zoomout KMAX      ZoomOut refinement up to KMAX >= K eigenfunctions (default: none)\n"
+    "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 120)\n"
+    "  --no-refine         the unrefined map of --probes at size K (the paper's variants)\n"
+    "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
+    "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 2000; 0 or at least\n"
+    "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
+    "  --descr-k K         eigenpairs the descriptors are computed from (default 100; = K for the\n"
+    "                      paper's construction)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
     "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
     "  --descriptors DX.npy DY.npy\n"
@@ -42,7 +53,8 @@ static const char USAGE[] =
     "One of the output files may be - (standard output).\n";
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
-                                   "--segment-profile=", "--k=", "--zoomout=", "--timings", "--descriptors==",
+                                   "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
+                                   "--zoomout-step=", "--zoomout-samples=", "--timings", "--descriptors==",
                                    "--no-wks", "--json", NULL};
 
 int cmd_match(int argc, char **argv) {
@@ -82,6 +94,17 @@ int cmd_match(int argc, char **argv) {
     } else if (cli_is(&A, "--zoomout")) {
       if (cli_parse_int(v, 3, 10000, &o.fmap.zoomout_kmax))
         return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--no-refine")) {
+      o.refine = SS_REFINE_NONE;
+    } else if (cli_is(&A, "--zoomout-step")) {
+      if (cli_parse_int(v, 1, 10000, &o.fmap.zoomout_step))
+        return cli_bad(&A, "--zoomout-step needs an integer between 1 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--zoomout-samples")) {
+      if (cli_parse_int(v, 0, 1000000000, &o.fmap.zoomout_samples))
+        return cli_bad(&A, "--zoomout-samples needs an integer between 0 and 1000000000, not '%s'", v);
+    } else if (cli_is(&A, "--descr-k")) {
+      if (cli_parse_int(v, 3, 10000, &o.fmap.descr_k))
+        return cli_bad(&A, "--descr-k needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--timings")) {
       timings = 1;
     } else if (cli_is(&A, "--descriptors")) {
@@ -98,6 +121,7 @@ int cmd_match(int argc, char **argv) {
   if (!outp) return cli_bad(&A, "missing -o MAP.txt");
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
+  if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
   if (o.fmap.no_wks && !dxp) return cli_bad(&A, "--no-wks needs --descriptors DX.npy DY.npy (they replace the WKS)");
   const char *ins[5] = {xp, yp, lmp, dxp, dyp}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
@@ -165,10 +189,12 @@ int cmd_match(int argc, char **argv) {
                  rep.boundary_loops, rep.boundary_loops > 1 ? "s" : "", rep.boundary_loops > 1 ? "s" : "");
     }
   }
-  if (ss_match(&X, &Y, nl, lx, ly, &o, &res, &err)) {
+  char dropped[1024];
+  if (ss_match_warn(&X, &Y, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
+  if (dropped[0]) cli_warn("%s -> %s: %s", xn, yn, dropped); /* components without landmarks */
   double t1 = ss_time();
   if (cli_write_ints(outp, res.map, res.nX, &err) ||
       (fmapp && cli_write_npy(fmapp, res.C, res.kc, res.kc, &err))) {
@@ -201,18 +227,26 @@ int cmd_match(int argc, char **argv) {
   char dnote[64] = "";
   if (o.ndescr) snprintf(dnote, sizeof dnote, ", %d own descriptors%s", o.ndescr, o.fmap.no_wks ? " (no WKS)" : "");
   const char *pn = o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff";
+  static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
+  const char *refined = res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "";
+  const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0;
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
   cli_job_int(&J, "vertices_x", X.nv), cli_job_int(&J, "vertices_y", Y.nv), cli_job_int(&J, "landmarks", nl);
   cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);
   cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
-  cli_job_int(&J, "zoomout", o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0);
+  cli_job_int(&J, "zoomout", kz);
+  if (o.refine != SS_REFINE_NONE) cli_job_str(&J, "refined", refined);
+  if (res.notes[0]) cli_job_str(&J, "notes", res.notes);
   cli_job_int(&J, "descriptors", o.ndescr), cli_job_int(&J, "wks", !o.fmap.no_wks);
   cli_job_num(&J, "t_read", t_read), cli_job_num(&J, "t_segment", res.t_segment), cli_job_num(&J, "t_eigs", res.t_eigs);
   cli_job_num(&J, "t_pair", res.t_pair), cli_job_num(&J, "t_fmap", res.t_fmap), cli_job_num(&J, "t_zoomout", res.t_zoomout);
   cli_job_num(&J, "t_write", t_write);
-  if (!json) fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X.nv, Y.nv,
-          nl, res.pairs.n, res.pairs.nx, res.pairs.ny,
-          pn, o.fmap.k, o.fmap.zoomout_kmax > o.fmap.k ? " + ZoomOut" : "", dnote, cli_out_name(outp));
+  if (!json) {
+    fprintf(report, "%d -> %d vertices, %d landmarks, %d of %d/%d segments paired, probes %s, k %d%s%s%s -> %s\n", X.nv,
+            Y.nv, nl, res.pairs.n, res.pairs.nx, res.pairs.ny, pn, o.fmap.k, o.refine == SS_REFINE_NONE ? "" : ", refined: ",
+            refined, dnote, cli_out_name(outp));
+    if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
+  }
 done:
   ss_match_result_free(&res);
   ss_mesh_free(&X);

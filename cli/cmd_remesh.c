@@ -15,7 +15,7 @@ static const char USAGE[] =
     "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -o OUT              output mesh, .off, .ply (binary) or .obj; - writes OFF to standard output;\n"
     "                      batch: OUTDIR, meshes in OUTDIR/NAME.off\n"
-    "  --faces N           target triangle count, >= 4 (default 15000)\n"
+    "  --faces N           target triangle count, 4..2000000 (default 15000)\n"
     "  --iterations K      remeshing rounds, 1..1000 (default 5)\n" CLI_BATCH_HELP;
 
 static const char *const OPTS[] = {"-o=", "--faces=", "--iterations=", CLI_BATCH_OPTS, NULL};
@@ -74,7 +74,8 @@ int cmd_remesh(int argc, char **argv) {
     } else if (cli_is(&A, "-o")) {
       c.out = v;
     } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, 100000000, &c.opt.target_faces)) rc = cli_bad(&A, "--faces wants an integer >= 4, got '%s'", v);
+      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &c.opt.target_faces))
+        rc = cli_bad(&A, "--faces wants an integer in [4, %d], got '%s'", SS_REMESH_MAX_FACES, v);
     } else if (cli_is(&A, "--iterations")) {
       if (cli_parse_int(v, 1, 1000, &c.opt.iterations)) rc = cli_bad(&A, "--iterations wants an integer in [1,1000], got '%s'", v);
     }

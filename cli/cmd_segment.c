@@ -22,7 +22,7 @@ static const char USAGE[] =
     "  --centers FILE      line s = input vertex at the centre of segment s (batch: a suffix)\n"
     "  --ply FILE          the input mesh coloured by segment, binary PLY with an int vertex property\n"
     "                      'label' (the segment) beside red green blue (batch: a suffix, e.g. .ply)\n"
-    "  --faces N           remeshing target, 4..100000000 triangles (default 15000)\n"
+    "  --faces N           remeshing target, 4..2000000 triangles (default 15000)\n"
     "  --no-streamline     everything straight on the input (no smoothing, no remeshing)\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
     "One of the output files may be - (standard output).\n" CLI_BATCH_HELP;
@@ -131,8 +131,8 @@ int cmd_segment(int argc, char **argv) {
     } else if (cli_is(&A, "--ply")) {
       c.ply = v;
     } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, 100000000, &c.opt.target_faces))
-        rc = cli_bad(&A, "--faces needs an integer between 4 and 100000000, not '%s'", v);
+      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &c.opt.target_faces))
+        rc = cli_bad(&A, "--faces needs an integer between 4 and %d, not '%s'", SS_REMESH_MAX_FACES, v);
     } else if (cli_is(&A, "--no-streamline")) {
       c.opt.no_streamline = 1;
     } else if (cli_is(&A, "--timings")) {

@@ -15,7 +15,7 @@ static const char USAGE[] =
     "  -o OUT              output mesh, .off, .ply (binary) or .obj; - writes OFF to standard output;\n"
     "                      batch: OUTDIR, meshes in OUTDIR/NAME.off\n"
     "  --steps N           flow steps, 0..100000 (default 12)\n"
-    "  --dt D              time step, > 0 (default 2.2e-5; 1e-5 with --bbox)\n"
+    "  --dt D              time step in (0, 1e6] (default 2.2e-5; 1e-5 with --bbox)\n"
     "  --bbox              scale to unit bounding-box diagonal instead of unit area, as the authors'\n"
     "                      code does\n" CLI_BATCH_HELP;
 
@@ -69,7 +69,7 @@ int cmd_smooth(int argc, char **argv) {
       if (cli_parse_int(v, 0, 100000, &c.opt.steps)) rc = cli_bad(&A, "--steps wants an integer in [0,100000], got '%s'", v);
     } else if (cli_is(&A, "--dt")) {
       if (cli_parse_double(v, &c.opt.dt) || !(c.opt.dt > 0) || c.opt.dt > 1e6)
-        rc = cli_bad(&A, "--dt wants a positive number, got '%s'", v);
+        rc = cli_bad(&A, "--dt wants a time step in (0, 1e6], got '%s'", v);
       dt_given = 1;
     } else if (cli_is(&A, "--bbox")) {
       c.opt.normalization = SS_CMCF_UNIT_BBOX;

@@ -18,7 +18,7 @@ NP=""
 
 # ---- descriptors ----
 "$BIN" descriptors "$X" --wks -o "$TMP/wx.npy" > "$TMP/out" 2>&1 && ok || bad "descriptors --wks: $(cat "$TMP/out")"
-grep -q "^WKS, 100 energies from 50 eigenpairs" "$TMP/out" && ok || bad "summary: $(cat "$TMP/out")"
+grep -q "^WKS, 100 energies from 100 eigenpairs" "$TMP/out" && ok || bad "summary: $(cat "$TMP/out")"
 "$BIN" descriptors "$Y" --wks -o "$TMP/wy.npy" > /dev/null 2>&1 || bad "descriptors --wks Y"
 "$BIN" descriptors "$X" --hks -k 30 -n 16 -o "$TMP/hx.npy" > /dev/null 2>&1 && ok || bad "descriptors --hks"
 "$BIN" descriptors "$X" --hks -k 30 -n 16 -o - > "$TMP/hs.npy" 2> "$TMP/err" && cmp -s "$TMP/hs.npy" "$TMP/hx.npy" &&

@@ -74,6 +74,26 @@ if [ -d "$TESTS/data/malformed" ]; then
   done
 fi
 
+# k too close to n: the message says so and gives a k that works (was "ARPACK converged 638 of 640 ...
+# (increase ncv)" / "cannot compute 1 more eigenpairs in a space of dimension 1")
+expect 1 "$TMP/ico.off" -k 11
+grep -q "ico.off: eigs: k = 11 is too close to the number of vertices (12).*use k <= 6" "$TMP/err" && ok ||
+  bad "k = n - 1: $(cat "$TMP/err")"
+"$BIN" eigs "$TMP/ico.off" -k 6 > /dev/null 2>&1 && ok || bad "the advised k = 6 fails"
+
+# a NaN vertex is an error naming it (was: a zero-area warning, then success); coordinates beyond
+# 1e70 (x1e300) or a mesh spanning less than 1e-70 are refused with what to do
+expect 1 "$TESTS/data/info/nan_vertex.off" -k 2
+grep -q "nan_vertex.off: .*vertex 2 has a non-finite coordinate" "$TMP/err" && ! grep -q warning "$TMP/err" && ok ||
+  bad "NaN vertex: $(cat "$TMP/err")"
+awk 'NR <= 2 || NF != 3 { print; next } { print $1 * 1e300, $2 * 1e300, $3 * 1e300 }' "$TMP/ico.off" > "$TMP/ico_big.off"
+expect 1 "$TMP/ico_big.off" -k 3
+grep -q "ico_big.off: .*magnitude 1.62e+300, beyond the supported 1e+70.*scale the mesh down" "$TMP/err" && ok ||
+  bad "x1e300: $(cat "$TMP/err")"
+awk 'NR <= 2 || NF != 3 { print; next } { print $1 * 1e-100, $2 * 1e-100, $3 * 1e-100 }' "$TMP/ico.off" > "$TMP/ico_tiny.off"
+expect 1 "$TMP/ico_tiny.off" -k 3
+grep -q "ico_tiny.off: .*spans only .*scale the mesh up" "$TMP/err" && ok || bad "x1e-100: $(cat "$TMP/err")"
+
 # FAUST: 100 ascending eigenvalues, the first ~0
 if [ -n "${SS_DATA_DIR:-}" ] && [ -f "$SS_DATA_DIR/faust/tr_reg_000.off" ]; then
   if "$BIN" eigs "$SS_DATA_DIR/faust/tr_reg_000.off" -k 100 > "$TMP/out" 2> "$TMP/err"; then ok; else bad "FAUST exit $?"; fi

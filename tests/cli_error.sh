@@ -46,6 +46,19 @@ want=$(awk 'BEGIN { printf "%.9f", 1 / 6 / sqrt(2 * sqrt(3)) }')
 "$BIN" error "$TMP/id.txt" "$TMP/oct.off" --bogus > /dev/null 2>&1; [ $? -eq 2 ] && ok || bad "bad option: want exit 2"
 printf '0\n9\n' > "$TMP/bad.txt"
 "$BIN" error "$TMP/bad.txt" "$TMP/oct.off" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] && grep -q "specseg: error:" "$TMP/err" && ok || bad "out-of-range map: want exit 1"
+# out-of-range entries name the file and its line (comments and blank lines counted), from a file
+# or standard input, for the map, the ground truth and the symmetry map (was "map line 2: ...")
+printf '# a map\n0\n\n1\n2\n3\n4\n-1\n' > "$TMP/bad6.txt"
+"$BIN" error "$TMP/bad6.txt" "$TMP/oct.off" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "error: .*bad6.txt:8: vertex -1 is not on the target (.*oct.off has vertices 0..5)" "$TMP/err" && ok ||
+  bad "out-of-range map entry: $(cat "$TMP/err")"
+"$BIN" error - "$TMP/oct.off" < "$TMP/bad.txt" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "error: <stdin>:2: vertex 9 is not on the target" "$TMP/err" && ok || bad "out-of-range map on stdin: $(cat "$TMP/err")"
+"$BIN" error "$TMP/id.txt" "$TMP/oct.off" --gt "$TMP/bad6.txt" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "error: .*bad6.txt:8: vertex -1 is not on the target" "$TMP/err" && ok || bad "out-of-range GT entry: $(cat "$TMP/err")"
+printf '1\n0\n2\n3\n6\n5\n' > "$TMP/badsym.txt"
+"$BIN" error "$TMP/id.txt" "$TMP/oct.off" --sym "$TMP/badsym.txt" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "error: .*badsym.txt:5: vertex 6 is not a vertex of X" "$TMP/err" && ok || bad "out-of-range symmetry entry: $(cat "$TMP/err")"
 "$BIN" error "$TMP/nope.txt" "$TMP/oct.off" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "missing map: want exit 1"
 "$BIN" error "$TMP/id.txt" "$TMP/oct.off" --gt "$TMP/bad.txt" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "short gt: want exit 1"
 finish

@@ -40,7 +40,15 @@ else bad "exact square exit: $(cat "$TMP/err")"; fi
 "$BIN" geodesic "$TMP/sq.off" --source 0 --max-dist abc -o "$TMP/x.txt" 2> /dev/null; [ $? -eq 2 ] && ok || bad "bad max-dist"
 "$BIN" geodesic "$TMP/sq.off" --source 9 -o "$TMP/x.txt" 2> "$TMP/err"; [ $? -eq 1 ] && grep -q '^specseg: error:' "$TMP/err" && ok || bad "source out of range"
 "$BIN" geodesic "$TMP/missing.off" --source 0 -o "$TMP/x.txt" 2> "$TMP/err"; [ $? -eq 1 ] && grep -q '^specseg: error:' "$TMP/err" && ok || bad "missing mesh"
-"$BIN" geodesic "$TMP/sq.off" --source 0 -o "$TMP/nodir/x.txt" 2> /dev/null; [ $? -eq 1 ] && ok || bad "unwritable output"
+"$BIN" geodesic "$TMP/sq.off" --source 0 -o "$TMP/nodir/x.txt" 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "nodir/x.txt: cannot open for writing: No such file or directory" "$TMP/err" && ok || bad "unwritable output: $(cat "$TMP/err")"
+# the reason of a failed write (was "cannot write 'P'"), to a file and to standard output
+if [ -w /dev/full ]; then
+  "$BIN" geodesic "$TMP/sq.off" --source 0 -o /dev/full 2> "$TMP/err"; [ $? -eq 1 ] &&
+    grep -q "/dev/full: write error: No space left on device" "$TMP/err" && ok || bad "full device: $(cat "$TMP/err")"
+  "$BIN" geodesic "$TMP/sq.off" --source 0 -o - > /dev/full 2> "$TMP/err"; [ $? -eq 1 ] &&
+    grep -q "<stdout>: write error: No space left on device" "$TMP/err" && ok || bad "full stdout: $(cat "$TMP/err")"
+fi
 
 # FAUST reference (relative error <= 1e-9)
 D=${SS_DATA_DIR:-}

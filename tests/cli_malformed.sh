@@ -78,4 +78,17 @@ else
   skip "FAUST data not found (SS_DATA_DIR)"
 fi
 
+# an octahedron scaled by 1e300: the area overflows (inf, with a warning), never "-nan"; the
+# diagonal and the degenerate-face count are those of the unit shape scaled
+octa() { # SCALE
+  awk -v s="$1" 'BEGIN { print "OFF"; print "6 8 0"
+    split("1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1", c, " ")
+    for (i = 0; i < 6; i++) printf "%s %s %s\n", c[3*i+1] * s, c[3*i+2] * s, c[3*i+3] * s
+    print "3 0 2 4"; print "3 2 1 4"; print "3 1 3 4"; print "3 3 0 4"
+    print "3 2 0 5"; print "3 1 2 5"; print "3 3 1 5"; print "3 0 3 5" }'
+}
+octa 1e300 > "$TMP/octa_big.off"
+info_ok "$TMP/octa_big.off" area inf degenerate_faces 0 bbox_diagonal 3.464101615e+300
+grep -q "warning: .*octa_big.off: the area overflows a double" "$TMP/err" && ok || bad "no overflow warning: $(cat "$TMP/err")"
+
 finish

@@ -16,7 +16,7 @@ sed -n 's/^landmarks (head, left hand, right hand, left foot, right foot): //p' 
 [ "$(grep -c . "$TMP/l")" -eq 5 ] && ok || bad "landmarks from the demo"
 { echo "# head"; sed -n 1p "$TMP/l"; sed -n '2,5p' "$TMP/l" | awk '{print $1, $1}'; } > "$TMP/lm.txt"
 for p in std asa diff; do
-  "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --probes $p --k 30 -o "$TMP/map_$p.txt" --pairs "$TMP/pairs_$p.txt" \
+  "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --probes $p --k 30 --no-refine -o "$TMP/map_$p.txt" --pairs "$TMP/pairs_$p.txt" \
     --timings > "$TMP/out_$p" 2> "$TMP/err_$p" && ok || bad "match --probes $p: $(cat "$TMP/err_$p")"
   [ "$(grep -c . "$TMP/map_$p.txt")" -eq "$nv" ] && ok || bad "$p: map line count"
   awk -v n="$nv" '!($1 ~ /^[0-9]+$/ && $1 < n && NF == 1) { exit 1 }' "$TMP/map_$p.txt" && ok || bad "$p: map entries"
@@ -34,11 +34,23 @@ for p in std diff; do eval "e_$p=\$(sed -n 's/^mean_error: //p' \"\$TMP/e_$p\")"
 awk -v s="${e_std:-1}" -v d="${e_diff:-1}" 'BEGIN { exit !(d < 0.1 && s < 0.1) }' && ok || bad "errors std ${e_std:-?} diff ${e_diff:-?}"
 # segment profiles: each runs and gives a valid map; the soft one differs from the default tent
 for sp in indicator soft; do
-  "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --k 30 --segment-profile $sp -o "$TMP/map_sp_$sp.txt" > /dev/null \
+  "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --k 30 --no-refine --segment-profile $sp -o "$TMP/map_sp_$sp.txt" > /dev/null \
     2> "$TMP/err" && ok || bad "--segment-profile $sp: $(cat "$TMP/err")"
   [ "$(grep -c . "$TMP/map_sp_$sp.txt")" -eq "$nv" ] && ok || bad "--segment-profile $sp: map line count"
 done
 cmp -s "$TMP/map_sp_soft.txt" "$TMP/map_diff.txt" && bad "soft profile gave the tent's map" || ok
+# the default output: refined (a valid map, reported as such), no worse than 0.1
+"$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --k 30 --zoomout 60 --descr-k 60 -o "$TMP/map_ref.txt" > "$TMP/out_ref" 2> "$TMP/err" &&
+  ok || bad "default (refined) match: $(cat "$TMP/err")"
+grep -q 'refined: ' "$TMP/out_ref" && ok || bad "refined run does not say what it returned: $(cat "$TMP/out_ref")"
+"$BIN" error "$TMP/map_ref.txt" "$Y" > "$TMP/e_ref" 2>&1 && ok || bad "refined: specseg error"
+e_ref=$(sed -n 's/^mean_error: //p' "$TMP/e_ref")
+awk -v r="${e_ref:-1}" 'BEGIN { exit !(r < 0.1) }' && ok || bad "refined error ${e_ref:-?}"
+# 3 landmarks: no segment probes, and a note says so
+sed -n 1,3p "$TMP/l" > "$TMP/lm3.txt"
+"$BIN" match "$X" "$Y" --landmarks "$TMP/lm3.txt" --k 30 --no-refine -o "$TMP/m3.txt" > "$TMP/out3" 2> "$TMP/err" && ok ||
+  bad "3 landmarks: $(cat "$TMP/err")"
+grep -q '^note: .*no segment probes' "$TMP/out3" && ok || bad "3 landmarks: no note: $(cat "$TMP/out3")"
 "$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --segment-profile round -o "$TMP/m.txt" > /dev/null 2>&1
 [ $? -eq 2 ] && ok || bad "--segment-profile round: want exit 2"
 # errors: bad landmark index -> 1, bad option values -> 2

@@ -29,6 +29,14 @@ for args in "" "$IN" "$IN -o" "$IN -o x.off --steps -1" "$IN -o x.off --dt 0" "$
   "$BIN" smooth $args > /dev/null 2>&1; rc=$?
   [ $rc -eq 2 ] && ok || bad "smooth '$args' exit $rc, want 2"
 done
+# an out-of-range value says the range (was "--dt wants a positive number" for 1e300)
+"$BIN" smooth "$IN" -o x.off --dt 1e300 > /dev/null 2> "$TMP/err"; [ $? -eq 2 ] &&
+  grep -q "^specseg: usage: smooth: --dt wants a time step in (0, 1e6\], got '1e300'" "$TMP/err" && ok || bad "--dt 1e300: $(cat "$TMP/err")"
+# targets beyond the documented bound are refused at once, with the range (5e6 took > 400 s)
+for cmd in remesh segment; do
+  timeout 10 "$BIN" $cmd "$IN" -o "$TMP/x.out" --faces 5000000 > /dev/null 2> "$TMP/err"; [ $? -eq 2 ] &&
+    grep -q "^specseg: usage: $cmd: --faces .*4.* 2000000" "$TMP/err" && ok || bad "$cmd --faces 5000000: $(cat "$TMP/err")"
+done
 for args in "" "$IN" "$IN -o x.off --faces 2" "$IN -o x.off --faces abc"; do
   "$BIN" remesh $args > /dev/null 2>&1; rc=$?
   [ $rc -eq 2 ] && ok || bad "remesh '$args' exit $rc, want 2"

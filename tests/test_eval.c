@@ -260,7 +260,7 @@ static void test_csv_and_merge(void) {
 static void test_adapter(void) {
   ev_context ctx;
   memset(&ctx, 0, sizeof ctx);
-  ss_match_default_options(&ctx.mopt);
+  ss_match_paper_options(&ctx.mopt);
   ctx.mopt.fmap.k = 20;
   ctx.mopt.fmap.n_energies = 30;
   ctx.kev = 20;
@@ -301,18 +301,47 @@ static void test_adapter(void) {
       }
     /* all three methods at once (shared pairing and normal equations), with the shapes' cached base
      * probes: the same maps as one method at a time */
-    int *mm = malloc(sizeof(int) * 3 * (size_t)n), *maps[3] = {mm, mm + n, mm + 2 * (size_t)n};
+    int *mm = malloc(sizeof(int) * SS_EVAL_NMETHODS * (size_t)n), *maps[SS_EVAL_NMETHODS];
+    for (int mth = 0; mth < SS_EVAL_NMETHODS; mth++) maps[mth] = mm + (size_t)n * mth;
     CHECK(ev_shape_probes(&X, &ctx, 7, &e) == SS_OK && ev_shape_probes(&Y, &ctx, 7, &e) == SS_OK);
     CHECK(X.base[SS_LM_FPS].p > 0 && Y.base[SS_LM_BEST].nd == Y.base[SS_LM_BEST].p);
-    double cpu[3];
-    int paired = -1;
-    CHECK(ev_match_methods(&ctx, &X, &Y, SS_LM_FPS, 7, maps, cpu, &paired, &e) == SS_OK);
+    double cpu[SS_EVAL_NMETHODS];
+    int paired[SS_EVAL_NMETHODS] = {-1, -1, -1, -1};
+    CHECK(ev_match_methods(&ctx, &X, &Y, SS_LM_FPS, 7, maps, cpu, paired, &e) == SS_OK);
     for (int mth = 0; mth < 3; mth++) {
       int p2 = -1, diff = 0;
       CHECK(ev_match(&ctx, &X, &Y, SS_LM_FPS, mth, m1, &p2, &e) == SS_OK);
       for (int i = 0; i < n; i++) diff += m1[i] != maps[mth][i];
-      CHECK_MSG(diff == 0 && p2 == paired, "method %d: %d vertices differ between joint and single runs", mth, diff);
+      CHECK_MSG(diff == 0 && p2 == paired[mth], "method %d: %d vertices differ between joint and single runs", mth, diff);
       CHECK(cpu[mth] > 0);
+    }
+    /* the refined method (not prepared: an error), then with its eigenpairs: ss_match_prepared with the
+     * default options on them (pairing from the work meshes, not the cached fields), and with the
+     * paper's methods in one call: the same maps */
+    CHECK(ev_match(&ctx, &X, &Y, SS_LM_BEST, SS_METHOD_REFINED, m1, NULL, &e) == SS_ERR_INVALID);
+    ss_match_default_options(&ctx.ropt);
+    ctx.ropt.fmap.k = 20, ctx.ropt.fmap.n_energies = 30, ctx.ropt.fmap.descr_k = 30, ctx.ropt.fmap.zoomout_kmax = 30;
+    ctx.kref = 30;
+    CHECK(ev_shape_refined(&X, &ctx, &e) == SS_OK && ev_shape_refined(&Y, &ctx, &e) == SS_OK);
+    CHECK(X.rprep.kev == 30 && X.rprep.M == X.prep.M && X.prep.kev == 20);
+    for (int set = 0; set < 2; set++) {
+      int lmset = set ? SS_LM_FPS : SS_LM_BEST, p2 = -1, diff = 0;
+      CHECK(ev_match(&ctx, &X, &Y, lmset, SS_METHOD_REFINED, m1, &p2, &e) == SS_OK);
+      ss_match_result res;
+      CHECK(ss_match_prepared(&X.rprep, &Y.rprep, EV_NL, ev_landmarks(&ctx, &X, lmset), ev_landmarks(&ctx, &Y, lmset),
+                              &ctx.ropt, &res, &e) == SS_OK);
+      for (int i = 0; i < n; i++) diff += m1[i] != res.map[i];
+      CHECK_MSG(diff == 0 && p2 == res.pairs.n, "refined, set %d: %d vertices differ from ss_match_prepared", lmset, diff);
+      CHECK(res.refine_choice >= 0);
+      ss_match_result_free(&res);
+      CHECK(ev_match_methods(&ctx, &X, &Y, lmset, 15, maps, cpu, paired, &e) == SS_OK);
+      diff = 0;
+      for (int i = 0; i < n; i++) diff += m1[i] != maps[SS_METHOD_REFINED][i];
+      CHECK(diff == 0 && paired[SS_METHOD_REFINED] == p2 && cpu[SS_METHOD_REFINED] > 0);
+      CHECK(ev_match(&ctx, &X, &Y, lmset, SS_METHOD_STD, m1, NULL, &e) == SS_OK);
+      diff = 0;
+      for (int i = 0; i < n; i++) diff += m1[i] != maps[SS_METHOD_STD][i];
+      CHECK(diff == 0);
     }
     /* batched exact errors == the library's per-map error (sym: an arbitrary vertex map) */
     int *sym = malloc(sizeof(int) * (size_t)n);

@@ -116,6 +116,7 @@ int main(void) {
   ss_match_default_options(&mo);
   CHECK(mo.ndescr == 0 && !mo.descrX && !mo.descrY);
   mo.probes = SS_PROBES_STD, mo.fmap.k = kev, mo.fmap.n_energies = ne;
+  mo.fmap.descr_k = 0; /* the WKS from the first k = kev eigenpairs, as DX / DY (the default takes 100) */
   ss_match_result r0 = {0}, r1 = {0};
   CHECK(ss_match(&X, &Y, 5, lm, lm, &mo, &r0, &e) == SS_OK);
   /* ss_match computes its own eigenpairs (k = kev): recompute the WKS from the same solver as above */

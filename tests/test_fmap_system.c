@@ -147,6 +147,71 @@ static void test_probes_split(void) {
   ss_mesh_free(&mesh);
 }
 
+/* descr_k: 0 and k are the same construction bit for bit; descr_k = kd > k gives the probes of the
+ * kd-basis construction truncated to the first k coefficients (the same functions, projected on
+ * fewer eigenfunctions), for the base and the wave-filtered extras alike */
+static void test_descr_k(void) {
+  ss_mesh mesh;
+  CHECK(ss_synth_icosphere(3, &mesh, NULL) == SS_OK);
+  for (int i = 0; i < mesh.nv; i++) {
+    double *v = mesh.V + 3 * i;
+    v[0] *= 1.4 + 0.2 * v[1], v[2] *= 0.8;
+  }
+  const int n = mesh.nv, k = 12, kd = 30, ne = 30, step = 4, nl = 3, nx = 2;
+  double *ev = malloc(sizeof(double) * kd), *phi = malloc(sizeof(double) * n * kd), *M = malloc(sizeof(double) * n);
+  CHECK(ss_mesh_eigs(&mesh, kd, ev, phi, NULL) == SS_OK);
+  CHECK(ss_mass_lumped(&mesh, SS_MASS_BARYCENTRIC, M, NULL) == SS_OK);
+  int lm[3] = {5, 100, 400};
+  double *X = malloc(sizeof(double) * n * nx);
+  for (int i = 0; i < n; i++) X[i] = mesh.V[3 * i] > 0, X[i + n] = mesh.V[3 * i + 2] > 0.3;
+  ss_fmap_match_options o;
+  ss_fmap_match_default_options(&o);
+  o.k = k, o.n_energies = ne, o.descr_step = step;
+  ss_fmap_shape s = {&mesh, M, ev, phi, kd, NULL, 0};
+  ss_fmap_probes b0, bk, w0, wk, bd, wd, bbig, wbig;
+  CHECK(o.descr_k == 0);
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &b0, NULL) == SS_OK);
+  CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &w0, NULL) == SS_OK);
+  o.descr_k = k;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &bk, NULL) == SS_OK);
+  CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &wk, NULL) == SS_OK);
+  const size_t kk = (size_t)k * (k + 1) / 2;
+  CHECK(b0.p == bk.p && w0.p == wk.p);
+  CHECK(!memcmp(b0.A, bk.A, sizeof(double) * k * b0.p) && !memcmp(b0.P, bk.P, sizeof(double) * kk * b0.p));
+  CHECK(!memcmp(w0.A, wk.A, sizeof(double) * k * w0.p) && !memcmp(w0.P, wk.P, sizeof(double) * kk * w0.p));
+  o.descr_k = kd;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &bd, NULL) == SS_OK);
+  CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &wd, NULL) == SS_OK);
+  o.descr_k = 0, o.k = kd;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &bbig, NULL) == SS_OK);
+  CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &wbig, NULL) == SS_OK);
+  CHECK(bd.k == k && bd.p == bbig.p && wd.p == wbig.p);
+  double da = 0, dp = 0, ddiff = 0;
+  for (int t = 0; t < 2; t++) {
+    const ss_fmap_probes *a = t ? &wd : &bd, *b = t ? &wbig : &bbig, *c = t ? &w0 : &b0;
+    for (int j = 0; j < a->p && a->p == b->p; j++) {
+      for (int i = 0; i < k; i++) {
+        da = fmax(da, fabs(a->A[i + (size_t)k * j] - b->A[i + (size_t)kd * j]));
+        ddiff = fmax(ddiff, fabs(a->A[i + (size_t)k * j] - c->A[i + (size_t)k * j]));
+      }
+      for (size_t i = 0; i < kk; i++) dp = fmax(dp, fabs(a->P[i + kk * j] - b->P[i + (size_t)kd * (kd + 1) / 2 * j]));
+    }
+  }
+  CHECK_MSG(da < 1e-12 && dp < 1e-12, "descr_k %d probes are not the k %d probes truncated: %g %g", kd, kd, da, dp);
+  CHECK_MSG(ddiff > 1e-3, "descr_k %d probes equal the k-basis ones (%g): the option has no effect", kd, ddiff);
+  /* descr_k below k, or more than the shape has, is refused */
+  ss_error e;
+  ss_fmap_probes t;
+  o.k = k, o.descr_k = k - 1;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &t, &e) == SS_ERR_INVALID);
+  o.descr_k = kd + 1;
+  CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &t, &e) == SS_ERR_INVALID);
+  ss_fmap_probes *all[] = {&b0, &bk, &w0, &wk, &bd, &wd, &bbig, &wbig};
+  for (int i = 0; i < 8; i++) ss_fmap_probes_free(all[i]);
+  free(ev), free(phi), free(M), free(X);
+  ss_mesh_free(&mesh);
+}
+
 /* NULLs and bad sizes are reported, never dereferenced */
 static void test_bad_input(void) {
   ss_error e;
@@ -171,5 +236,6 @@ int main(void) {
   test_bad_input();
   test_system_vs_solve();
   test_probes_split();
+  test_descr_k();
   TEST_MAIN_END();
 }

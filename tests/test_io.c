@@ -417,6 +417,15 @@ static void test_memory(void) {
   /* "12" of "12\n" only: a value cut at the buffer's end */
   CHECK(ss_read_ints_memory("12\n", 1, NULL, &ri, &ni, &err) == SS_OK && ni == 1 && ri[0] == 1);
   free(ri);
+  /* with line numbers: comments and blank lines counted */
+  int *rl = NULL;
+  CHECK(ss_read_ints_lines_memory(ints, sizeof ints - 1, "<stdin>", &ri, &rl, &ni, &err) == SS_OK && ni == 2 &&
+        ri[1] == -4 && rl[0] == 2 && rl[1] == 3);
+  free(ri), free(rl);
+  CHECK(ss_read_ints_lines_memory("", 0, NULL, &ri, &rl, &ni, &err) == SS_OK && ni == 0 && ri && rl);
+  free(ri), free(rl);
+  CHECK(ss_read_ints_lines_memory("1\nx\n", 4, "m", &ri, &rl, &ni, &err) == SS_ERR_PARSE && !strncmp(err.msg, "m:2:", 4) &&
+        ri == NULL && rl == NULL);
 
   int *lx, *ly, *ll, nl, cols;
   CHECK(ss_read_landmarks_memory("5\n# c\n1 2\n", 10, "<stdin>", &lx, &ly, &ll, &nl, &cols, &err) == SS_OK &&

@@ -49,6 +49,44 @@ static void test_pair_critical_points(void) {
   CHECK(ss_pair_critical_points(2, 3, 0, dY, dX, &p, &e) == SS_ERR_INVALID);
 }
 
+/* confidence rules on a constructed case (one landmark; X's 3 points choose among Y's 4):
+ *   a0 = 0.0 -> b0 (0.3; second b1 at 0.5: ratio 1.67), but a1 is nearer b0 (0.2): not mutual,
+ *             and its energy is large next to its distance to the landmark (0);
+ *   a1 = 0.5 -> b1 (exact);
+ *   a2 = 1.0 -> b2 (0.1; second b3 at 0.12: ratio 1.2, ambiguous). */
+static void test_pairing_confidence(void) {
+  const double dX[3] = {0.0, 0.5, 1.0}, dY[4] = {0.3, 0.5, 0.9, 1.12};
+  ss_pairing_options po;
+  ss_segment_pairs p;
+  ss_error e;
+  ss_pairing_paper_options(&po);
+  CHECK(ss_pair_critical_points_conf(3, 4, 1, dX, dY, &po, &p, &e) == SS_OK);
+  CHECK(p.n == 3 && p.sy[0] == 0 && p.sy[1] == 1 && p.sy[2] == 2);
+  ss_segment_pairs_free(&p);
+  CHECK(ss_pair_critical_points_conf(3, 4, 1, dX, dY, NULL, &p, &e) == SS_OK); /* NULL = the paper */
+  CHECK(p.n == 3);
+  ss_segment_pairs_free(&p);
+  po.min_ratio = 1.5; /* the ambiguous a2 is left unpaired */
+  CHECK(ss_pair_critical_points_conf(3, 4, 1, dX, dY, &po, &p, &e) == SS_OK);
+  CHECK(p.n == 2 && p.sx[0] == 0 && p.sx[1] == 1);
+  ss_segment_pairs_free(&p);
+  ss_pairing_paper_options(&po);
+  po.mutual = 1; /* a0 is not b0's nearest */
+  CHECK(ss_pair_critical_points_conf(3, 4, 1, dX, dY, &po, &p, &e) == SS_OK);
+  CHECK(p.n == 2 && p.sx[0] == 1 && p.sx[1] == 2 && p.sy[0] == 1 && p.sy[1] == 2);
+  ss_segment_pairs_free(&p);
+  ss_pairing_paper_options(&po);
+  po.max_rel_energy = 0.5; /* a0: energy 0.3 at distance 0 from the landmark */
+  CHECK(ss_pair_critical_points_conf(3, 4, 1, dX, dY, &po, &p, &e) == SS_OK);
+  CHECK(p.n == 2 && p.sx[0] == 1 && p.sx[1] == 2);
+  ss_segment_pairs_free(&p);
+  /* the same rules when Y chooses (roles swapped, output still (X segment, Y segment)) */
+  po.max_rel_energy = 0, po.min_ratio = 1.5;
+  CHECK(ss_pair_critical_points_conf(4, 3, 1, dY, dX, &po, &p, &e) == SS_OK);
+  CHECK(p.n == 2 && p.sx[0] == 0 && p.sy[0] == 0 && p.sx[1] == 1 && p.sy[1] == 1);
+  ss_segment_pairs_free(&p);
+}
+
 /* d(Π(x), GT(x)) / √area as per-vertex errors; returns the mean */
 static double map_error(const ss_mesh *Y, int n, const int *map, double *errors) {
   double mean = NAN;
@@ -59,6 +97,7 @@ static double map_error(const ss_mesh *Y, int n, const int *map, double *errors)
 
 int main(void) {
   test_pair_critical_points();
+  test_pairing_confidence();
 
   ss_error e;
   ss_mesh X = {0}, Y = {0};
@@ -68,7 +107,7 @@ int main(void) {
   int lm[5];
   humanoid_landmarks(&X, lm);
   ss_match_options o;
-  ss_match_default_options(&o);
+  ss_match_paper_options(&o); /* the paper's variants first; the refined default below */
   o.fmap.k = 40;
   ss_shape_prep pX, pY;
   if (ss_shape_prep_compute(&X, &o.seg, 50, &pX, &e) || ss_shape_prep_compute(&Y, &o.seg, 50, &pY, &e)) {
@@ -187,6 +226,7 @@ int main(void) {
   /* ZoomOut from the DIFF map does not make it worse */
   {
     ss_match_result rz;
+    o.refine = SS_REFINE_ZOOMOUT;
     o.fmap.zoomout_kmax = 50;
     CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &o, &rz, &e) == SS_OK);
     if (rz.map) {
@@ -199,6 +239,111 @@ int main(void) {
     o.fmap.zoomout_kmax = 100; /* more than computed */
     CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &o, &rz, &e) == SS_ERR_INVALID);
     o.fmap.zoomout_kmax = 0;
+    o.refine = SS_REFINE_NONE;
+  }
+  /* the refined default (descriptors and refinement at 50: what the shapes carry): the returned map is
+   * the candidate of lowest selection energy, never above its own start, and the energy is that of
+   * the returned map */
+  {
+    ss_match_options od;
+    ss_match_default_options(&od);
+    od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
+    od.refine_w_descr = 0; /* the energy recomputed below is ss_p2p_energy alone */
+    ss_match_result rd;
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &rd, &e) == SS_OK);
+    int c = rd.refine_choice;
+    CHECK(c >= 0 && c <= 3);
+    if (c >= 0 && c <= 3 && rd.map) {
+      for (int i = 0; i < 4; i++) CHECK(isnan(rd.refine_energy[i]) || rd.refine_energy[c] <= rd.refine_energy[i]);
+      CHECK(!isnan(rd.refine_energy[0]) && !isnan(rd.refine_energy[1]) && !isnan(rd.refine_energy[2]));
+      CHECK(rd.refine_energy[c] <= rd.refine_energy[c & ~1]); /* never above its own start */
+      CHECK(rd.kc == (c & 1 ? 50 : 40));
+      double E;
+      CHECK(ss_p2p_energy(pY.mesh->nv, X.nv, pY.evals, pX.evals, pY.evecs, pX.evecs, pX.M, rd.map, 40, 50, 1, 0.0, &E, NULL,
+                          NULL, &e) == SS_OK);
+      CHECK_NEAR(E, rd.refine_energy[c], 1e-12 * fabs(E));
+      double ed = map_error(&Y, X.nv, rd.map, NULL);
+      printf("refined default (40 -> 50): %.4f, candidate %d, energies %.4g %.4g %.4g %.4g\n", ed, c, rd.refine_energy[0],
+             rd.refine_energy[1], rd.refine_energy[2], rd.refine_energy[3]);
+      CHECK(ed < 0.1);
+      CHECK(rd.notes[0] == 0);
+    }
+    ss_match_result_free(&rd);
+    /* with the default selection energy (descriptor residual included): the same invariants */
+    ss_match_default_options(&od);
+    od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
+    CHECK(od.refine_w_descr > 0);
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &rd, &e) == SS_OK);
+    c = rd.refine_choice;
+    CHECK(c >= 0 && c <= 3);
+    if (c >= 0 && c <= 3) {
+      for (int i = 0; i < 4; i++) CHECK(isnan(rd.refine_energy[i]) || rd.refine_energy[c] <= rd.refine_energy[i]);
+      CHECK(rd.refine_energy[c] <= rd.refine_energy[c & ~1]);
+      printf("refined default, descriptor term: %.4f, candidate %d\n", map_error(&Y, X.nv, rd.map, NULL), c);
+    }
+    ss_match_result_free(&rd);
+    /* 3 landmarks: no segment probes (a note says so), the map is STD's */
+    ss_match_result r3, s3;
+    od.refine = SS_REFINE_NONE;
+    CHECK(ss_match_prepared(&pX, &pY, 3, lm, lm, &od, &r3, &e) == SS_OK);
+    od.probes = SS_PROBES_STD;
+    CHECK(ss_match_prepared(&pX, &pY, 3, lm, lm, &od, &s3, &e) == SS_OK);
+    CHECK(strstr(r3.notes, "no segment probes") != NULL && s3.notes[0] == 0);
+    int same = r3.map && s3.map;
+    for (int x = 0; same && x < X.nv; x++) same = r3.map[x] == s3.map[x];
+    CHECK(same);
+    ss_match_result_free(&r3), ss_match_result_free(&s3);
+    /* the same 3 landmarks with the paper's pairing rule use the segments */
+    od.probes = SS_PROBES_DIFF;
+    ss_pairing_paper_options(&od.pairing);
+    CHECK(ss_match_prepared(&pX, &pY, 3, lm, lm, &od, &r3, &e) == SS_OK);
+    CHECK(r3.notes[0] == 0 || r3.pairs.n == 0);
+    ss_match_result_free(&r3);
+  }
+  /* the energy is zero for the identity of a shape with itself, positive for a constant map */
+  {
+    int *id = malloc(sizeof(int) * X.nv);
+    double E0, E1, Eo, El;
+    for (int x = 0; x < X.nv; x++) id[x] = x;
+    CHECK(ss_p2p_energy(X.nv, X.nv, pX.evals, pX.evals, pX.evecs, pX.evecs, pX.M, id, 10, 50, 5, 1.0, &E0, &Eo, &El, &e) == SS_OK);
+    CHECK(E0 < 1e-10 && El < 1e-10);
+    for (int x = 0; x < X.nv; x++) id[x] = 0;
+    CHECK(ss_p2p_energy(X.nv, X.nv, pX.evals, pX.evals, pX.evecs, pX.evecs, pX.M, id, 10, 50, 5, 1.0, &E1, &Eo, &El, &e) == SS_OK);
+    CHECK(E1 > 0.5 && fabs(E1 - (Eo + El)) < 1e-12);
+    id[0] = X.nv;
+    CHECK(ss_p2p_energy(X.nv, X.nv, pX.evals, pX.evals, pX.evecs, pX.evecs, pX.M, id, 10, 50, 5, 1.0, &E1, NULL, NULL, &e) ==
+          SS_ERR_INVALID);
+    /* descriptor residual: 0 for the identity, large for a map onto one vertex, and it tells a
+     * left-right flip of the humanoid (a near-isometry the orthonormality energy accepts) */
+    ss_fmap_shape fx = {&X, pX.M, pX.evals, pX.evecs, pX.kev, NULL, 0};
+    ss_fmap_match_options fo;
+    ss_fmap_match_default_options(&fo);
+    fo.k = 40;
+    ss_fmap_probes pb;
+    CHECK(ss_fmap_base_probes(&fx, 5, lm, &fo, 0, &pb, &e) == SS_OK);
+    double R0, R1;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &R1, &e) == SS_ERR_INVALID);
+    id[0] = 0;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &R1, &e) == SS_OK);
+    for (int x = 0; x < X.nv; x++) id[x] = x;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &R0, &e) == SS_OK);
+    CHECK(R0 < 1e-20 && R1 > 0.3);
+    /* the mirror x -> nearest vertex of (-x, y, z) */
+    for (int x = 0; x < X.nv; x++) {
+      double best = INFINITY;
+      for (int z = 0; z < X.nv; z++) {
+        double dx = X.V[3 * z] + X.V[3 * x], dy = X.V[3 * z + 1] - X.V[3 * x + 1], dz = X.V[3 * z + 2] - X.V[3 * x + 2];
+        double d = dx * dx + dy * dy + dz * dz;
+        if (d < best) best = d, id[x] = z;
+      }
+    }
+    double Rf, Ef;
+    CHECK(ss_p2p_descr_residual(X.nv, X.nv, pX.evecs, pX.evecs, pX.M, &pb, &pb, id, &Rf, &e) == SS_OK);
+    CHECK(ss_p2p_energy(X.nv, X.nv, pX.evals, pX.evals, pX.evecs, pX.evecs, pX.M, id, 10, 50, 5, 0.0, &Ef, NULL, NULL, &e) == SS_OK);
+    printf("left-right flip: descriptor residual %.3f, orthonormality energy %.4f\n", Rf, Ef);
+    CHECK(Rf > 0.1 && Rf > 10 * Ef);
+    ss_fmap_probes_free(&pb);
+    free(id);
   }
   /* bad input */
   {

@@ -4,6 +4,8 @@
 #include "specseg/render.h"
 #include "testlib.h"
 
+#include <unistd.h>
+
 static const unsigned char *px(const unsigned char *img, int w, int x, int y) { return img + 3 * ((size_t)y * w + x); }
 static int is_bg(const unsigned char *p) { return p[0] == 255 && p[1] == 255 && p[2] == 255; }
 
@@ -80,6 +82,24 @@ int main(void) {
   CHECK(sig[0] == 0x89 && sig[1] == 'P' && sig[2] == 'N' && sig[3] == 'G');
   remove(path);
   CHECK(ss_write_png("/nonexistent-dir/x.png", img, 101, 101, NULL) == SS_ERR_IO);
+  /* a failed write: the reason in the message, nothing printed (libpng's own handler wrote
+   * "libpng error: Write Error" on stderr) */
+  if ((f = fopen("/dev/full", "wb")) != NULL) {
+    fclose(f);
+    fflush(stderr);
+    FILE *cap = tmpfile();
+    int saved = dup(2);
+    if (cap && saved >= 0) dup2(fileno(cap), 2);
+    ss_error e = {{0}};
+    ss_status st = ss_write_png("/dev/full", img, 101, 101, &e);
+    fflush(stderr);
+    if (cap && saved >= 0) dup2(saved, 2), close(saved);
+    long printed = cap ? (fseek(cap, 0, SEEK_END), ftell(cap)) : 0;
+    if (cap) fclose(cap);
+    CHECK(st == SS_ERR_IO);
+    CHECK_MSG(strstr(e.msg, "/dev/full: PNG write failed: No space left on device") != NULL, "%s", e.msg);
+    CHECK_MSG(printed == 0, "%ld bytes printed on stderr", printed);
+  }
 
   /* ---- fitted scale and a fixed scale ---- */
   o.width = o.height = 101;

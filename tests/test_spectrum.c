@@ -6,6 +6,13 @@
 #include "specseg/synth.h"
 #include "specseg/spectrum.h"
 #include "testlib.h"
+#include "linalg/cholmod_wrap.h"
+
+#include <omp.h>
+
+/* OpenBLAS (cblas.h's complex.h would define I) */
+void openblas_set_num_threads(int num_threads);
+int openblas_get_num_threads(void);
 
 #define PI 3.14159265358979323846
 
@@ -249,6 +256,160 @@ static void test_subdivide(void) {
   ss_mesh_free(&a);
 }
 
+/* Block Lanczos (SS_EIGS_BLOCK) against ARPACK: same eigenvalues, same accuracy, the same eigenspaces
+ * (eigenvectors up to sign, within a multiple eigenvalue up to a rotation), and which one AUTO picks. */
+static void compare_methods(const ss_mesh *m, int k, const char *what) {
+  ss_sparse W;
+  double *M;
+  CHECK(operators(m, &W, &M) == 0);
+  size_t n = (size_t)m->nv;
+  double *ea = malloc(sizeof(double) * k), *eb = malloc(sizeof(double) * k);
+  double *Xa = malloc(sizeof(double) * n * k), *Xb = malloc(sizeof(double) * n * k);
+  ss_eigs_options o;
+  ss_eigs_stats st;
+  ss_eigs_default_options(&o);
+  o.stats = &st;
+  o.method = SS_EIGS_ARPACK;
+  ss_error e;
+  CHECK_MSG(ss_eigs(&W, M, k, &o, ea, Xa, &e) == SS_OK, "%s", e.msg);
+  CHECK(st.method == SS_EIGS_ARPACK);
+  o.method = SS_EIGS_BLOCK;
+  double t0 = ss_time();
+  CHECK_MSG(ss_eigs(&W, M, k, &o, eb, Xb, &e) == SS_OK, "%s", e.msg);
+  CHECK_MSG(st.method == SS_EIGS_BLOCK, "%s: method %d ran", what, st.method);
+  printf("%s (%d vertices): block Lanczos k=%d in %.3f s, block %d, %d restarts, %d solves\n", what, m->nv, k,
+         ss_time() - t0, st.block, st.restarts, st.operator_applications);
+  check_accuracy(&W, M, k, eb, Xb, what);
+  /* the same bits with one thread and with two (fixed row chunks summed in a fixed order) */
+  {
+    int blas = openblas_get_num_threads(), omp = omp_get_max_threads();
+    double *e1 = malloc(sizeof(double) * k), *e2 = malloc(sizeof(double) * k);
+    double *X1 = malloc(sizeof(double) * n * k), *X2 = malloc(sizeof(double) * n * k);
+    openblas_set_num_threads(1);
+    omp_set_num_threads(1);
+    CHECK(ss_eigs(&W, M, k, &o, e1, X1, NULL) == SS_OK);
+    omp_set_num_threads(2);
+    CHECK(ss_eigs(&W, M, k, &o, e2, X2, NULL) == SS_OK);
+    CHECK_MSG(!memcmp(e1, e2, sizeof(double) * k) && !memcmp(X1, X2, sizeof(double) * n * k),
+              "%s: block Lanczos differs between 1 and 2 threads", what);
+    omp_set_num_threads(omp);
+    openblas_set_num_threads(blas);
+    free(e1); free(e2); free(X1); free(X2);
+  }
+  double worst = 0;
+  for (int i = 0; i < k; i++) worst = fmax(worst, fabs(eb[i] - ea[i]) / (1 + fabs(ea[i])));
+  CHECK_MSG(worst < 1e-10, "%s: eigenvalues differ by %g", what, worst);
+  /* eigenspaces: for each cluster of equal eigenvalues (inside the k), ‖Φ_Aᵀ M Φ_B‖_F² = its size */
+  for (int i = 0; i < k;) {
+    int j = i + 1;
+    while (j < k && fabs(ea[j] - ea[i]) <= 1e-8 * (1 + fabs(ea[i]))) j++;
+    if (j == k) break; /* the last cluster may continue past k: its kept parts may differ */
+    double f2 = 0;
+    for (int a = i; a < j; a++)
+      for (int b = i; b < j; b++) {
+        double d = 0;
+        for (size_t r = 0; r < n; r++) d += Xa[r + n * a] * M[r] * Xb[r + n * b];
+        f2 += d * d;
+      }
+    CHECK_MSG(fabs(f2 - (j - i)) < 1e-8, "%s: eigenspace of lambda_%d (x%d) differs: %g", what, i, j - i, f2);
+    i = j;
+  }
+  free(ea); free(eb); free(Xa); free(Xb); free(M);
+  ss_sparse_free(&W);
+}
+
+static void test_block(void) {
+  ss_mesh m;
+  /* sphere: multiplicities 2l+1 up to 13 inside k = 40, more than the block of 8 */
+  CHECK(ss_synth_icosphere(4, &m, NULL) == SS_OK);
+  compare_methods(&m, 40, "sphere");
+  ss_mesh_free(&m);
+  /* two components: two exact null pairs deflated */
+  {
+    ss_mesh a, b;
+    CHECK(ss_synth_icosphere(3, &a, NULL) == SS_OK);
+    CHECK(ss_synth_icosphere(3, &b, NULL) == SS_OK);
+    ss_mesh_alloc(&m, a.nv + b.nv, a.nf + b.nf, NULL);
+    memcpy(m.V, a.V, sizeof(double) * 3 * a.nv);
+    for (int i = 0; i < b.nv; i++)
+      for (int d = 0; d < 3; d++) m.V[3 * (a.nv + i) + d] = 0.7 * b.V[3 * i + d] + (d == 0 ? 5.0 : 0.0);
+    memcpy(m.F, a.F, sizeof(int) * 3 * a.nf);
+    for (int i = 0; i < 3 * b.nf; i++) m.F[3 * a.nf + i] = b.F[i] + a.nv;
+    compare_methods(&m, 30, "two spheres");
+    ss_mesh_free(&m);
+    ss_mesh_free(&a);
+    ss_mesh_free(&b);
+  }
+  /* AUTO: ARPACK below SS_EIGS_BLOCK_MIN_N vertices or 32 pairs, the block method above */
+  {
+    rect_grid(1.3, 1.0, 131, 121, &m); /* 15,851 vertices */
+    CHECK(m.nv >= SS_EIGS_BLOCK_MIN_N);
+    ss_sparse W;
+    double *M;
+    CHECK(operators(&m, &W, &M) == 0);
+    double ev[40];
+    ss_eigs_options o;
+    ss_eigs_stats st;
+    ss_eigs_default_options(&o);
+    o.stats = &st;
+    CHECK(ss_eigs(&W, M, 40, &o, ev, NULL, NULL) == SS_OK);
+    CHECK_MSG(st.method == SS_EIGS_BLOCK, "AUTO ran method %d at n = %d, k = 40", st.method, m.nv);
+    CHECK(ss_eigs(&W, M, 20, &o, ev, NULL, NULL) == SS_OK);
+    CHECK_MSG(st.method == SS_EIGS_ARPACK, "AUTO ran method %d at k = 20", st.method);
+    /* interior shift: the block method needs σ <= 0, ARPACK runs */
+    o.method = SS_EIGS_BLOCK;
+    o.sigma = 30;
+    CHECK(ss_eigs(&W, M, 5, &o, ev, NULL, NULL) == SS_OK);
+    CHECK(st.method == SS_EIGS_ARPACK);
+    o.sigma = -1e-8;
+    o.method = 7;
+    CHECK(ss_eigs(&W, M, 5, &o, ev, NULL, NULL) == SS_ERR_INVALID);
+    o.method = SS_EIGS_BLOCK;
+    o.block = -1;
+    CHECK(ss_eigs(&W, M, 5, &o, ev, NULL, NULL) == SS_ERR_INVALID);
+    /* Sylvester's inertia from a supernodal factor (a simplicial LDLᵀ in its ordering) = from the
+     * simplicial one */
+    o.method = SS_EIGS_AUTO;
+    o.block = 0;
+    CHECK(ss_eigs(&W, M, 5, &o, ev, NULL, NULL) == SS_OK);
+    ssi_chol *cs = NULL, *cp = NULL;
+    CHECK(ssi_chol_factor(&W, 1.0, M, &cs, NULL) == SS_OK);
+    CHECK(ssi_chol_factor_super(&W, 1.0, M, &cp, NULL) == SS_OK);
+    int ns = -1, np = -2;
+    double tau = ev[4] * 1.001;
+    CHECK(ssi_chol_inertia(cs, &W, -tau, M, &ns, NULL) == SS_OK);
+    CHECK(ssi_chol_inertia(cp, &W, -tau, M, &np, NULL) == SS_OK);
+    int below = 0;
+    for (int i = 0; i < 5; i++) below += ev[i] < tau;
+    CHECK_MSG(ns == below && np == below, "inertia below 1.001 lambda_4: simplicial %d, supernodal %d, %d expected",
+              ns, np, below);
+    /* multi-column solves through any workspace slot and in any grouping give the same columns */
+    size_t nn = (size_t)m.nv;
+    double *B = malloc(sizeof(double) * nn * 9), *X1 = malloc(sizeof(double) * nn * 9), *X2 = malloc(sizeof(double) * nn * 9);
+    for (size_t i = 0; i < nn * 9; i++) B[i] = sin(0.37 * (double)i);
+    CHECK(ssi_chol_solve(cp, B, X1, 9, NULL) == SS_OK);
+    CHECK(ssi_chol_solve_slot(cp, 3, B, X2, 4, NULL) == SS_OK);
+    CHECK(ssi_chol_solve_slot(cp, 1, B + nn * 4, X2 + nn * 4, 5, NULL) == SS_OK);
+    CHECK(ssi_chol_solve_slot(cp, SSI_CHOL_SLOTS, B, X2, 1, NULL) == SS_ERR_INVALID);
+    double dx = 0, xm = 0;
+    for (size_t i = 0; i < nn * 9; i++) { dx = fmax(dx, fabs(X1[i] - X2[i])); xm = fmax(xm, fabs(X1[i])); }
+    CHECK_MSG(dx <= 1e-12 * xm, "solve through other slots differs by %g", dx);
+    CHECK(ssi_chol_solve_slot(cs, 2, B, X2, 9, NULL) == SS_OK);
+    dx = 0;
+    for (size_t i = 0; i < nn * 9; i++) dx = fmax(dx, fabs(X1[i] - X2[i]));
+    CHECK_MSG(dx <= 1e-9 * xm, "simplicial and supernodal solves differ by %g", dx);
+    /* a supernodal LLᵀ refuses an indefinite matrix */
+    ssi_chol *ci = NULL;
+    CHECK(ssi_chol_factor_super(&W, -ev[4], M, &ci, NULL) == SS_ERR_NUMERIC);
+    free(B); free(X1); free(X2);
+    ssi_chol_free(cs);
+    ssi_chol_free(cp);
+    free(M);
+    ss_sparse_free(&W);
+    ss_mesh_free(&m);
+  }
+}
+
 static void test_faust(void) {
   const char *dir = tl_data_dir();
   if (!dir) {
@@ -269,7 +430,13 @@ static void test_faust(void) {
   int k = 100;
   double *ev = malloc(sizeof(double) * k), *X = malloc(sizeof(double) * (size_t)m.nv * k);
   double t0 = ss_time();
-  CHECK_MSG(ss_eigs(&W, M, k, NULL, ev, X, &e) == SS_OK, "%s", e.msg);
+  ss_eigs_options o;
+  ss_eigs_stats st;
+  ss_eigs_default_options(&o);
+  o.stats = &st;
+  CHECK_MSG(ss_eigs(&W, M, k, &o, ev, X, &e) == SS_OK, "%s", e.msg);
+  /* FAUST results are ARPACK's (segmentation and matching results depend on the eigenvectors) */
+  CHECK_MSG(st.method == SS_EIGS_ARPACK, "AUTO ran method %d on FAUST", st.method);
   printf("FAUST tr_reg_000 (%d vertices): k=100 in %.3f s\n", m.nv, ss_time() - t0);
   CHECK_MSG(fabs(ev[0]) < 1e-8, "lambda_0 = %g", ev[0]);
   CHECK(ev[1] > 1e-3);
@@ -284,6 +451,7 @@ int main(void) {
   test_two_components();
   test_rectangle();
   test_subdivide();
+  test_block();
   test_faust();
   TEST_MAIN_END();
 }

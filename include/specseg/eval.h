@@ -67,9 +67,12 @@ SS_API ss_status ss_symmetry_map(const ss_mesh *m, int nl, const int *lm, const 
 /* ---- Results: one row per (scenario, method, pair) -------------------------------------------- */
 
 typedef enum ss_lm_set { SS_LM_BEST = 0, SS_LM_GT = 1, SS_LM_FPS = 2 } ss_lm_set;
-typedef enum ss_eval_method { SS_METHOD_STD = 0, SS_METHOD_ASA = 1, SS_METHOD_DIFF = 2 } ss_eval_method;
+/* STD / ASA / DIFF: the paper's maps (ss_match_paper_options); REFINED: the library's default output
+ * (ss_match_default_options with the run's k: refined, selected by its unsupervised energy) */
+typedef enum ss_eval_method { SS_METHOD_STD = 0, SS_METHOD_ASA = 1, SS_METHOD_DIFF = 2, SS_METHOD_REFINED = 3 } ss_eval_method;
+#define SS_EVAL_NMETHODS 4
 SS_API const char *ss_lm_set_name(ss_lm_set s);           /* "best" | "gt" | "fps" */
-SS_API const char *ss_eval_method_name(ss_eval_method m); /* "std" | "asa" | "diff" */
+SS_API const char *ss_eval_method_name(ss_eval_method m); /* "std" | "asa" | "diff" | "refined" */
 SS_API int ss_lm_set_parse(const char *s);
 SS_API int ss_eval_method_parse(const char *s);
 
@@ -96,16 +99,16 @@ SS_API ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nro
  * must agree (else SS_ERR_INVALID naming the key). n is updated. */
 SS_API ss_status ss_eval_rows_canonical(ss_eval_row *rows, int *n, ss_error *err);
 
-/* Table 1 layout: 12 rows (FAUST {best,gt,fps}, subj ×3, pose ×3, sym ×3) × 3 methods. The sym
- * rows average error_sym of the random-policy rows. Means are summed in canonical row order, so
- * any split of the rows into shards gives bit-identical means. */
+/* Table 1 layout: 12 rows (FAUST {best,gt,fps}, subj ×3, pose ×3, sym ×3) × 4 methods (the paper's
+ * three, then the refined default). The sym rows average error_sym of the random-policy rows. Means
+ * are summed in canonical row order, so any split of the rows into shards gives bit-identical means. */
 typedef struct ss_table1 {
-  double mean[12][3];
-  int count[12][3];
+  double mean[12][SS_EVAL_NMETHODS];
+  int count[12][SS_EVAL_NMETHODS];
 } ss_table1;
 /* rows need not be canonical (a sorted copy is made). */
 SS_API ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_error *err);
-/* The paper's Table 1 values, same layout. */
+/* The paper's Table 1 values, same rows, its three methods. */
 SS_API extern const double ss_table1_paper[12][3];
 SS_API extern const char *const ss_table1_row_names[12];
 
@@ -122,7 +125,9 @@ typedef void (*ss_table1_log_fn)(void *user, const char *line);
 typedef struct ss_table1_options {
   const char *data_dir;   /* folder with faust/tr_reg_NNN.off and faust/landmarks_best.txt */
   const char *out_csv;    /* results file: rows already there are skipped (resume); new rows appended */
-  const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there */
+  const char *cache_dir;  /* NULL: in-memory only; else per-shape preparation cached there, one file
+                             per shape with its key (library version, input mesh hash, options) and
+                             a 64-bit FNV-1a checksum */
   int npairs;             /* per policy (default 100) */
   uint64_t seed;          /* default 1 */
   int jobs;               /* parallel work units (OpenMP threads); 0 = omp default */
@@ -133,11 +138,17 @@ typedef struct ss_table1_options {
                              shape, whose exact fields are computed once per target (64 gave -29%..+12%
                              per row against the exact mean) */
   int k;                  /* eigenpairs of the functional map basis (default 50) */
-  int policies_mask, lm_mask, methods_mask; /* bit sets of what to run (default all 7) */
+  /* bit sets of what to run: policies and landmark sets default to all (7), methods to the paper's
+   * STD / ASA / DIFF (7); 1 << SS_METHOD_REFINED adds the refined default, whose shapes carry their
+   * own max(k, descr_k, zoomout_kmax) eigenpairs (kept in the same cache entry) */
+  int policies_mask, lm_mask, methods_mask;
   /* Progress and messages go to the caller (the library prints nothing). Both may be NULL (the
    * default); they are called one at a time (from whichever worker thread), with `user`. */
   ss_table1_progress_fn progress; /* after each prepared shape and each finished row */
-  ss_table1_log_fn log;           /* one line per stage (no newline) */
+  ss_table1_log_fn log;           /* one line per stage (no newline), and one for every cache entry found
+                                     damaged (checksum, length) or written for another key (version,
+                                     mesh, options): such an entry is never used, it is recomputed and
+                                     rewritten */
   void *user;
 } ss_table1_options;
 

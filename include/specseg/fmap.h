@@ -178,6 +178,69 @@ SS_API ss_status ss_fmap_from_p2p(int n_S, int n_T, int k_S, int k_T, const doub
 SS_API ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                             const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err);
 
+/* ZoomOut on vertex samples (as ZoomOut's authors run it): the iterations above for the sampled
+ * target rows of Φ_T only, their images among the sampled source rows of Φ_S or (sub_S = NULL) among
+ * every source vertex, then one point map of every target vertex from the final C (kmax x kmax)
+ * among all source vertices, then `polish` iterations at kmax on every vertex (C ← Φ_Tᵀ M_T Π Φ_S,
+ * point map). Images among source samples are quantised to the samples' spacing, which limits the
+ * accuracy (FAUST, 1,000 samples: ~10% worse maps than among every vertex, docs/tuning.md). The
+ * spectral up-sampling on the samples is the weighted sum
+ * B = Φ_T[sub_T]ᵀ diag(w_T) Π Φ_S[sub_S] (lstsq 0), or its weighted least-squares version
+ * C = G⁻¹ B with G = Φ_T[sub_T]ᵀ diag(w_T) Φ_T[sub_T] (lstsq 1: the coefficients on T that best fit
+ * the pulled-back functions at the samples; corrects the samples' quadrature error, which the
+ * weighted sum leaves at high frequencies; G's Cholesky factor is made once at kmax and its leading
+ * blocks serve every size; a G that is not positive definite falls back to the weighted sum). Its
+ * cost per iteration scales with the samples, not the vertices. With every vertex its own sample
+ * (sub = 0..n−1 in order, w_T = M_T), lstsq 0 and polish 0 it is ss_zoomout bit for bit
+ * (tests/test_fmap.c). */
+typedef struct ss_zoomout_sample {
+  int ns_S, ns_T;       /* samples on each shape (1 ≤ ns ≤ n; ns_S unused without sub_S) */
+  const int *sub_S;     /* ns_S source vertices, or NULL: every source vertex */
+  const int *sub_T;     /* ns_T target vertices */
+  const double *w_T;    /* ns_T weights of the target samples (e.g. their Voronoi areas) */
+  const int *near_T;    /* may be NULL: n_T entries, a sample (index into sub_T) near each target
+                           vertex; its image is the final search's starting guess (speed only) */
+  const int *part_S;    /* may be NULL: a partition of the source's full Φ_S (kmax columns) for the
+                           final searches (ss_nn_exact_guided; speed only, e.g. shared by two calls) */
+  int lstsq;            /* 0: weighted sum, 1: weighted least squares (see above) */
+  int polish;           /* iterations at kmax on every vertex after the sampled ones (>= 0) */
+  const double *M_T;    /* n_T lumped masses of the target (needed when polish > 0) */
+} ss_zoomout_sample;
+
+SS_API ss_status ss_zoomout_sampled(int n_S, int n_T, const double *evecs_S, const double *evecs_T, int k0,
+                                    const double *C0, int kmax, int step, const ss_zoomout_sample *smp, int *map,
+                                    double *C_out, ss_error *err);
+
+/* Samples for ss_zoomout_sampled: ns vertices of m by Euclidean farthest-point sampling from vertex
+ * 0 (sub[0] = 0), each vertex's nearest sample in R³ (near, n entries; ties to the earlier sample)
+ * and each sample's weight w = Σ M over the vertices nearest to it (its Voronoi area; M: lumped
+ * masses, n entries; w and M may both be NULL). ns ≤ m->nv. */
+SS_API ss_status ss_zoomout_samples(const ss_mesh *m, const double *M, int ns, int *sub, double *w, int *near,
+                                    ss_error *err);
+
+/* An unsupervised energy of a point map π : T -> S (map[n_T]), no ground truth: with C the functional
+ * map of π at size K (ss_fmap_from_p2p: C = Φ_Tᵀ M_T Π Φ_S) and C_k its leading k x k block,
+ *   E_orth = mean over k = k0, k0+step, …, K of ‖C_kᵀ C_k − I_k‖²_F / k
+ * (ZoomOut's energy, Melzi et al. 2019: the pull-back of an area-preserving bijection is orthonormal
+ * at every size), and
+ *   E_lap = Σ_ij C_ij² (λ_T,i − λ_S,j)² / Σ_ij C_ij² (λ_T,i² + λ_S,j²)
+ * (scale-free Laplacian commutativity: an isometry maps eigenfunctions to eigenfunctions of the same
+ * eigenvalue). *E = E_orth + w_lap · E_lap; E_orth, E_lap (may be NULL) receive the two terms.
+ * evecs/evals need ≥ K eigenpairs. */
+SS_API ss_status ss_p2p_energy(int n_S, int n_T, const double *evals_S, const double *evals_T, const double *evecs_S,
+                               const double *evecs_T, const double *M_T, const int *map, int k0, int K, int step,
+                               double w_lap, double *E, double *E_orth, double *E_lap, ss_error *err);
+
+/* Descriptor preservation of a point map π : T -> S (map[n_T]), no ground truth: the probes of both
+ * shapes (S, T: the same columns, e.g. ss_fmap_base_probes' WKS + landmark wave kernels) synthesised
+ * in their bases, F = Φ A (k = S->k, T->k columns of evecs), and
+ *   *E = Σ_t M_T(t) ‖F_T(t) − F_S(π(t))‖² / Σ_t M_T(t) ‖F_T(t)‖².
+ * Unlike the orthonormality energy it sees a left–right flip (the landmark probes break the
+ * symmetry). */
+SS_API ss_status ss_p2p_descr_residual(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T,
+                                       const ss_fmap_probes *S, const ss_fmap_probes *T, const int *map, double *E,
+                                       ss_error *err);
+
 /* ----------------------------------------------------------- pipeline (fmap_match.c) */
 
 /* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric
@@ -217,6 +280,16 @@ typedef struct ss_fmap_match_options {
    * the defaults were chosen: docs/tuning.md. */
   double w_extra;
   int extra_dcomm;
+  /* Eigenpairs the probe functions (WKS, landmark wave kernels, wave-filtered extras) are computed
+   * from, independently of the basis size k in which Eq. (1) is solved: the probes are synthesised
+   * from the first descr_k eigenpairs, then projected onto the first k. 0 = k (NO17 and the paper:
+   * what specseg eval's Table 1 uses). Must be 0 or >= k; the shapes need that many eigenpairs. */
+  int descr_k;
+  /* ZoomOut on this many vertex samples of the target (X; ss_zoomout_samples), their images among
+   * every vertex of the other shape (ss_zoomout_sampled with the least-squares up-sampling and one
+   * iteration on every vertex at the end); 0 (default) or at least X's vertex count: on every vertex
+   * (ss_zoomout). */
+  int zoomout_samples;
   /* 1: no WKS columns among the base probes, so the shapes' own descriptors (ss_fmap_shape.descr)
    * replace them; default 0 (WKS, then the shapes' descriptors, if any) */
   int no_wks;

@@ -91,6 +91,12 @@ SS_API ss_status ss_write_doubles(const char *path, const double *v, int n, ss_e
 SS_API ss_status ss_read_ints_memory(const void *buf, size_t len, const char *name, int **out, int *n, ss_error *err);
 SS_API ss_status ss_read_doubles_memory(const void *buf, size_t len, const char *name, double **out, int *n,
                                         ss_error *err);
+/* ss_read_ints with *lines: the n malloc'd 1-based line numbers of the values (comments and blank
+ * lines skipped), so a caller that checks the values (a map against its target mesh) can say
+ * "PATH:LINE: ..."; and the same of len bytes in memory (name NULL: "<memory>"). */
+SS_API ss_status ss_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err);
+SS_API ss_status ss_read_ints_lines_memory(const void *buf, size_t len, const char *name, int **out, int **lines, int *n,
+                                           ss_error *err);
 /* Landmark file: one landmark a line, "i" (same vertex on both shapes) or "i j" (i on the first shape,
  * j on the second); '#' comments and blank lines skipped. *lx, *ly: n malloc'd vertex indices (ly =
  * lx on one-column lines). columns (may be NULL): 2 when any line has two indices, else 1. Errors

@@ -23,6 +23,27 @@ typedef struct ss_segment_pairs {
   int nx, ny;     /* critical points (segments) on each shape */
 } ss_segment_pairs;
 
+/* Confidence rules on top of the paper's pairing (all off = the paper's rule; ss_pairing_default_options
+ * gives the library's defaults, chosen in docs/tuning.md). For a chooser a (a critical point of the
+ * shape with fewer of them) with best candidate b* (energy e1) and second-best candidate (e2):
+ *  - min_ratio > 1: the pair is kept only when e2 ≥ min_ratio · e1 (an unambiguous choice);
+ *  - mutual: kept only when a is also the best chooser for b* among ALL choosers (mutual nearest
+ *    neighbours in landmark-distance space; the paper keeps the best of those that chose b*);
+ *  - max_rel_energy > 0: kept only when e1 ≤ max_rel_energy · ‖d(a)‖ / √nl, ‖d(a)‖/√nl the RMS
+ *    distance of a to the landmarks: the energy relative to how far the point is from them;
+ *  - min_landmarks: with fewer landmarks ss_match_prepared uses no segment probes at all (it says so
+ *    in its notes); the pairing itself is still computed and reported. */
+typedef struct ss_pairing_options {
+  double min_ratio;
+  int mutual;
+  double max_rel_energy;
+  int min_landmarks;
+} ss_pairing_options;
+
+SS_API void ss_pairing_default_options(ss_pairing_options *o);
+/* The paper's rule: every confidence test off, min_landmarks 1. */
+SS_API void ss_pairing_paper_options(ss_pairing_options *o);
+
 /* §6.1. lmX/lmY: nl corresponding landmarks given as INPUT vertices (< X->nv, < Y->nv); Ψ carries
  * them to the work meshes. Exact (VTP) fields from each landmark on both work meshes, each divided
  * by √area(work). For every critical point x of the shape with fewer of them (X on ties) the
@@ -36,6 +57,12 @@ SS_API ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentatio
  * dX[s + mx·i] = scaled distance from landmark i to critical point s of X), likewise dY (my x nl). */
 SS_API ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
                                          ss_segment_pairs *out, ss_error *err);
+/* The same two with the confidence rules of po (NULL: the paper's rule, as the calls above). */
+SS_API ss_status ss_pair_critical_points_conf(int mx, int my, int nl, const double *dX, const double *dY,
+                                              const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err);
+SS_API ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
+                                       const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
+                                       ss_error *err);
 SS_API void ss_segment_pairs_free(ss_segment_pairs *p);
 
 /* ---- Segment probe functions (segment_probes.c) ------------------------------------------------- */
@@ -85,21 +112,51 @@ typedef enum ss_probe_set {
   SS_PROBES_DIFF = 2  /* + the same functions filtered by the wave kernel */
 } ss_probe_set;
 
+/* What ss_match_prepared returns (ss_match_options.refine). */
+typedef enum ss_refine_mode {
+  SS_REFINE_NONE = 0,    /* the point map of the chosen probes' functional map at size k (the paper's
+                            STD / ASA / DIFF maps) */
+  SS_REFINE_ZOOMOUT = 1, /* ZoomOut of that map up to fmap.zoomout_kmax */
+  SS_REFINE_BEST = 2     /* default: the starts STD and, with ASA / DIFF probes and segments paired,
+                            the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax
+                            (default 120, step fmap.zoomout_step 5, on fmap.zoomout_samples 2,000
+                            samples of X then once on every vertex: docs/tuning.md); of
+                            the starts and their refinements the map with the lowest selection energy
+                            ss_p2p_energy (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap =
+                            refine_w_lap) + refine_w_descr · ss_p2p_descr_residual (the base probes,
+                            at size k) is returned — a refinement only when not above its own start
+                            by that energy. No ground truth. */
+} ss_refine_mode;
+
 typedef struct ss_match_options {
   ss_probe_set probes;        /* default DIFF */
-  ss_fmap_match_options fmap; /* k, WKS, weights; fmap.zoomout_kmax > k enables ZoomOut */
+  ss_fmap_match_options fmap; /* k, WKS, weights, descr_k; fmap.zoomout_kmax: size of the refinement */
   ss_segment_options seg;     /* segmentation of both shapes */
   /* the profile of a paired segment's probe function (ASA and DIFF); default SS_PROFILE_TENT at the
    * default k = 50, SS_PROFILE_SOFT is better for k >= 60 (docs/tuning.md) */
   ss_segment_profile segment_profile;
+  ss_pairing_options pairing; /* confidence rules of the pairing (ss_pairing_default_options) */
+  ss_refine_mode refine;      /* default SS_REFINE_BEST */
+  double refine_w_lap;        /* w_lap of the selection energy (ss_p2p_energy) */
+  double refine_w_descr;      /* weight of the descriptor residual in the selection energy */
+  /* fmap.descr_k of the segment-aided (ASA / DIFF) map; fmap.descr_k is the STD map's. Default 0
+   * (= k, the paper's probes): with descriptors from 100 eigenpairs DIFF got worse (docs/tuning.md). */
+  int seg_descr_k;
+  /* SS_REFINE_BEST: refine only the start with the lower selection energy (the other start stays a
+   * candidate unrefined); 0: refine every start */
+  int refine_single;
   /* the caller's own descriptors (default none): ndescr columns on each shape, descrX nX x ndescr and
    * descrY nY x ndescr column-major, column j of one corresponding to column j of the other; probes
-   * beside the WKS (or instead of it with fmap.no_wks), as ss_fmap_shape.descr */
+   * beside the WKS (or instead of it with fmap.no_wks), as ss_fmap_shape.descr; rows of the input
+   * meshes' vertices (ss_match keeps the rows of the components it matches) */
   int ndescr;
   const double *descrX, *descrY;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);
+/* The paper's STD / ASA / DIFF as the paper defines them (what specseg eval's Table 1 uses): the
+ * defaults with descr_k = k, the paper's pairing rule (ss_pairing_paper_options) and no refinement. */
+SS_API void ss_match_paper_options(ss_match_options *o);
 
 typedef struct ss_match_result {
   int nX;           /* vertices of X */
@@ -110,16 +167,45 @@ typedef struct ss_match_result {
   int *centerX, *centerY; /* pairs.n: input vertices at the centres of the paired segments */
   /* seconds per stage */
   double t_segment, t_eigs, t_pair, t_fmap, t_zoomout, t_total;
+  /* SS_REFINE_BEST: the candidate returned (0 STD start, 1 STD refined, 2 segment-aided start,
+   * 3 segment-aided refined) and the selection energies of the four (NAN: not computed); -1 and NANs
+   * with the other modes */
+  int refine_choice;
+  double refine_energy[4];
+  /* what the caller should know, e.g. that segment probes were not used (empty: nothing) */
+  char notes[256];
 } ss_match_result;
 
-/* Matches two prepared shapes (each with ≥ max(k, zoomout_kmax) eigenpairs). lmX/lmY: nl input
- * vertices. With STD the pairing is still computed (and reported) but not used. */
+/* Matches two prepared shapes (each with ≥ max(k, zoomout_kmax, descr_k) eigenpairs; zoomout_kmax
+ * only with refinement). lmX/lmY: nl input vertices. With STD the pairing is still computed (and
+ * reported) but not used; with fewer than pairing.min_landmarks landmarks, or no segment paired, ASA
+ * and DIFF fall back to STD and say so in notes. */
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);
 
-/* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL. */
+/* The same with the pairing given instead of computed (e.g. by ss_pair_critical_points_conf from
+ * landmark fields cached per shape, as specseg eval does; opts->pairing is then not used, except
+ * min_landmarks): pairs (sx < X->seg.m, sy < Y->seg.m) is copied into out->pairs. With the pairing
+ * ss_match_prepared would compute, the result is the same. */
+SS_API ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                         const int *lmY, const ss_segment_pairs *pairs, const ss_match_options *opts,
+                                         ss_match_result *out, ss_error *err);
+
+/* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL.
+ * Meshes of several components: the map is only determined on components that hold a landmark, so
+ * on each mesh the components with at least one landmark are kept and matched (the body of a scan,
+ * without its crumbs; every component when each has a landmark); a vertex of X on a dropped
+ * component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X maps to
+ * a dropped vertex of Y. map, centerX and centerY refer to the input meshes' vertices; C, the basis
+ * and pairs (segment indices) to the kept parts. Unreferenced vertices are refused as for one
+ * component. */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                           const ss_match_options *opts, ss_match_result *out, ss_error *err);
+/* The same, with what was dropped in `warnings` (warnings_size bytes, may be NULL; "" when nothing):
+ * per mesh, the components kept, their share of the vertices and the area, and the dropped ones. */
+SS_API ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
+                               const ss_match_options *opts, ss_match_result *out, char *warnings,
+                               size_t warnings_size, ss_error *err);
 SS_API void ss_match_result_free(ss_match_result *r);
 
 #ifdef __cplusplus

@@ -51,7 +51,7 @@ SS_API ss_status ss_ivd(const ss_graph *g, const int *centers, int ncenters, dou
 /* ---- The whole pipeline ------------------------------------------------------------------------- */
 
 typedef struct ss_segment_options {
-  int target_faces;    /* remeshing target triangle count; default 15000 */
+  int target_faces;    /* remeshing target triangle count; default 15000, at most SS_REMESH_MAX_FACES */
   int no_streamline;   /* 1: Fiedler + critical points + iVd straight on the input (no CMCF/remesh) */
   int cleanup_rings;   /* critical-point clean-up radius in rings (0 = off); default 5 (the authors') */
   int n_eigs;          /* eigenpairs computed (the Fiedler vector is the 2nd); default 2, min 2 */

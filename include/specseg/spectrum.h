@@ -1,4 +1,5 @@
-/* specseg — the k smallest eigenpairs of W φ = λ M φ (ARPACK shift-invert on CHOLMOD). */
+/* specseg — the k smallest eigenpairs of W φ = λ M φ (shift-invert on CHOLMOD: ARPACK, or block
+ * Lanczos on large meshes). */
 #ifndef SPECSEG_SPECTRUM_H
 #define SPECSEG_SPECTRUM_H
 
@@ -12,13 +13,32 @@ extern "C" {
 typedef struct ss_eigs_stats {
   int null_pairs;          /* exact λ = 0 pairs (components) */
   double factor_nnz;       /* non-zeros of the Cholesky factor */
-  double t_factor, t_arpack;
+  double t_factor, t_arpack; /* t_arpack: the Lanczos iteration, ARPACK's or the block method's */
   int operator_applications;
   double t_solves;         /* inside t_arpack */
   double t_completeness;   /* inertia check and recovery of missed pairs */
   int recovered;
   double t_orthonormalize, t_rayleigh;
+  int method;   /* the solver that ran: SS_EIGS_ARPACK or SS_EIGS_BLOCK (0 when only null pairs) */
+  int block;    /* SS_EIGS_BLOCK: block size and thick restarts taken */
+  int restarts;
 } ss_eigs_stats;
+
+/* Which Lanczos process computes the pairs (both give the same eigenvalues to ~1e-12 relative and
+ * eigenpairs to the same accuracy; eigenvectors agree up to sign, and within an eigenspace of a
+ * multiple eigenvalue up to a rotation):
+ *  - SS_EIGS_ARPACK: implicitly restarted Lanczos one vector at a time (ARPACK) on a simplicial
+ *    LDLᵀ factor. Fastest on small meshes; any shift.
+ *  - SS_EIGS_BLOCK: thick-restart block Lanczos on a supernodal LLᵀ factor, solving blocks of right-
+ *    hand sides at once and reorthogonalising with matrix-matrix products, both shared over the
+ *    OpenMP threads (eigs_block.c). Only for σ <= 0 (positive definite shifted matrix); otherwise,
+ *    or when the shifted matrix is not positive definite or the mesh too small for the block basis,
+ *    ARPACK runs instead.
+ *  - SS_EIGS_AUTO (default): SS_EIGS_BLOCK from SS_EIGS_BLOCK_MIN_N vertices and 32 pairs on,
+ *    SS_EIGS_ARPACK below, where it was measured faster (and where every FAUST and TOSCA
+ *    matching and segmentation computation runs, so their results are those of ARPACK). */
+typedef enum ss_eigs_method { SS_EIGS_AUTO = 0, SS_EIGS_ARPACK = 1, SS_EIGS_BLOCK = 2 } ss_eigs_method;
+#define SS_EIGS_BLOCK_MIN_N 15000
 
 typedef struct ss_eigs_options {
   double sigma; /* shift; default -1e-8 (just below 0 so W - σM is positive definite). A negative
@@ -26,10 +46,12 @@ typedef struct ss_eigs_options {
                    |σ|·Σ M, is kept within [1e-10, 1e-3] (σ is used as given inside that band,
                    e.g. the default on any shape of area 1e-2 ... 1e5; the nearer end of the
                    band outside it), so results scale exactly with the shape */
-  double tol;   /* ARPACK tolerance; default 1e-10 */
-  int ncv;      /* Krylov dimension; 0 = automatic */
-  int maxiter;  /* 0 = automatic */
+  double tol;   /* convergence tolerance (ARPACK's test, both methods); default 1e-10 */
+  int ncv;      /* Krylov dimension (block: most basis vectors kept); 0 = automatic */
+  int maxiter;  /* restarts; 0 = automatic */
   ss_eigs_stats *stats; /* NULL (default), or receives the timing breakdown of the call */
+  int method;   /* ss_eigs_method; default SS_EIGS_AUTO */
+  int block;    /* block size of SS_EIGS_BLOCK; 0 = automatic */
 } ss_eigs_options;
 
 SS_API void ss_eigs_default_options(ss_eigs_options *o);
@@ -38,7 +60,9 @@ SS_API void ss_eigs_default_options(ss_eigs_options *o);
  * eigenvalues ascending into evals[k] and M-orthonormal eigenvectors, column-major n x k, into evecs
  * (evecs may be NULL when only eigenvalues are wanted). opts may be NULL for defaults.
  * More precisely: the k eigenvalues nearest sigma (as scipy's eigsh(..., sigma=σ)), which for the
- * default σ just below 0 are the k smallest. Needs 1 <= k < n. Deterministic (fixed start vector).
+ * default σ just below 0 are the k smallest. Needs 1 <= k < n; k up to (n + c − 1) / 2 (c: components)
+ * leaves the Lanczos solver the ~2k vectors it needs, above that it may fail (SS_ERR_NUMERIC, the
+ * message says which k works). Deterministic (fixed start vector).
  * Errors: SS_ERR_INVALID (bad k, sizes, non-positive or non-finite mass, bad options),
  * SS_ERR_NUMERIC (singular shifted matrix, no convergence, ARPACK failure), SS_ERR_NOMEM.
  * For sigma <= 0 the λ = 0 pairs of components on which W annihilates constants (any Laplacian) are

@@ -241,12 +241,12 @@ def _descriptors(fn, V, F, k, n, extra):
     return np.ascontiguousarray(D.T)
 
 
-def wks(V, F, k=50, n=100):
+def wks(V, F, k=100, n=100):
     """Wave kernel signature (Aubry et al. 2011) per vertex, as ``specseg descriptors --wks``.
 
     From the k smallest Laplace-Beltrami eigenpairs (barycentric masses): n log-spaced energies with
     sigma = 7 energy spacings, the zero eigenvalue filtered out, each column normalised to unit L2(M)
-    norm — the WKS ``specseg match`` uses (its defaults k = 50, n = 100). The result can be saved with
+    norm — the WKS ``specseg match`` uses (its defaults: descriptors from 100 eigenpairs, n = 100). The result can be saved with
     numpy.save and given to ``specseg match --descriptors``, or passed to `match` as ``descriptors``.
 
     Parameters
@@ -256,7 +256,7 @@ def wks(V, F, k=50, n=100):
     F : array_like of int, shape (m, 3)
         Triangles as 0-based vertex indices.
     k : int, optional
-        Eigenpairs, 3 <= k < nv (default 50).
+        Eigenpairs, 3 <= k < nv (default 100, the eigenpairs `match` computes its WKS from).
     n : int, optional
         Energies, 1..10000 (default 100).
 
@@ -274,7 +274,7 @@ def wks(V, F, k=50, n=100):
     return _descriptors(lib.ss_wks, V, F, k, n, (C.c_double(7.0),))
 
 
-def hks(V, F, k=50, n=100):
+def hks(V, F, k=100, n=100):
     """Heat kernel signature (Sun et al. 2009) per vertex, as ``specseg descriptors --hks``.
 
     From the k smallest Laplace-Beltrami eigenpairs: n times log-spaced from 4 ln 10 / lambda_max to
@@ -288,7 +288,7 @@ def hks(V, F, k=50, n=100):
     F : array_like of int, shape (m, 3)
         Triangles as 0-based vertex indices.
     k : int, optional
-        Eigenpairs, 3 <= k < nv (default 50).
+        Eigenpairs, 3 <= k < nv (default 100, as `wks`).
     n : int, optional
         Times, 1..10000 (default 100).
 

@@ -105,13 +105,21 @@ class ss_fmap_match_options(C.Structure):
     _fields_ = [("k", C.c_int), ("n_energies", C.c_int), ("sigma_factor", C.c_double), ("descr_step", C.c_int),
                 ("w_descr", C.c_double), ("w_lap", C.c_double), ("w_dcomm", C.c_double), ("fix_constant", C.c_int),
                 ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int),
-                ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("no_wks", C.c_int)]
+                ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("descr_k", C.c_int),
+                ("zoomout_samples", C.c_int), ("no_wks", C.c_int)]
+
+
+class ss_pairing_options(C.Structure):
+    _fields_ = [("min_ratio", C.c_double), ("mutual", C.c_int), ("max_rel_energy", C.c_double),
+                ("min_landmarks", C.c_int)]
 
 
 class ss_match_options(C.Structure):
     _fields_ = [("probes", C.c_int), ("fmap", ss_fmap_match_options), ("seg", ss_segment_options),
-                ("segment_profile", C.c_int), ("ndescr", C.c_int), ("descrX", C.POINTER(C.c_double)),
-                ("descrY", C.POINTER(C.c_double))]
+                ("segment_profile", C.c_int), ("pairing", ss_pairing_options), ("refine", C.c_int),
+                ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double),
+                ("seg_descr_k", C.c_int), ("refine_single", C.c_int), ("ndescr", C.c_int),
+                ("descrX", C.POINTER(C.c_double)), ("descrY", C.POINTER(C.c_double))]
 
 
 class ss_segment_pairs(C.Structure):
@@ -123,7 +131,8 @@ class ss_match_result(C.Structure):
     _fields_ = [("nX", C.c_int), ("map", C.POINTER(C.c_int)), ("kc", C.c_int), ("C", C.POINTER(C.c_double)),
                 ("pairs", ss_segment_pairs), ("centerX", C.POINTER(C.c_int)), ("centerY", C.POINTER(C.c_int)),
                 ("t_segment", C.c_double), ("t_eigs", C.c_double), ("t_pair", C.c_double), ("t_fmap", C.c_double),
-                ("t_zoomout", C.c_double), ("t_total", C.c_double)]
+                ("t_zoomout", C.c_double), ("t_total", C.c_double), ("refine_choice", C.c_int),
+                ("refine_energy", C.c_double * 4), ("notes", C.c_char * 256)]
 
 
 class ss_render_options(C.Structure):

@@ -42,8 +42,54 @@ static double thread_cpu(void) {
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
+static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                             int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int *paired, ss_error *err);
+
+/* the refined default (SS_METHOD_REFINED): the confident pairing from the cached landmark fields,
+ * then ss_match_prepared_pairs on the shapes' refined eigenpairs */
+static ss_status match_refined(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int *map, int *paired,
+                               ss_error *err) {
+  if (ctx->kref <= 0 || !X->rprep.evecs || !Y->rprep.evecs)
+    return ss_fail(err, SS_ERR_INVALID, "eval: the refined method needs the shapes' refined eigenpairs");
+  ss_segment_pairs pr;
+  ss_status st = ss_pair_critical_points_conf(X->prep.seg.m, Y->prep.seg.m, EV_NL, X->lmd[lmset], Y->lmd[lmset],
+                                              &ctx->ropt.pairing, &pr, err);
+  if (st) return st;
+  ss_match_result res;
+  st = ss_match_prepared_pairs(&X->rprep, &Y->rprep, EV_NL, ev_landmarks(ctx, X, lmset), ev_landmarks(ctx, Y, lmset), &pr,
+                               &ctx->ropt, &res, err);
+  ss_segment_pairs_free(&pr);
+  if (st) return st;
+  memcpy(map, res.map, sizeof(int) * (size_t)X->mesh.nv);
+  *paired = res.pairs.n;
+  ss_match_result_free(&res);
+  return SS_OK;
+}
+
 ss_status ev_match_methods(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
-                           int *const maps[3], double cpu[3], int *paired, ss_error *err) {
+                           int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int paired_out[SS_EVAL_NMETHODS],
+                           ss_error *err) {
+  int paired_ref = 0;
+  double c_ref = 0;
+  if (methods_mask >> SS_METHOD_REFINED & 1) {
+    double c0 = thread_cpu();
+    ss_status st = match_refined(ctx, X, Y, lmset, maps[SS_METHOD_REFINED], &paired_ref, err);
+    if (st) return st;
+    c_ref = thread_cpu() - c0;
+  }
+  int paired_paper = 0;
+  ss_status st = SS_OK;
+  if (methods_mask & 7) st = match_paper(ctx, X, Y, lmset, methods_mask & 7, maps, cpu, &paired_paper, err);
+  if (st) return st;
+  if (cpu) cpu[SS_METHOD_REFINED] = c_ref;
+  if (paired_out)
+    for (int m = 0; m < SS_EVAL_NMETHODS; m++) paired_out[m] = m == SS_METHOD_REFINED ? paired_ref : paired_paper;
+  return SS_OK;
+}
+
+/* the paper's methods of one pair and landmark set (mask within 7) */
+static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int methods_mask,
+                             int *const maps[SS_EVAL_NMETHODS], double cpu[SS_EVAL_NMETHODS], int *paired, ss_error *err) {
   const ss_shape_prep *pX = &X->prep, *pY = &Y->prep;
   const double c_start = thread_cpu();
   ss_fmap_shape sX = fmap_shape(X), sY = fmap_shape(Y);
@@ -108,8 +154,10 @@ done:
 
 ss_status ev_match(const ev_context *ctx, const ev_shape *X, const ev_shape *Y, int lmset, int method, int *map,
                    int *paired, ss_error *err) {
-  if (method < 0 || method > 2) return ss_fail(err, SS_ERR_INVALID, "eval: unknown method %d", method);
-  int *maps[3] = {NULL, NULL, NULL};
+  if (method < 0 || method >= SS_EVAL_NMETHODS) return ss_fail(err, SS_ERR_INVALID, "eval: unknown method %d", method);
+  int *maps[SS_EVAL_NMETHODS] = {NULL, NULL, NULL, NULL}, pm[SS_EVAL_NMETHODS] = {0};
   maps[method] = map;
-  return ev_match_methods(ctx, X, Y, lmset, 1 << method, maps, NULL, paired, err);
+  ss_status st = ev_match_methods(ctx, X, Y, lmset, 1 << method, maps, NULL, pm, err);
+  if (!st && paired) *paired = pm[method];
+  return st;
 }

@@ -18,7 +18,7 @@
  * key then matches its files). */
 static ss_status figure_context(const char *data_dir, uint64_t seed, int k, ev_context *ctx, ss_error *err) {
   memset(ctx, 0, sizeof *ctx);
-  ss_match_default_options(&ctx->mopt);
+  ss_match_paper_options(&ctx->mopt); /* Table 1: the paper's STD / ASA / DIFF */
   ctx->mopt.fmap.k = k;
   ctx->kev = k;
   int *lmb = NULL, nlmb = 0, gt_shape;
@@ -44,14 +44,14 @@ ss_status ss_eval_showcase_pair(const char *data_dir, const char *cache_dir, uin
   ev_context ctx;
   ev_shape *sh = calloc(100, sizeof *sh); /* each shape prepared once, by id */
   char *loaded = calloc(100, 1);
-  int *maps[3] = {NULL, NULL, NULL};
+  int *maps[SS_EVAL_NMETHODS] = {NULL}; /* STD, ASA, DIFF (not the refined method) */
   if (!sh || !loaded) { st = ss_fail(err, SS_ERR_NOMEM, "showcase: out of memory"); goto done; }
   if (ncand > 1 && (st = figure_context(data_dir, seed, k, &ctx, err))) goto done;
   for (int c = 0; c < ncand && ncand > 1; c++) {
     const int ids[2] = {cx[c], cy[c]};
     for (int s = 0; s < 2; s++)
       if (!loaded[ids[s]]) {
-        if ((st = ev_shape_load(data_dir, cache_dir, ids[s], &ctx, &sh[ids[s]], err))) goto done;
+        if ((st = ev_shape_load(data_dir, cache_dir, ids[s], &ctx, &sh[ids[s]], NULL, 0, err))) goto done;
         loaded[ids[s]] = 1;
       }
     const ev_shape *X = &sh[cx[c]], *Y = &sh[cy[c]];
@@ -60,8 +60,8 @@ ss_status ss_eval_showcase_pair(const char *data_dir, const char *cache_dir, uin
         st = ss_fail(err, SS_ERR_NOMEM, "showcase: out of memory");
         goto done;
       }
-    int paired;
-    if ((st = ev_match_methods(&ctx, X, Y, lmset, 7, maps, NULL, &paired, err))) goto done;
+    int paired[SS_EVAL_NMETHODS];
+    if ((st = ev_match_methods(&ctx, X, Y, lmset, 7, maps, NULL, paired, err))) goto done;
     double sum = 0;
     for (int m = 0; m < 3; m++) {
       double mean;
@@ -108,8 +108,8 @@ ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64
   memset(&pr, 0, sizeof pr);
   ss_status st = figure_context(data_dir, seed, k, &ctx, err);
   if (st) goto done;
-  if ((st = ev_shape_load(data_dir, cache_dir, x, &ctx, &X, err))) goto done;
-  if ((st = ev_shape_load(data_dir, cache_dir, y, &ctx, &Y, err))) goto done;
+  if ((st = ev_shape_load(data_dir, cache_dir, x, &ctx, &X, NULL, 0, err))) goto done;
+  if ((st = ev_shape_load(data_dir, cache_dir, y, &ctx, &Y, NULL, 0, err))) goto done;
   const int nx = X.mesh.nv, ny = Y.mesh.nv;
   if (nx > ny) { st = ss_fail(err, SS_ERR_INVALID, "figure: tr_reg_%03d has more vertices than tr_reg_%03d", x, y); goto done; }
 

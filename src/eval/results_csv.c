@@ -8,17 +8,17 @@
 #include <string.h>
 
 static const char *const lm_names[3] = {"best", "gt", "fps"};
-static const char *const method_names[3] = {"std", "asa", "diff"};
+static const char *const method_names[SS_EVAL_NMETHODS] = {"std", "asa", "diff", "refined"};
 
 const char *ss_lm_set_name(ss_lm_set s) { return (unsigned)s < 3 ? lm_names[s] : "?"; }
-const char *ss_eval_method_name(ss_eval_method m) { return (unsigned)m < 3 ? method_names[m] : "?"; }
+const char *ss_eval_method_name(ss_eval_method m) { return (unsigned)m < SS_EVAL_NMETHODS ? method_names[m] : "?"; }
 int ss_lm_set_parse(const char *s) {
   for (int i = 0; i < 3; i++)
     if (s && !strcmp(s, lm_names[i])) return i;
   return -1;
 }
 int ss_eval_method_parse(const char *s) {
-  for (int i = 0; i < 3; i++)
+  for (int i = 0; i < SS_EVAL_NMETHODS; i++)
     if (s && !strcmp(s, method_names[i])) return i;
   return -1;
 }
@@ -175,7 +175,7 @@ ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_e
   if (n > 0) memcpy(r, rows, sizeof *r * (size_t)n);
   ss_status st = ss_eval_rows_canonical(r, &n, err);
   if (!st) {
-    double sum[12][3] = {{0}};
+    double sum[12][SS_EVAL_NMETHODS] = {{0}};
     for (int i = 0; i < n; i++) {
       int row = 3 * r[i].policy + r[i].landmarks, c = r[i].method;
       sum[row][c] += r[i].error;
@@ -186,7 +186,7 @@ ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_e
       }
     }
     for (int i = 0; i < 12; i++)
-      for (int c = 0; c < 3; c++) t->mean[i][c] = t->count[i][c] ? sum[i][c] / t->count[i][c] : NAN;
+      for (int c = 0; c < SS_EVAL_NMETHODS; c++) t->mean[i][c] = t->count[i][c] ? sum[i][c] / t->count[i][c] : NAN;
   }
   free(r);
   return st;

@@ -8,6 +8,7 @@
 #include "eval_internal.h"
 #include "specseg/io.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -47,9 +48,10 @@ static int unit_cmp(const void *pa, const void *pb) {
   return 0;
 }
 
-/* done[key]: rows already in the CSV; key = ((policy*3+lm)*3+method)*NSHAPES² + x*NSHAPES + y */
+/* done[key]: rows already in the CSV; key = ((policy*3+lm)*NM+method)*NSHAPES² + x*NSHAPES + y */
+#define NM SS_EVAL_NMETHODS
 static size_t row_key(int policy, int lm, int method, int x, int y) {
-  return ((size_t)((policy * 3 + lm) * 3 + method) * NSHAPES + x) * NSHAPES + y;
+  return ((size_t)((policy * 3 + lm) * NM + method) * NSHAPES + x) * NSHAPES + y;
 }
 
 /* Drops a partial last line left by an interrupted run, so appended rows start on a fresh line.
@@ -79,7 +81,7 @@ static void report(const ss_table1_options *o, double t0, long done, long total,
 static void say(const ss_table1_options *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void say(const ss_table1_options *o, const char *fmt, ...) {
   if (!o->log) return;
-  char line[512];
+  char line[1200];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(line, sizeof line, fmt, ap);
@@ -133,9 +135,17 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   ss_status st = SS_OK;
   ev_context ctx;
   memset(&ctx, 0, sizeof ctx);
-  ss_match_default_options(&ctx.mopt);
+  ss_match_paper_options(&ctx.mopt); /* Table 1: the paper's STD / ASA / DIFF */
   ctx.mopt.fmap.k = o->k;
   ctx.kev = o->k;
+  if (o->methods_mask >> SS_METHOD_REFINED & 1) { /* and the library's default output, at the same k */
+    ss_match_default_options(&ctx.ropt);
+    ctx.ropt.fmap.k = o->k;
+    if (ctx.ropt.fmap.zoomout_kmax < o->k) ctx.ropt.fmap.zoomout_kmax = o->k;
+    if (ctx.ropt.fmap.descr_k < o->k) ctx.ropt.fmap.descr_k = 0;
+    ctx.kref = ctx.ropt.fmap.zoomout_kmax > ctx.ropt.fmap.descr_k ? ctx.ropt.fmap.zoomout_kmax : ctx.ropt.fmap.descr_k;
+    if (ctx.kref < o->k) ctx.kref = o->k;
+  }
   unit *U = NULL;
   int *px = NULL, *py = NULL, *lmb = NULL, *sym = NULL, *need = NULL;
   unsigned char *done = NULL;
@@ -154,7 +164,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   px = malloc(sizeof(int) * (size_t)o->npairs);
   py = malloc(sizeof(int) * (size_t)o->npairs);
   U = malloc(sizeof(unit) * (size_t)o->npairs * 9);
-  done = calloc(row_key(2, 2, 2, NSHAPES - 1, NSHAPES - 1) + 1, 1);
+  done = calloc(row_key(2, 2, NM - 1, NSHAPES - 1, NSHAPES - 1) + 1, 1);
   if (!px || !py || !U || !done) { st = ss_fail(err, SS_ERR_NOMEM, "table1: out of memory"); goto done; }
   int nu = 0;
   for (int p = 0; p < 3; p++) {
@@ -179,7 +189,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   long total_rows = 0;
   for (int u = u0; u < u1; u++) {
     int todo = 0;
-    for (int mth = 0; mth < 3; mth++)
+    for (int mth = 0; mth < NM; mth++)
       if ((o->methods_mask >> mth & 1) && !done[row_key(U[u].policy, U[u].lmset, mth, U[u].x, U[u].y)]) todo++;
     if (todo) U[nwork++] = U[u], total_rows += todo;
   }
@@ -231,8 +241,14 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   for (int i = 0; i < nneed; i++) {
     if (failed) continue;
     ss_error e;
-    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], &e);
-    if (!ws) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
+    char note[1024];
+    ss_status ws = ev_shape_load(o->data_dir, o->cache_dir, list[i], &ctx, &shapes[list[i]], note, sizeof note, &e);
+    if (note[0]) {
+      omp_set_lock(&locks->progress);
+      say(o, "%s", note);
+      omp_unset_lock(&locks->progress);
+    }
+    if (!ws && (o->methods_mask & 7)) ws = ev_shape_probes(&shapes[list[i]], &ctx, o->lm_mask, &e);
     if (ws) {
       omp_set_lock(&locks->err);
       if (!failed) failed = ws, perr = e;
@@ -254,7 +270,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
 
   /* 5. the units, in parallel, grouped by target shape */
   out = fopen(o->out_csv, have_header ? "ab" : "wb");
-  if (!out) { st = ss_fail(err, SS_ERR_IO, "%s: cannot write", o->out_csv); goto done; }
+  if (!out) { st = ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", o->out_csv, strerror(errno)); goto done; }
   if (!have_header) fprintf(out, "%s\n", ss_eval_csv_header());
   fflush(out);
   int ngroups = 0, *gstart = malloc(sizeof(int) * ((size_t)nwork + 1));
@@ -269,7 +285,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
 #pragma omp parallel num_threads(nthreads)
   {
     int S = o->error_samples < nv ? o->error_samples : nv, ns = 0;
-    int maxrows = 3 * (maxgroup > 0 ? maxgroup : 1);
+    int maxrows = NM * (maxgroup > 0 ? maxgroup : 1);
     int *mapbuf = malloc(sizeof(int) * (size_t)maxrows * nv), *scratch = malloc(sizeof(int) * (size_t)nv);
     int *samples = malloc(sizeof(int) * (2 * (size_t)S + 1)), *sympos = malloc(sizeof(int) * (2 * (size_t)S + 1));
     double *fields = malloc(sizeof(double) * (size_t)nv * (2 * (size_t)S + 1));
@@ -296,22 +312,23 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
       for (int u = gstart[g]; u < gstart[g + 1] && !s2; u++) {
         const unit *w = &U[u];
         const ev_shape *X = &shapes[w->x];
-        int mask = 0, paired = 0;
-        for (int mth = 0; mth < 3; mth++)
+        int mask = 0, paired[NM] = {0};
+        for (int mth = 0; mth < NM; mth++)
           if ((o->methods_mask >> mth & 1) && !done[row_key(w->policy, w->lmset, mth, w->x, w->y)]) mask |= 1 << mth;
         if (!mask) continue;
-        int *maps[3] = {mapbuf + (size_t)nv * nr, mapbuf + (size_t)nv * (nr + 1), mapbuf + (size_t)nv * (nr + 2)};
-        double cpu[3], t0 = ss_time();
-        if ((s2 = ev_match_methods(&ctx, X, Y, w->lmset, mask, maps, cpu, &paired, &e))) break;
+        int *maps[NM];
+        for (int mth = 0; mth < NM; mth++) maps[mth] = mapbuf + (size_t)nv * (nr + mth);
+        double cpu[NM], t0 = ss_time();
+        if ((s2 = ev_match_methods(&ctx, X, Y, w->lmset, mask, maps, cpu, paired, &e))) break;
         const double wall = (ss_time() - t0) / __builtin_popcount(mask);
         int slot = 0;
-        for (int mth = 0; mth < 3; mth++) {
+        for (int mth = 0; mth < NM; mth++) {
           if (!(mask >> mth & 1)) continue;
           if (maps[mth] != mapbuf + (size_t)nv * (nr + slot))
             memcpy(mapbuf + (size_t)nv * (nr + slot), maps[mth], sizeof(int) * (size_t)nv);
           ss_eval_row *r = &rows[nr + slot];
           memset(r, 0, sizeof *r);
-          r->paired = paired, r->seconds = wall, r->cpu_seconds = cpu[mth];
+          r->paired = paired[mth], r->seconds = wall, r->cpu_seconds = cpu[mth];
           r->policy = w->policy, r->landmarks = w->lmset, r->method = mth, r->x = w->x, r->y = w->y;
           r->segments_x = X->prep.seg.m, r->segments_y = Y->prep.seg.m;
           rmap[nr + slot] = mapbuf + (size_t)nv * (nr + slot);
@@ -366,7 +383,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   say(o, "table1: %ld rows in %.1f s (%.1f s total)", rows_done, ss_time() - t_rows, ss_time() - t_start);
   if (failed) st = ss_fail(err, (ss_status)failed, "table1: %s", perr.msg);
 done:
-  if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write failed", o->out_csv);
+  if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write error: %s", o->out_csv, strerror(errno));
   if (shapes)
     for (int s = 0; s < NSHAPES; s++) ev_shape_free(&shapes[s]);
   free(shapes), free(need), free(U), free(px), free(py), free(lmb), free(sym);

@@ -46,8 +46,14 @@ ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
   st0 = ssi_fmap_check_shape(X, "X", need, err);
   if (!st0) st0 = ssi_fmap_check_shape(Y, "Y", need, err);
   if (st0) return st0;
-  if (o.zoomout_kmax > k) return ss_zoomout(Y->mesh->nv, X->mesh->nv, Y->evecs, X->evecs, X->M, k, Ck, o.zoomout_kmax,
-                                             o.zoomout_step, map, C, err);
+  if (o.zoomout_kmax > k) {
+    if (!X->M) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut needs the masses of X");
+    ssi_zoomout_plan plan;
+    st0 = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.zoomout_samples, o.zoomout_kmax, &plan, err);
+    if (!st0) st0 = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck, o.zoomout_kmax, o.zoomout_step, map, C, err);
+    ssi_zoomout_plan_free(&plan);
+    return st0;
+  }
   ss_status st = ss_fmap_p2p(Y->mesh->nv, X->mesh->nv, k, k, Y->evecs, X->evecs, Ck, map, err);
   if (!st && C) memcpy(C, Ck, sizeof(double) * k * k);
   return st;

@@ -18,6 +18,8 @@ void ss_fmap_match_default_options(ss_fmap_match_options *o) {
   o->zoomout_step = 1;
   o->w_extra = 0.5; /* tuned on FAUST; see docs/tuning.md */
   o->extra_dcomm = 0;
+  o->descr_k = 0;
+  o->zoomout_samples = 0;
   o->no_wks = 0;
 }
 
@@ -31,9 +33,12 @@ ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) 
                    o->w_lap, o->w_dcomm);
   if (!(o->w_extra >= 0) || !isfinite(o->w_extra))
     return ss_fail(err, SS_ERR_INVALID, "match: negative extra-probe weight %g", o->w_extra);
+  if (o->zoomout_samples < 0) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut samples %d below 0", o->zoomout_samples);
   if (o->zoomout_step < 1) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut step %d below 1", o->zoomout_step);
   if (o->zoomout_kmax != 0 && o->zoomout_kmax < o->k)
     return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut size %d below k = %d", o->zoomout_kmax, o->k);
+  if (o->descr_k != 0 && o->descr_k < o->k)
+    return ss_fail(err, SS_ERR_INVALID, "match: descriptor basis %d below k = %d", o->descr_k, o->k);
   return SS_OK;
 }
 
@@ -51,4 +56,9 @@ ss_status ssi_fmap_check_shape(const ss_fmap_shape *s, const char *name, int nee
   return SS_OK;
 }
 
-int ssi_fmap_basis_needed(const ss_fmap_match_options *o) { return o->zoomout_kmax > o->k ? o->zoomout_kmax : o->k; }
+int ssi_fmap_basis_needed(const ss_fmap_match_options *o) {
+  int need = o->zoomout_kmax > o->k ? o->zoomout_kmax : o->k;
+  return o->descr_k > need ? o->descr_k : need;
+}
+
+int ssi_fmap_descr_k(const ss_fmap_match_options *o) { return o->descr_k > o->k ? o->descr_k : o->k; }

@@ -6,7 +6,12 @@
  * base probes are the kept columns before the extras; the extra probes are the kept columns after
  * them — so building them apart gives exactly the columns of building them together, and a pair's
  * base probes can be computed once per shape and landmark set and shared by STD, ASA and DIFF. Only
- * the kept columns are synthesised (in the spectral domain, then one dgemm). */
+ * the kept columns are synthesised (in the spectral domain, then one dgemm).
+ *
+ * The filtered probes are synthesised from the first kd = max(k, descr_k) eigenpairs (the WKS
+ * filters on kd eigenvalues, the filtered functions' coefficients on kd eigenfunctions) and then
+ * projected onto the first k, so a larger descr_k gives probes with more detail in the same basis.
+ * kd = k is the NO17 / paper construction, computed by the same operations as before the option. */
 #include "fmap/fmap_options.h"
 #include "specseg/laplacian.h"
 
@@ -15,9 +20,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Kept virtual columns c in [c_from, c_to) (c ≡ 0 mod step) as functions F (n x *nf, malloc'd).
- * Item 0 (columns 0..ne-1) is the WKS; item i ≥ 1 is the wave filter of the function whose
- * spectral coefficients are coef[:, i − item0] (items below item0 must not be in the range). */
+/* Kept virtual columns c in [c_from, c_to) (c ≡ 0 mod step) as functions F (n x *nf, malloc'd), from
+ * the first k eigenpairs (k here is the descriptor basis kd). Item 0 (columns 0..ne-1) is the WKS;
+ * item i ≥ 1 is the wave filter of the function whose spectral coefficients are coef[:, i − item0]
+ * (k rows; items below item0 must not be in the range). */
 static ss_status kept_columns(int n, int k, const double *evals, const double *evecs, const ss_fmap_match_options *o,
                               int item0, const double *coef, int c_from, int c_to, double **F, int *nf,
                               ss_error *err) {
@@ -85,7 +91,7 @@ static ss_status start(const ss_fmap_shape *s, const ss_fmap_match_options *opts
   if (!out) return ss_fail(err, SS_ERR_INVALID, "probes: NULL output");
   memset(out, 0, sizeof *out);
   ss_status st = ssi_fmap_options_resolve(opts, o, err);
-  return st ? st : ssi_fmap_check_shape(s, "of the probes", o->k, err);
+  return st ? st : ssi_fmap_check_shape(s, "of the probes", ssi_fmap_descr_k(o), err);
 }
 
 /* the shape's lumped masses: its own, or barycentric ones in *own */
@@ -104,7 +110,7 @@ ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, con
   ss_fmap_match_options o;
   ss_status st = start(s, opts, out, &o, err);
   if (st) return st;
-  const int n = s->mesh->nv, k = o.k;
+  const int n = s->mesh->nv, k = o.k, kd = ssi_fmap_descr_k(&o);
   if (nl < 0 || (nl > 0 && !lm)) return ss_fail(err, SS_ERR_INVALID, "probes: missing landmarks");
   for (int l = 0; l < nl; l++)
     if (lm[l] < 0 || lm[l] >= n) return ss_fail(err, SS_ERR_INVALID, "landmark %d: vertex %d out of range [0,%d)", l, lm[l], n);
@@ -114,16 +120,16 @@ ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, con
     if (!isfinite(s->descr[i]))
       return ss_fail(err, SS_ERR_INVALID, "probes: descriptor %d is not finite at vertex %d", (int)(i / (size_t)n),
                      (int)(i % (size_t)n));
-  double *own = NULL, *coef = malloc(sizeof(double) * (size_t)k * (nl > 0 ? nl : 1)), *F = NULL;
+  double *own = NULL, *coef = malloc(sizeof(double) * (size_t)kd * (nl > 0 ? nl : 1)), *F = NULL;
   const double *M = NULL;
   int p = 0;
   if (!coef) { st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory"); goto done; }
   if ((st = masses(s, &own, &M, err))) goto done;
   /* landmark deltas in the spectral domain: φ_i(l) (the L²-delta δ_l / M_l projects to these) */
   for (int l = 0; l < nl; l++)
-    for (int i = 0; i < k; i++) coef[i + (size_t)k * l] = s->evecs[lm[l] + (size_t)n * i];
+    for (int i = 0; i < kd; i++) coef[i + (size_t)kd * l] = s->evecs[lm[l] + (size_t)n * i];
   /* without the WKS the list starts at the first landmark item: the same landmark columns are kept */
-  if ((st = kept_columns(n, k, s->evals, s->evecs, &o, 1, coef, o.no_wks ? o.n_energies : 0, o.n_energies * (1 + nl),
+  if ((st = kept_columns(n, kd, s->evals, s->evecs, &o, 1, coef, o.no_wks ? o.n_energies : 0, o.n_energies * (1 + nl),
                          &F, &p, err)))
     goto done;
   if (s->ndescr > 0) { /* the shape's own descriptors after the kept columns, as they are */
@@ -148,18 +154,18 @@ ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const
   if (st) return st;
   if (nl < 0 || nextra < 0 || (nextra > 0 && !extra)) return ss_fail(err, SS_ERR_INVALID, "probes: missing extra probes");
   if (filter != SS_PROBE_RAW && filter != SS_PROBE_WAVE) return ss_fail(err, SS_ERR_INVALID, "probes: unknown filter %d", (int)filter);
-  const int n = s->mesh->nv, k = o.k, ne = o.n_energies;
+  const int n = s->mesh->nv, k = o.k, kd = ssi_fmap_descr_k(&o), ne = o.n_energies;
   double *own = NULL, *coef = NULL, *F = NULL;
   const double *M = NULL;
   int p = 0;
   if ((st = masses(s, &own, &M, err))) goto done;
   if (filter == SS_PROBE_WAVE) {
-    if (!(coef = malloc(sizeof(double) * (size_t)k * (nextra > 0 ? nextra : 1)))) {
+    if (!(coef = malloc(sizeof(double) * (size_t)kd * (nextra > 0 ? nextra : 1)))) {
       st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
       goto done;
     }
-    if ((st = ss_fmap_project(n, k, s->evecs, M, nextra, extra, coef, err))) goto done;
-    if ((st = kept_columns(n, k, s->evals, s->evecs, &o, 1 + nl, coef, ne * (1 + nl), ne * (1 + nl + nextra), &F, &p, err)))
+    if ((st = ss_fmap_project(n, kd, s->evecs, M, nextra, extra, coef, err))) goto done;
+    if ((st = kept_columns(n, kd, s->evals, s->evecs, &o, 1 + nl, coef, ne * (1 + nl), ne * (1 + nl + nextra), &F, &p, err)))
       goto done;
   } else {
     if (!(F = malloc(sizeof(double) * (size_t)n * (nextra > 0 ? nextra : 1)))) {

@@ -1,6 +1,8 @@
 /* CSR assembly of a weighted undirected graph from an arc list. */
 #include "geodesic/graph_build.h"
 
+#include "mesh/mesh_geometry.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,7 +15,7 @@ ss_status ssi_graph_check_mesh(const ss_mesh *m, ss_error *err) {
       return ss_fail(err, SS_ERR_INVALID, "face %ld references vertex %d outside [0,%d)", i / 3, m->F[i], m->nv);
   for (long i = 0; i < 3L * m->nv; i++)
     if (!isfinite(m->V[i])) return ss_fail(err, SS_ERR_INVALID, "vertex %ld has a non-finite coordinate", i / 3);
-  return SS_OK;
+  return ssi_mesh_check_coordinates(m, NULL, err);
 }
 
 static int row_cmp(const void *a, const void *b) {

@@ -1,10 +1,14 @@
 /* Cotangent stiffness matrix (P1 finite elements). */
 #include "specseg/laplacian.h"
 
+#include "mesh/mesh_geometry.h"
+
 #include <math.h>
 #include <stdlib.h>
 
 ss_status ss_cotan_stiffness(const ss_mesh *m, ss_sparse *W, ss_error *err) {
+  ss_status st0 = ssi_mesh_check_coordinates(m, "laplacian", err);
+  if (st0) return st0;
   size_t cap = (size_t)m->nf * 12;
   int *I = malloc(sizeof(int) * (cap ? cap : 1)), *J = malloc(sizeof(int) * (cap ? cap : 1));
   double *X = malloc(sizeof(double) * (cap ? cap : 1));

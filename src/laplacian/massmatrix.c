@@ -1,10 +1,14 @@
 /* Lumped mass matrix: barycentric or mixed Voronoi (Meyer, Desbrun, Schröder, Barr 2003). */
 #include "specseg/laplacian.h"
 
+#include "mesh/mesh_geometry.h"
+
 #include <math.h>
 #include <string.h>
 
 ss_status ss_mass_lumped(const ss_mesh *m, ss_mass_kind kind, double *M, ss_error *err) {
+  ss_status st = ssi_mesh_check_coordinates(m, "mass matrix", err);
+  if (st) return st;
   memset(M, 0, sizeof(double) * (size_t)m->nv);
   for (int f = 0; f < m->nf; f++) {
     const int *t = m->F + 3 * f;

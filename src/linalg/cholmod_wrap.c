@@ -1,6 +1,7 @@
 /* Sparse symmetric factorisation with CHOLMOD. Simplicial LDL^T: on these mesh matrices its
- * solves were ~3x faster than supernodal ones (shared/design/paper-notes.md), and LDL^T also
- * copes with an indefinite shift (sigma inside the spectrum). */
+ * single-column solves were ~3x faster than supernodal ones (shared/design/paper-notes.md), and
+ * LDL^T also copes with an indefinite shift (sigma inside the spectrum). Supernodal LL^T for
+ * positive definite matrices solved against blocks of many columns at once. */
 #include "linalg/cholmod_wrap.h"
 
 #include <math.h>
@@ -8,22 +9,42 @@
 #include <string.h>
 #include <suitesparse/cholmod.h>
 
+/* a solve workspace of ssi_chol_solve_slot (slots 1..; slot 0 is the factor's own common) */
+typedef struct {
+  cholmod_common cc;
+  cholmod_dense *X, *Y, *E;
+  int started;
+} chol_ws;
+
+#define CHOL_MAX_WS SSI_CHOL_SLOTS
+
 struct ssi_chol {
   cholmod_common cc;
   cholmod_factor *L;
   cholmod_dense *X, *Y, *E; /* solve workspaces, reused across calls */
   int n;
+  chol_ws ws[CHOL_MAX_WS];
 };
 
 int ssi_chol_size(const ssi_chol *c) { return c->n; }
 double ssi_chol_nnz(const ssi_chol *c) {
-  if (!c->L || !c->L->p) return 0;
+  if (!c->L) return 0;
+  if (c->L->is_super) return c->cc.lnz;
+  if (!c->L->p) return 0;
   const int *p = c->L->p;
   return (double)p[c->n];
 }
 
 void ssi_chol_free(ssi_chol *c) {
   if (!c) return;
+  for (int t = 0; t < CHOL_MAX_WS; t++) {
+    chol_ws *w = &c->ws[t];
+    if (!w->started) continue;
+    if (w->X) cholmod_free_dense(&w->X, &w->cc);
+    if (w->Y) cholmod_free_dense(&w->Y, &w->cc);
+    if (w->E) cholmod_free_dense(&w->E, &w->cc);
+    cholmod_finish(&w->cc);
+  }
   if (c->L) cholmod_free_factor(&c->L, &c->cc);
   if (c->X) cholmod_free_dense(&c->X, &c->cc);
   if (c->Y) cholmod_free_dense(&c->Y, &c->cc);
@@ -67,7 +88,8 @@ static ss_status shifted_upper(const ss_sparse *A, double alpha, const double *d
   return SS_OK;
 }
 
-ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi_chol **out, ss_error *err) {
+static ss_status chol_factor(const ss_sparse *A, double alpha, const double *d, int super, ssi_chol **out,
+                             ss_error *err) {
   *out = NULL;
   if (!A || A->nrows != A->ncols || A->nrows < 1)
     return ss_fail(err, SS_ERR_INVALID, "factorisation needs a non-empty square matrix");
@@ -78,7 +100,7 @@ ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi
   cholmod_start(&c->cc);
   c->cc.print = 0;
   c->cc.error_handler = NULL;
-  c->cc.supernodal = CHOLMOD_SIMPLICIAL;
+  c->cc.supernodal = super ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
   c->cc.final_ll = 0;
 
   cholmod_sparse *S = NULL;
@@ -109,6 +131,11 @@ ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi
     return ss_fail(err, SS_ERR_NUMERIC, "factorisation broke down at column %zu: matrix is singular (choose another shift)",
                    minor);
   }
+  if (c->L->is_super) {
+    /* LL^T ran to the end: every pivot was positive (CHOLMOD stops at the first that is not) */
+    *out = c;
+    return SS_OK;
+  }
   /* LDL^T keeps D on the factor's diagonal (first entry of each column). Only zero or non-finite
    * pivots are fatal: a tiny pivot (shift very close to an eigenvalue) is exactly what shift-invert
    * thrives on, and callers judge the final residuals. */
@@ -123,6 +150,49 @@ ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi
     }
   }
   *out = c;
+  return SS_OK;
+}
+
+ss_status ssi_chol_factor(const ss_sparse *A, double alpha, const double *d, ssi_chol **out, ss_error *err) {
+  return chol_factor(A, alpha, d, 0, out, err);
+}
+
+ss_status ssi_chol_factor_super(const ss_sparse *A, double alpha, const double *d, ssi_chol **out, ss_error *err) {
+  return chol_factor(A, alpha, d, 1, out, err);
+}
+
+/* X = A^-1 B for one column block through the given common and workspaces. */
+static int solve_block(const cholmod_factor *L, int n, const double *B, double *X, int nrhs, cholmod_common *cc,
+                       cholmod_dense **Xw, cholmod_dense **Yw, cholmod_dense **Ew) {
+  cholmod_dense b;
+  memset(&b, 0, sizeof b);
+  b.nrow = (size_t)n;
+  b.ncol = (size_t)nrhs;
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = (void *)B;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  /* cholmod_solve2 only reads the factor */
+  if (!cholmod_solve2(CHOLMOD_A, (cholmod_factor *)L, &b, NULL, Xw, NULL, Yw, Ew, cc)) return 0;
+  memcpy(X, (*Xw)->x, sizeof(double) * b.nzmax);
+  return 1;
+}
+
+ss_status ssi_chol_solve_slot(ssi_chol *c, int slot, const double *B, double *X, int nrhs, ss_error *err) {
+  if (nrhs < 1) return SS_OK;
+  if (slot <= 0) return ssi_chol_solve(c, B, X, nrhs, err);
+  if (slot >= CHOL_MAX_WS) return ss_fail(err, SS_ERR_INVALID, "CHOLMOD solve: no workspace slot %d", slot);
+  chol_ws *w = &c->ws[slot];
+  if (!w->started) {
+    cholmod_start(&w->cc);
+    w->cc.print = 0;
+    w->cc.error_handler = NULL;
+    w->started = 1;
+  }
+  if (!solve_block(c->L, c->n, B, X, nrhs, &w->cc, &w->X, &w->Y, &w->E))
+    return ss_fail(err, w->cc.status == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                   "CHOLMOD solve failed (status %d)", w->cc.status);
   return SS_OK;
 }
 
@@ -151,8 +221,21 @@ ss_status ssi_chol_inertia(ssi_chol *c, const ss_sparse *A, double alpha, const 
   cholmod_sparse *S = NULL;
   ss_status st = shifted_upper(A, alpha, d, &c->cc, &S, err);
   if (st) return st;
-  /* same pattern, same ordering: refactor a copy of the factor, no new analysis */
-  cholmod_factor *L2 = cholmod_copy_factor(c->L, &c->cc);
+  cholmod_factor *L2 = NULL;
+  if (c->L->is_super) {
+    /* LL^T cannot count negative pivots: a simplicial LDL^T in the same fill-reducing ordering */
+    int keep_super = c->cc.supernodal, keep_n = c->cc.nmethods, keep_ord = c->cc.method[0].ordering;
+    c->cc.supernodal = CHOLMOD_SIMPLICIAL;
+    c->cc.nmethods = 1;
+    c->cc.method[0].ordering = CHOLMOD_GIVEN;
+    L2 = cholmod_analyze_p(S, (int *)c->L->Perm, NULL, 0, &c->cc);
+    c->cc.supernodal = keep_super;
+    c->cc.nmethods = keep_n;
+    c->cc.method[0].ordering = keep_ord;
+  } else {
+    /* same pattern, same ordering: refactor a copy of the factor, no new analysis */
+    L2 = cholmod_copy_factor(c->L, &c->cc);
+  }
   if (!L2) {
     cholmod_free_sparse(&S, &c->cc);
     return ss_fail(err, SS_ERR_NOMEM, "inertia: out of memory");

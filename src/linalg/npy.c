@@ -54,8 +54,9 @@ static ss_status npy_write(const char *path, const double *d, const int *iv, int
       ok = fwrite(buf, (size_t)isz, (size_t)nb, f) == (size_t)nb;
     }
   }
-  if (fclose(f) != 0) ok = 0;
-  if (!ok) return ss_fail(err, SS_ERR_IO, "%s: write failed", path);
+  int e = ok ? 0 : errno;
+  if (fclose(f) != 0 && ok) ok = 0, e = errno;
+  if (!ok) return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e));
   return SS_OK;
 }
 

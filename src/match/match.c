@@ -1,17 +1,47 @@
 /* The matching pipeline of paper §6 on two shapes: pairing of the segments, their probe functions as
  * extra probes of the functional map (STD / ASA / DIFF), point map, ZoomOut. */
+#include "util/warnings.h"
 #include "specseg/match.h"
+#include "mesh/mesh_geometry.h"
+#include "mesh/mesh_topology.h"
+#include "specseg/streamline.h"
+#include "fmap/fmap_options.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Defaults of what the paper leaves open (docs/tuning.md). */
+#define SS_DEFAULT_DESCR_K 100
+#define SS_DEFAULT_REFINE_KMAX 120
+#define SS_DEFAULT_REFINE_W_DESCR 1.0
+#define SS_DEFAULT_REFINE_STEP 5
+#define SS_DEFAULT_REFINE_SAMPLES 2000
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);
   o->probes = SS_PROBES_DIFF;
   ss_fmap_match_default_options(&o->fmap);
+  o->fmap.descr_k = SS_DEFAULT_DESCR_K;
+  o->fmap.zoomout_kmax = SS_DEFAULT_REFINE_KMAX;
+  o->fmap.zoomout_step = SS_DEFAULT_REFINE_STEP;
+  o->fmap.zoomout_samples = SS_DEFAULT_REFINE_SAMPLES;
   ss_segment_default_options(&o->seg);
   o->segment_profile = SS_PROFILE_TENT;
+  ss_pairing_default_options(&o->pairing);
+  o->refine = SS_REFINE_BEST;
+  o->refine_w_lap = 0.0;
+  o->refine_w_descr = SS_DEFAULT_REFINE_W_DESCR;
+}
+
+void ss_match_paper_options(ss_match_options *o) {
+  ss_match_default_options(o);
+  o->fmap.descr_k = 0;
+  o->seg_descr_k = 0;
+  o->fmap.zoomout_kmax = 0;
+  ss_pairing_paper_options(&o->pairing);
+  o->refine = SS_REFINE_NONE;
 }
 
 void ss_match_result_free(ss_match_result *r) {
@@ -24,11 +54,95 @@ void ss_match_result_free(ss_match_result *r) {
   memset(r, 0, sizeof *r);
 }
 
-ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+/* eigenpairs the options need on each shape */
+static int match_kev(const ss_match_options *o) {
+  int kev = o->fmap.k;
+  if (o->refine != SS_REFINE_NONE && o->fmap.zoomout_kmax > kev) kev = o->fmap.zoomout_kmax;
+  if (o->fmap.descr_k > kev) kev = o->fmap.descr_k;
+  if (o->probes != SS_PROBES_STD && o->seg_descr_k > kev) kev = o->seg_descr_k;
+  return kev;
+}
+
+/* the selection energy of SS_REFINE_BEST for the point map X -> Y (see match.h) */
+static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o, int k, int kz,
+                               const ss_fmap_probes *bX, const ss_fmap_probes *bY, const int *map, double *E, ss_error *err) {
+  *E = NAN;
+  ss_status st = ss_p2p_energy(Y->mesh->nv, X->mesh->nv, Y->evals, X->evals, Y->evecs, X->evecs, X->M, map, k, kz, 1,
+                               o->refine_w_lap, E, NULL, NULL, err);
+  if (st || !(o->refine_w_descr > 0)) return st;
+  double r;
+  if ((st = ss_p2p_descr_residual(Y->mesh->nv, X->mesh->nv, Y->evecs, X->evecs, X->M, bY, bX, map, &r, err))) return st;
+  *E += o->refine_w_descr * r;
+  return SS_OK;
+}
+
+static void add_note(ss_match_result *r, const char *msg) {
+  size_t n = strlen(r->notes);
+  snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
+}
+
+static int count_components(const ss_mesh *m) {
+  int *comp = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
+  int nc = comp ? ssi_mesh_components(m, comp) : -1;
+  free(comp);
+  return nc;
+}
+
+/* The functional-map system could not be solved (normal equations singular: "fmap: ... dsposv info
+ * N"): say why that usually happens and what to do. */
+static void explain_singular(const ss_mesh *X, const ss_mesh *Y, int nl, int npairs, int k, ss_error *err) {
+  if (!err) return;
+  char what[512];
+  snprintf(what, sizeof what, "%.500s", err->msg);
+  int cx = count_components(X), cy = count_components(Y);
+  if (cx > 1 || cy > 1)
+    ss_fail(err, SS_ERR_NUMERIC,
+            "match: the functional-map system is singular (%s): X has %d connected components and Y %d, and the "
+            "probe functions do not determine the map on components without a landmark; match only the components "
+            "that hold landmarks (ss_match does) or put landmarks on every component",
+            what, cx, cy);
+  else
+    ss_fail(err, SS_ERR_NUMERIC,
+            "match: the functional-map system is singular (%s): the probe functions (descriptors, %d landmark%s, %d "
+            "paired segment%s) do not determine the %d x %d map; use more landmarks or a smaller basis (k)",
+            what, nl, nl == 1 ? "" : "s", npairs, npairs == 1 ? "" : "s", k, k);
+}
+
+/* a copy of the given pairing, checked against the segmentations */
+static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, const ss_shape_prep *Y, ss_segment_pairs *out,
+                            ss_error *err) {
+  memset(out, 0, sizeof *out);
+  if (in->n < 0 || (in->n > 0 && (!in->sx || !in->sy)))
+    return ss_fail(err, SS_ERR_INVALID, "match: bad segment pairs (%d)", in->n);
+  for (int p = 0; p < in->n; p++)
+    if (in->sx[p] < 0 || in->sx[p] >= X->seg.m || in->sy[p] < 0 || in->sy[p] >= Y->seg.m)
+      return ss_fail(err, SS_ERR_INVALID, "match: segment pair %d (%d, %d) out of range (%d, %d segments)", p, in->sx[p],
+                     in->sy[p], X->seg.m, Y->seg.m);
+  const size_t n = (size_t)(in->n > 0 ? in->n : 1);
+  out->sx = malloc(sizeof(int) * n), out->sy = malloc(sizeof(int) * n), out->energy = malloc(sizeof(double) * n);
+  if (!out->sx || !out->sy || !out->energy) {
+    ss_segment_pairs_free(out);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  out->n = in->n, out->nx = in->nx, out->ny = in->ny;
+  if (in->n > 0) {
+    memcpy(out->sx, in->sx, sizeof(int) * (size_t)in->n);
+    memcpy(out->sy, in->sy, sizeof(int) * (size_t)in->n);
+    if (in->energy) memcpy(out->energy, in->energy, sizeof(double) * (size_t)in->n);
+    else
+      for (int p = 0; p < in->n; p++) out->energy[p] = NAN;
+  }
+  return SS_OK;
+}
+
+static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
+                            ss_error *err) {
   double t_start = ss_time();
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
+  out->refine_choice = -1;
+  for (int i = 0; i < 4; i++) out->refine_energy[i] = NAN;
   ss_match_options o;
   if (opts_in) o = *opts_in;
   else ss_match_default_options(&o);
@@ -38,31 +152,46 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     return ss_fail(err, SS_ERR_INVALID, "match: unknown segment profile %d", (int)o.segment_profile);
   if (o.probes < SS_PROBES_STD || o.probes > SS_PROBES_DIFF)
     return ss_fail(err, SS_ERR_INVALID, "match: unknown probe set %d", (int)o.probes);
+  if (o.seg_descr_k != 0 && o.seg_descr_k < o.fmap.k)
+    return ss_fail(err, SS_ERR_INVALID, "match: seg_descr_k %d below k = %d", o.seg_descr_k, o.fmap.k);
+  if (o.refine < SS_REFINE_NONE || o.refine > SS_REFINE_BEST)
+    return ss_fail(err, SS_ERR_INVALID, "match: unknown refinement %d", (int)o.refine);
+  if (!(o.refine_w_lap >= 0) || !isfinite(o.refine_w_lap) || !(o.refine_w_descr >= 0) || !isfinite(o.refine_w_descr))
+    return ss_fail(err, SS_ERR_INVALID, "match: refine weights %g, %g must be finite and non-negative", o.refine_w_lap,
+                   o.refine_w_descr);
   if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
   if (o.ndescr < 0 || (o.ndescr > 0 && (!o.descrX || !o.descrY)))
     return ss_fail(err, SS_ERR_INVALID, "match: %d descriptors without their values", o.ndescr);
-  const int nX = X->mesh->nv, nY = Y->mesh->nv, k = o.fmap.k, kz = o.fmap.zoomout_kmax;
+  const int nX = X->mesh->nv, nY = Y->mesh->nv, k = o.fmap.k;
   for (int i = 0; i < nl; i++) {
     if (lmX[i] < 0 || lmX[i] >= nX)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on X [0,%d)", i, lmX[i], nX);
     if (lmY[i] < 0 || lmY[i] >= nY)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], nY);
   }
-  if (k < 3 || (kz != 0 && kz < k))
-    return ss_fail(err, SS_ERR_INVALID, "match: bad basis sizes (k %d, ZoomOut %d)", k, kz);
-  int need = kz > k ? kz : k;
+  if (k < 3 || (o.fmap.zoomout_kmax != 0 && o.fmap.zoomout_kmax < k))
+    return ss_fail(err, SS_ERR_INVALID, "match: bad basis sizes (k %d, ZoomOut %d)", k, o.fmap.zoomout_kmax);
+  /* ZoomOut size: only with refinement */
+  const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > k ? o.fmap.zoomout_kmax : k;
+  int need = match_kev(&o);
   if (X->kev < need || Y->kev < need)
     return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs needed, shapes have %d and %d", need, X->kev, Y->kev);
 
   ss_status st = SS_OK;
-  double *EX = NULL, *EY = NULL, *Ck = NULL;
+  double *EX = NULL, *EY = NULL, *Ck[2] = {NULL, NULL}, *Cz = NULL, *Cbest = NULL;
+  int *zmap = NULL, *smap[2] = {NULL, NULL};
+  ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0}, sbX = {0}, sbY = {0}; /* sb: STD's base (selection energy) */
+  ss_fmap_system *sys = NULL;
+  ssi_zoomout_plan plan = {0};
   out->nX = nX;
   out->t_segment = X->t_segment + Y->t_segment;
   out->t_eigs = X->t_eigs + Y->t_eigs;
 
   /* 1. pairing of the segments (reported for every probe set) */
   double t0 = ss_time();
-  if ((st = ss_pair_segments(&X->seg, &Y->seg, nl, lmX, lmY, &out->pairs, err))) goto fail;
+  if (pairs_in) {
+    if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
+  } else if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -74,55 +203,288 @@ ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   double t1 = ss_time();
   out->t_pair = t1 - t0;
 
-  /* 2. functional map at size k with the chosen probes */
-  int nextra = o.probes == SS_PROBES_STD ? 0 : np;
-  if (nextra > 0) {
-    if ((st = ss_segment_probes(&X->seg, np, out->pairs.sx, o.segment_profile, &EX, err))) goto fail;
-    if ((st = ss_segment_probes(&Y->seg, np, out->pairs.sy, o.segment_profile, &EY, err))) goto fail;
+  /* 2. functional maps at size k: STD (base probes alone) and the segment-aided one (with the
+   * chosen extra probes), against one assembled system per descriptor basis */
+  int use_seg = o.probes != SS_PROBES_STD;
+  if (use_seg && nl < o.pairing.min_landmarks) {
+    char msg[160];
+    snprintf(msg, sizeof msg, "%d landmarks (fewer than %d): no segment probes, STD map", nl, o.pairing.min_landmarks);
+    add_note(out, msg);
+    use_seg = 0;
+  } else if (use_seg && np == 0) {
+    add_note(out, "no segment paired: STD map");
+    use_seg = 0;
   }
-  out->map = malloc(sizeof(int) * (size_t)nX);
-  Ck = malloc(sizeof(double) * (size_t)k * k);
-  if (!out->map || !Ck) goto nomem;
+  /* candidate starts: 0 STD, 1 segment-aided */
+  const int want_std = !use_seg || o.refine == SS_REFINE_BEST, want_seg = use_seg;
   ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr},
                 sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr};
-  ss_fmap_match_options fo = o.fmap;
-  fo.zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
-  if ((st = ss_fmap_match(&sX, &sY, nl, lmX, lmY, nextra, EX, EY,
-                          o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW, &fo, out->map, Ck, err)))
-    goto fail;
+  /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
+   * assembled system per distinct descriptor basis */
+  ss_fmap_match_options fo[2] = {o.fmap, o.fmap};
+  fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
+  fo[1].descr_k = o.seg_descr_k;
+  const int ops = o.fmap.w_dcomm > 0, xops = ops && o.fmap.extra_dcomm;
+  const int kd0 = fo[0].descr_k > k ? fo[0].descr_k : k, kd1 = fo[1].descr_k > k ? fo[1].descr_k : k;
+  const int own1 = want_seg && (!want_std || kd1 != kd0); /* the segment-aided map needs its own base */
+  ss_fmap_weights w;
+  if ((st = ss_fmap_pair_weights(&sX, &sY, &fo[0], &w, err))) goto fail;
+  for (int c = 0; c < 2; c++) {
+    if (!(c ? want_seg : want_std)) continue;
+    if (c == 0 || own1) {
+      if (c == 1 && want_std) {
+        /* STD's base probes are kept for the selection energy (it reads their coefficients only) */
+        sbX = bX, sbY = bY;
+        memset(&bX, 0, sizeof bX), memset(&bY, 0, sizeof bY);
+      }
+      ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
+      ss_fmap_system_free(sys);
+      sys = NULL;
+      if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo[c], ops, &bX, err))) goto fail;
+      if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[c], ops, &bY, err))) goto fail;
+      /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
+      if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto fail;
+    }
+    if (c == 1) {
+      ss_probe_filter filt = o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
+      if ((st = ss_segment_probes(&X->seg, np, out->pairs.sx, o.segment_profile, &EX, err))) goto fail;
+      if ((st = ss_segment_probes(&Y->seg, np, out->pairs.sy, o.segment_profile, &EY, err))) goto fail;
+      if ((st = ss_fmap_extra_probes(&sX, nl, np, EX, filt, &fo[1], xops, &xX, err))) goto fail;
+      if ((st = ss_fmap_extra_probes(&sY, nl, np, EY, filt, &fo[1], xops, &xY, err))) goto fail;
+    }
+    if (!(Ck[c] = malloc(sizeof(double) * (size_t)k * k))) goto nomem;
+    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, Ck[c], err))) {
+      if (st == SS_ERR_NUMERIC) explain_singular(X->mesh, Y->mesh, nl, c ? np : 0, k, err);
+      goto fail;
+    }
+  }
+  out->map = malloc(sizeof(int) * (size_t)nX);
+  if (!out->map) goto nomem;
   double t2 = ss_time();
   out->t_fmap = t2 - t1;
 
-  /* 3. optional ZoomOut from k to kz */
-  if (kz > k) {
-    out->kc = kz;
-    out->C = malloc(sizeof(double) * (size_t)kz * kz);
-    if (!out->C) goto nomem;
-    int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-    if ((st = ss_zoomout(nY, nX, Y->evecs, X->evecs, X->M, k, Ck, kz, step, out->map, out->C, err))) goto fail;
-    out->t_zoomout = ss_time() - t2;
+  /* 3. point map: unrefined, ZoomOut of the chosen probes' map, or the best of the candidates */
+  const int main_c = use_seg ? 1 : 0;
+  if (o.refine != SS_REFINE_BEST) {
+    if (kz > k) {
+      out->kc = kz;
+      if (!(out->C = malloc(sizeof(double) * (size_t)kz * kz))) goto nomem;
+      int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
+      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
+        goto fail;
+      if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step, out->map, out->C, err)))
+        goto fail;
+      out->t_zoomout = ss_time() - t2;
+    } else {
+      if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[main_c], out->map, err))) goto fail;
+      out->kc = k;
+      out->C = Ck[main_c];
+      Ck[main_c] = NULL;
+    }
   } else {
-    out->kc = k;
-    out->C = Ck;
-    Ck = NULL;
+    /* candidates 2c (start c at size k) and 2c+1 (its ZoomOut to kz), selection energy at size kz */
+    zmap = malloc(sizeof(int) * (size_t)nX);
+    Cz = malloc(sizeof(double) * (size_t)kz * kz);
+    Cbest = malloc(sizeof(double) * (size_t)kz * kz);
+    if (!zmap || !Cz || !Cbest) goto nomem;
+    const int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
+    /* the STD base probes of the selection energy: kept apart when the segment-aided map had its own */
+    const ss_fmap_probes *qX = sbX.A ? &sbX : &bX, *qY = sbY.A ? &sbY : &bY;
+    double best = INFINITY;
+    int kbest = k;
+    /* the starts' energies first (with refine_single only the lower one is refined) */
+    for (int c = 0; c < 2; c++) {
+      if (!Ck[c]) continue;
+      if (!(smap[c] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
+      if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], smap[c], err))) goto fail;
+      if ((st = select_energy(X, Y, &o, k, kz, qX, qY, smap[c], &out->refine_energy[2 * c], err))) goto fail;
+    }
+    if (kz > k) {
+      double tz = ss_time();
+      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
+        goto fail;
+      out->t_zoomout += ss_time() - tz;
+    }
+    for (int c = 0; c < 2; c++) {
+      if (!Ck[c]) continue;
+      double e0 = out->refine_energy[2 * c], e1 = INFINITY;
+      /* refine_single: the other start has the lower energy (ties: STD's is refined) */
+      const double eo = out->refine_energy[2 * (1 - c)];
+      const int skip = o.refine_single && Ck[1 - c] && (eo < e0 || (eo == e0 && c == 1));
+      if (kz > k && !skip) {
+        double tz = ss_time();
+        if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
+        out->t_zoomout += ss_time() - tz;
+        if ((st = select_energy(X, Y, &o, k, kz, qX, qY, zmap, &e1, err))) goto fail;
+        out->refine_energy[2 * c + 1] = e1;
+      }
+      /* the start, then its refinement only when it lowers the energy (ties keep the earlier one) */
+      if (e0 < best) {
+        best = e0, out->refine_choice = 2 * c, kbest = k;
+        memcpy(out->map, smap[c], sizeof(int) * (size_t)nX);
+        memcpy(Cbest, Ck[c], sizeof(double) * (size_t)k * k);
+      }
+      if (e1 < best && e1 <= e0) {
+        best = e1, out->refine_choice = 2 * c + 1, kbest = kz;
+        memcpy(out->map, zmap, sizeof(int) * (size_t)nX);
+        memcpy(Cbest, Cz, sizeof(double) * (size_t)kz * kz);
+      }
+    }
+    out->kc = kbest;
+    out->C = Cbest;
+    Cbest = NULL;
   }
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t_start);
-  free(EX);
-  free(EY);
-  free(Ck);
-  return SS_OK;
+  goto cleanup;
 nomem:
   st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
 fail:
-  free(EX);
-  free(EY);
-  free(Ck);
   ss_match_result_free(out);
+cleanup:
+  ss_fmap_system_free(sys);
+  ssi_zoomout_plan_free(&plan);
+  ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
+  ss_fmap_probes_free(&sbX), ss_fmap_probes_free(&sbY);
+  free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(zmap);
+  free(smap[0]), free(smap[1]);
   return st;
+}
+
+/* "match: what" -> "match: SHAPE: what" (every message of a shape's preparation is about one mesh) */
+static void name_shape(ss_error *err, const char *shape) {
+  if (!err) return;
+  char tmp[sizeof err->msg];
+  const char *m = err->msg;
+  if (!strncmp(m, "match: ", 7)) m += 7;
+  snprintf(tmp, sizeof tmp, "match: %s: %.900s", shape, m);
+  memcpy(err->msg, tmp, sizeof tmp);
+}
+
+/* ---- meshes of several components ---------------------------------------------------------------
+ * The functional map is only determined on components that hold a landmark (elsewhere the probes
+ * leave the basis functions free: "dsposv info N"). So ss_match keeps, on each mesh, the components
+ * that hold a landmark — the body of a scan, without its crumbs — and matches those; a vertex of X on
+ * a dropped component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X
+ * maps to a dropped vertex of Y. */
+typedef struct kept {
+  int active;      /* 0: the whole mesh is used */
+  ss_mesh sub;     /* the kept components (vertices in input order) */
+  int *to_in;      /* sub vertex -> input vertex */
+  int *to_sub;     /* input vertex -> sub vertex, -1 when dropped */
+  int nc, nkept;   /* components, kept components */
+  double area, kept_area;
+} kept;
+
+static void kept_free(kept *k) {
+  ss_mesh_free(&k->sub);
+  free(k->to_in);
+  free(k->to_sub);
+  memset(k, 0, sizeof *k);
+}
+
+static ss_status keep_landmark_components(const ss_mesh *m, const char *name, int nl, const int *lm, kept *k,
+                                          ss_error *err) {
+  memset(k, 0, sizeof *k);
+  if (!m->V || !m->F || m->nv < 1 || m->nf < 1) return SS_OK; /* refused by the preparation, with its message */
+  for (size_t c = 0; c < 3 * (size_t)m->nf; c++)
+    if (m->F[c] < 0 || m->F[c] >= m->nv)
+      return ss_fail(err, SS_ERR_INVALID, "match: %s: face %zu has vertex index %d out of range [0, %d)", name, c / 3,
+                     m->F[c], m->nv);
+  int *comp = malloc(sizeof(int) * (size_t)m->nv);
+  unsigned char *has = NULL;
+  double *carea = NULL;
+  ss_status st = SS_OK;
+  int nc = comp ? ssi_mesh_components(m, comp) : -1;
+  if (nc < 0) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  k->nc = nc;
+  if (nc <= 1) goto done;
+  has = calloc((size_t)nc, 1);
+  carea = calloc((size_t)nc, sizeof(double));
+  if (!has || !carea) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  int unref = 0, first_unref = -1;
+  for (int i = 0; i < m->nv; i++)
+    if (comp[i] < 0 && !unref++) first_unref = i;
+  if (unref) {
+    st = ss_fail(err, SS_ERR_INVALID,
+                 "match: %s: the mesh has %d unreferenced vert%s (e.g. vertex %d); remove them first (`specseg info` "
+                 "counts them): landmarks and maps refer to its vertex indices",
+                 name, unref, unref == 1 ? "ex" : "ices", first_unref);
+    goto done;
+  }
+  for (int i = 0; i < nl; i++) has[comp[lm[i]]] = 1;
+  for (int f = 0; f < m->nf; f++) {
+    const int *t = m->F + 3 * (size_t)f;
+    double a = ssi_triangle_area(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2]);
+    if (isfinite(a)) carea[comp[t[0]]] += a, k->area += a;
+  }
+  for (int c = 0; c < nc; c++)
+    if (has[c]) k->nkept++, k->kept_area += carea[c];
+  if (k->nkept == nc) goto done; /* every component has a landmark: matched as it is */
+  k->active = 1;
+  k->to_sub = malloc(sizeof(int) * (size_t)m->nv);
+  k->to_in = malloc(sizeof(int) * (size_t)m->nv);
+  if (!k->to_sub || !k->to_in) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  int nv = 0, nf = 0;
+  for (int i = 0; i < m->nv; i++) {
+    k->to_sub[i] = has[comp[i]] ? nv : -1;
+    if (has[comp[i]]) k->to_in[nv++] = i;
+  }
+  for (int f = 0; f < m->nf; f++) nf += has[comp[m->F[3 * (size_t)f]]];
+  if ((st = ss_mesh_alloc(&k->sub, nv, nf, err))) goto done;
+  for (int i = 0; i < nv; i++) memcpy(k->sub.V + 3 * (size_t)i, m->V + 3 * (size_t)k->to_in[i], sizeof(double) * 3);
+  nf = 0;
+  for (int f = 0; f < m->nf; f++) {
+    const int *t = m->F + 3 * (size_t)f;
+    if (!has[comp[t[0]]]) continue;
+    for (int j = 0; j < 3; j++) k->sub.F[3 * (size_t)nf + j] = k->to_sub[t[j]];
+    nf++;
+  }
+done:
+  free(comp);
+  free(has);
+  free(carea);
+  if (st) kept_free(k);
+  return st;
+}
+
+
+static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int is_x, char *w, size_t size) {
+  if (!k->active) return;
+  char line[400];
+  int dropped = m->nv - k->sub.nv, nd = k->nc - k->nkept;
+  snprintf(line, sizeof line,
+           "%s: matched the %d of its %d components that hold a landmark (%d of %d vertices, %.1f%% of the area); "
+           "dropped %d component%s of %d vert%s in all, %s",
+           name, k->nkept, k->nc, k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
+           nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
+           is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
+  ssi_warn_append(w, size, line);
+}
+
+ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                            const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+}
+
+ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                                  const ss_segment_pairs *pairs, const ss_match_options *opts, ss_match_result *out,
+                                  ss_error *err) {
+  if (!pairs) {
+    if (out) memset(out, 0, sizeof *out);
+    return ss_fail(err, SS_ERR_INVALID, "match: NULL segment pairs");
+  }
+  return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                    const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+  return ss_match_warn(X, Y, nl, lmX, lmY, opts_in, out, NULL, 0, err);
+}
+
+ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
+                        const ss_match_options *opts_in, ss_match_result *out, char *warnings, size_t warnings_size,
+                        ss_error *err) {
+  if (warnings && warnings_size) warnings[0] = '\0';
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
   ss_match_options o;
@@ -137,16 +499,92 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
     if (lmY[i] < 0 || lmY[i] >= Y->nv)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->nv);
   }
-  int kev = o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : o.fmap.k;
-  ss_shape_prep pX, pY;
-  ss_status st = ss_shape_prep_compute(X, &o.seg, kev, &pX, err);
+  kept kx, ky;
+  ss_status st = keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
   if (st) return st;
-  if ((st = ss_shape_prep_compute(Y, &o.seg, kev, &pY, err))) {
-    ss_shape_prep_free(&pX);
+  if ((st = keep_landmark_components(Y, "Y (the second mesh)", nl, lmY, &ky, err))) {
+    kept_free(&kx);
     return st;
   }
-  st = ss_match_prepared(&pX, &pY, nl, lmX, lmY, &o, out, err);
-  ss_shape_prep_free(&pX);
-  ss_shape_prep_free(&pY);
+  const ss_mesh *PX = kx.active ? &kx.sub : X, *PY = ky.active ? &ky.sub : Y;
+  int *lx = malloc(sizeof(int) * (size_t)nl), *ly = malloc(sizeof(int) * (size_t)nl);
+  double *dX = NULL, *dY = NULL; /* the caller's descriptors on the kept vertices */
+  ss_shape_prep pX = {0}, pY = {0};
+  int have_x = 0, have_y = 0;
+  if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  if (o.ndescr > 0 && o.descrX && o.descrY) {
+    for (int s = 0; s < 2; s++) {
+      const kept *kk = s ? &ky : &kx;
+      if (!kk->active) continue;
+      const int n_in = s ? Y->nv : X->nv, n_sub = kk->sub.nv;
+      const double *in = s ? o.descrY : o.descrX;
+      double *d = malloc(sizeof(double) * (size_t)n_sub * (size_t)o.ndescr);
+      if (!d) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+      for (int j = 0; j < o.ndescr; j++)
+        for (int i = 0; i < n_sub; i++) d[i + (size_t)n_sub * j] = in[kk->to_in[i] + (size_t)n_in * j];
+      if (s) dY = d, o.descrY = d;
+      else dX = d, o.descrX = d;
+    }
+  }
+  for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
+  int kev = match_kev(&o);
+  if ((st = ss_shape_prep_compute(PX, &o.seg, kev, &pX, err))) { name_shape(err, "X (the first mesh)"); goto done; }
+  have_x = 1;
+  if ((st = ss_shape_prep_compute(PY, &o.seg, kev, &pY, err))) { name_shape(err, "Y (the second mesh)"); goto done; }
+  have_y = 1;
+  for (int i = 0; i < 2 * nl; i++) { /* a landmark on a crumb has no place on the segmentation */
+    const ss_shape_prep *p = i < nl ? &pX : &pY;
+    int v = i < nl ? lx[i] : ly[i - nl];
+    if (p->seg.psi && p->seg.psi[v] < 0) {
+      st = ss_fail(err, SS_ERR_INVALID,
+                   "match: %s: landmark %d (vertex %d) is on no segmented part of the shape (a component under 1%% "
+                   "of the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
+                   i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, i < nl ? lmX[i] : lmY[i - nl]);
+      goto done;
+    }
+  }
+  if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
+  if (kx.active || ky.active) { /* back to the input meshes' vertices */
+    int *map = malloc(sizeof(int) * (size_t)X->nv);
+    if (!map) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+    for (int i = 0; i < PX->nv; i++) {
+      int y = out->map[i];
+      map[kx.active ? kx.to_in[i] : i] = ky.active ? ky.to_in[y] : y;
+    }
+    if (kx.active) {
+      int nd = X->nv - PX->nv, *near = malloc(sizeof(int) * (size_t)(nd > 0 ? nd : 1));
+      double *P = malloc(sizeof(double) * 3 * (size_t)(nd > 0 ? nd : 1));
+      if (!near || !P) st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+      int j = 0;
+      for (int i = 0; !st && i < X->nv; i++)
+        if (kx.to_sub[i] < 0) memcpy(P + 3 * (size_t)j++, X->V + 3 * (size_t)i, sizeof(double) * 3);
+      if (!st) st = ss_closest_vertices(P, nd, &kx.sub, near, err);
+      j = 0;
+      for (int i = 0; !st && i < X->nv; i++)
+        if (kx.to_sub[i] < 0) map[i] = map[kx.to_in[near[j++]]];
+      free(near);
+      free(P);
+      if (st) { free(map); goto done; }
+    }
+    for (int p = 0; p < out->pairs.n; p++) {
+      if (kx.active) out->centerX[p] = kx.to_in[out->centerX[p]];
+      if (ky.active) out->centerY[p] = ky.to_in[out->centerY[p]];
+    }
+    free(out->map);
+    out->map = map;
+    out->nX = X->nv;
+  }
+  kept_warning(&kx, X, "X (the first mesh)", 1, warnings, warnings_size);
+  kept_warning(&ky, Y, "Y (the second mesh)", 0, warnings, warnings_size);
+done:
+  if (st) ss_match_result_free(out);
+  if (have_x) ss_shape_prep_free(&pX);
+  if (have_y) ss_shape_prep_free(&pY);
+  free(lx);
+  free(ly);
+  free(dX);
+  free(dY);
+  kept_free(&kx);
+  kept_free(&ky);
   return st;
 }

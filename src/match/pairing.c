@@ -15,8 +15,39 @@ void ss_segment_pairs_free(ss_segment_pairs *p) {
   memset(p, 0, sizeof *p);
 }
 
+void ss_pairing_paper_options(ss_pairing_options *o) {
+  memset(o, 0, sizeof *o);
+  o->min_ratio = 1.0;
+  o->mutual = 0;
+  o->max_rel_energy = 0.0;
+  o->min_landmarks = 1;
+}
+
+void ss_pairing_default_options(ss_pairing_options *o) {
+  ss_pairing_paper_options(o);
+  o->min_ratio = 2.0;     /* docs/tuning.md */
+  o->min_landmarks = 4;
+}
+
 ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
                                   ss_segment_pairs *out, ss_error *err) {
+  return ss_pair_critical_points_conf(mx, my, nl, dX, dY, NULL, out, err);
+}
+
+static double pair_energy2(int a, int b, int na, int nb, int nl, const double *dA, const double *dB) {
+  double s = 0;
+  for (int i = 0; i < nl; i++) {
+    double d = dA[a + (size_t)na * i] - dB[b + (size_t)nb * i];
+    s += d * d;
+  }
+  return s;
+}
+
+ss_status ss_pair_critical_points_conf(int mx, int my, int nl, const double *dX, const double *dY,
+                                       const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err) {
+  ss_pairing_options paper;
+  ss_pairing_paper_options(&paper);
+  if (!po) po = &paper;
   if (!out) return ss_fail(err, SS_ERR_INVALID, "pairing: NULL output");
   memset(out, 0, sizeof *out);
   if (mx < 0 || my < 0 || nl < 1 || (mx > 0 && !dX) || (my > 0 && !dY))
@@ -36,19 +67,32 @@ ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, cons
   }
   for (int b = 0; b < nb; b++) owner[b] = -1;
   for (int a = 0; a < na; a++) {
-    double best = INFINITY;
+    double best = INFINITY, second = INFINITY;
     int bi = -1;
     for (int b = 0; b < nb; b++) {
-      double s = 0;
-      for (int i = 0; i < nl; i++) {
-        double d = dA[a + (size_t)na * i] - dB[b + (size_t)nb * i];
-        s += d * d;
-      }
-      if (s < best) best = s, bi = b; /* strict: ties go to the lower index */
+      double s = pair_energy2(a, b, na, nb, nl, dA, dB);
+      if (s < best) second = best, best = s, bi = b; /* strict: ties go to the lower index */
+      else if (s < second) second = s;
     }
     choice[a] = bi;
     energy[a] = sqrt(best);
     if (bi < 0) continue; /* non-finite distances everywhere (another component) */
+    /* confidence: an ambiguous choice (second best too close) stays unpaired */
+    if (po->min_ratio > 1 && !(sqrt(second) >= po->min_ratio * energy[a])) { choice[a] = -1; continue; }
+    if (po->max_rel_energy > 0) {
+      double r2 = 0;
+      for (int i = 0; i < nl; i++) r2 += dA[a + (size_t)na * i] * dA[a + (size_t)na * i];
+      if (!(energy[a] <= po->max_rel_energy * sqrt(r2 / nl))) { choice[a] = -1; continue; }
+    }
+    if (po->mutual) { /* a must be b*'s nearest among every chooser, not only among those that chose it */
+      int mutual = 1;
+      for (int a2 = 0; a2 < na && mutual; a2++)
+        if (a2 != a) {
+          double s2 = pair_energy2(a2, bi, na, nb, nl, dA, dB);
+          if (s2 < best || (s2 == best && a2 < a)) mutual = 0;
+        }
+      if (!mutual) { choice[a] = -1; continue; }
+    }
     /* conservative rule: the closest voter keeps y*; the others stay unpaired */
     if (owner[bi] < 0 || energy[a] < energy[owner[bi]]) owner[bi] = a;
   }
@@ -94,6 +138,13 @@ static ss_status landmark_fields(const ss_segmentation *s, int nl, const int *lm
       goto done;
     }
     src[i] = s->psi[lm_input[i]];
+    if (src[i] < 0) {
+      st = ss_fail(err, SS_ERR_INVALID,
+                   "pairing: landmark %d: vertex %d is on no segmented part of the shape (a component under 1%% of "
+                   "the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
+                   i, lm_input[i]);
+      goto done;
+    }
   }
   if ((st = ss_geodesic_mesh_build(w, &gm, err))) goto done;
   if ((st = ss_geodesic_fields(gm, src, nl, 0.0, field, err))) goto done;
@@ -109,6 +160,11 @@ done:
 
 ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
                            const int *lmY, ss_segment_pairs *out, ss_error *err) {
+  return ss_pair_segments_conf(X, Y, nl, lmX, lmY, NULL, out, err);
+}
+
+ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
+                                const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "pairing: NULL output");
   memset(out, 0, sizeof *out);
   if (!X || !Y || !X->psi || !Y->psi || !X->crit || !Y->crit || X->m < 1 || Y->m < 1)
@@ -119,7 +175,7 @@ ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, i
   if (!dX || !dY) st = ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
   if (!st) st = landmark_fields(X, nl, lmX, dX, err);
   if (!st) st = landmark_fields(Y, nl, lmY, dY, err);
-  if (!st) st = ss_pair_critical_points(X->m, Y->m, nl, dX, dY, out, err);
+  if (!st) st = ss_pair_critical_points_conf(X->m, Y->m, nl, dX, dY, po, out, err);
   free(dX);
   free(dY);
   return st;

@@ -46,12 +46,15 @@ static ss_status check_clean(const ss_mesh *m, ss_error *err) {
   ss_mesh_free(&clean);
   free(to_input);
   if (nf_dropped || nv_dropped) {
-    char ex[64] = "";
-    if (first_unref >= 0) snprintf(ex, sizeof ex, " (e.g. vertex %d)", first_unref);
+    char fs[64] = "", vs[96] = "";
+    if (nf_dropped) snprintf(fs, sizeof fs, "%d degenerate or duplicate face%s", nf_dropped, nf_dropped == 1 ? "" : "s");
+    if (nv_dropped)
+      snprintf(vs, sizeof vs, "%d unreferenced vert%s (e.g. vertex %d)", nv_dropped, nv_dropped == 1 ? "ex" : "ices",
+               first_unref);
     return ss_fail(err, SS_ERR_INVALID,
-                   "match: the mesh has %d degenerate or duplicate face%s and %d unreferenced vertex%s%s; remove "
-                   "them first (`specseg info` lists them): landmarks and maps refer to its vertex indices",
-                   nf_dropped, nf_dropped == 1 ? "" : "s", nv_dropped, nv_dropped == 1 ? "" : "es", ex);
+                   "match: the mesh has %s%s%s; remove them first (`specseg info` counts them): landmarks and maps "
+                   "refer to its vertex indices",
+                   fs, fs[0] && vs[0] ? " and " : "", vs);
   }
   return SS_OK;
 }
@@ -60,9 +63,18 @@ ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_
                                 ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
-  if (!m || m->nv < 4 || m->nf < 1 || !m->V || !m->F) return ss_fail(err, SS_ERR_INVALID, "match: empty mesh");
-  if (kev < 3 || kev >= m->nv)
-    return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs requested on %d vertices", kev, m->nv);
+  if (!m || !m->V || !m->F || m->nv < 1 || m->nf < 1) return ss_fail(err, SS_ERR_INVALID, "match: empty mesh (no faces)");
+  if (m->nv < 4)
+    return ss_fail(err, SS_ERR_INVALID,
+                   "match: the mesh has %d vertices and %d face%s: too small to match (a surface of at least 4 "
+                   "vertices, and more vertices than the basis size, is needed)",
+                   m->nv, m->nf, m->nf == 1 ? "" : "s");
+  if (kev < 3) return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs requested; at least 3 are needed", kev);
+  if (kev >= m->nv)
+    return ss_fail(err, SS_ERR_INVALID,
+                   "match: the basis needs %d eigenpairs but the mesh has only %d vertices; use a basis size (k, "
+                   "ZoomOut's kmax) below %d",
+                   kev, m->nv, m->nv);
   ss_status st = check_clean(m, err);
   if (st) return st;
   out->mesh = m;

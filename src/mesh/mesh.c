@@ -1,4 +1,5 @@
 #include "specseg/core.h"
+#include "mesh/mesh_geometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -35,12 +36,8 @@ void ss_mesh_free(ss_mesh *m) {
 
 double ss_mesh_area(const ss_mesh *m) {
   double a = 0;
-  for (int f = 0; f < m->nf; f++) {
-    const double *p = m->V + 3 * m->F[3 * f], *q = m->V + 3 * m->F[3 * f + 1], *r = m->V + 3 * m->F[3 * f + 2];
-    double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-  }
+  for (int f = 0; f < m->nf; f++)
+    a += ssi_triangle_area(m->V + 3 * m->F[3 * f], m->V + 3 * m->F[3 * f + 1], m->V + 3 * m->F[3 * f + 2]);
   return a;
 }
 
@@ -54,7 +51,5 @@ double ss_mesh_bbox_diagonal(const ss_mesh *m) {
       if (x < lo[d]) lo[d] = x;
       if (x > hi[d]) hi[d] = x;
     }
-  double s = 0;
-  for (int d = 0; d < 3; d++) s += (hi[d] - lo[d]) * (hi[d] - lo[d]);
-  return sqrt(s);
+  return ssi_box_diagonal(lo, hi);
 }

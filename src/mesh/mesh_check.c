@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "specseg/mesh.h"
 
@@ -43,7 +44,7 @@ ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err) {
       hi[d] = fmax(hi[d], p[d]);
     }
   }
-  if (any) r->bbox_diagonal = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  if (any) r->bbox_diagonal = ssi_box_diagonal(lo, hi);
   r->area = ss_mesh_area(m);
 
   int *vpar = malloc(sizeof(int) * (nv ? nv : 1));

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "specseg/mesh.h"
 
@@ -19,6 +20,7 @@ ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char
   if (warnings && warnings_size) warnings[0] = '\0';
   if (!out || !to_input) return ss_fail(err, SS_ERR_INVALID, "sanitize: NULL output");
   ss_status st = topo_check_indices(in, err);
+  if (!st) st = ssi_mesh_check_coordinates(in, NULL, err); /* non-finite, beyond ±1e70 */
   if (st) return st;
   size_t nv = (size_t)in->nv, nf = (size_t)in->nf;
 
@@ -39,18 +41,7 @@ ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char
   int ndeg = 0, ndup = 0;
   for (size_t f = 0; f < nf; f++) {
     use[f] = topo_face_degenerate(in, (int)f) == 0;
-    if (!use[f]) {
-      ndeg++;
-      continue;
-    }
-    const int *t = in->F + 3 * f;
-    for (int j = 0; j < 3; j++) {
-      const double *p = in->V + 3 * (size_t)t[j];
-      if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-        st = ss_fail(err, SS_ERR_INVALID, "vertex %d has a non-finite coordinate (%g, %g, %g)", t[j], p[0], p[1], p[2]);
-        goto done;
-      }
-    }
+    if (!use[f]) ndeg++;
   }
   /* keep the first face of each vertex set (sorted by face index within a group) */
   size_t ntk = topo_collect_tris(in, use, tk);

@@ -1,3 +1,4 @@
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 
 #include <math.h>
@@ -7,12 +8,9 @@
 int topo_face_degenerate(const ss_mesh *m, int f) {
   const int *t = m->F + 3 * (size_t)f;
   if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return 1;
-  const double *p = m->V + 3 * (size_t)t[0], *q = m->V + 3 * (size_t)t[1], *r = m->V + 3 * (size_t)t[2];
-  double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, v[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-  double w[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
-  double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  double l2 = fmax(u[0] * u[0] + u[1] * u[1] + u[2] * u[2], fmax(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], w[0] * w[0] + w[1] * w[1] + w[2] * w[2]));
-  double a2 = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]); /* twice the area */
+  double a2, l2; /* twice the area, squared longest edge (of the triangle scaled by 2^-e at extreme sizes) */
+  int e;
+  ssi_triangle_measures(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2], &a2, &l2, &e);
   /* height / longest edge below 1e-14: zero up to rounding of the coordinates */
   if (a2 <= 1e-14 * l2) return 2;
   return 0;
@@ -259,4 +257,34 @@ void topo_free(topo *T) {
   free(T->fan);
   free(T->loop);
   memset(T, 0, sizeof *T);
+}
+
+/* Connected components of the faces of a (sanitized) mesh through shared vertices: comp[v] for every
+ * vertex (numbered by lowest vertex; -1 for a vertex in no face). Returns the count, -1 on OOM. */
+int ssi_mesh_components(const ss_mesh *m, int *comp) {
+  int *p = malloc(sizeof(int) * (size_t)m->nv);
+  if (!p) return -1;
+  for (int i = 0; i < m->nv; i++) p[i] = i, comp[i] = -1;
+  for (int f = 0; f < m->nf; f++)
+    for (int j = 0; j < 3; j++) {
+      int a = m->F[3 * f + j], b = m->F[3 * f + (j + 1) % 3];
+      while (p[a] != a) a = p[a] = p[p[a]];
+      while (p[b] != b) b = p[b] = p[p[b]];
+      if (a != b) { if (a < b) p[b] = a; else p[a] = b; }
+    }
+  unsigned char *used = calloc((size_t)m->nv, 1);
+  if (!used) { free(p); return -1; }
+  for (int i = 0; i < 3 * m->nf; i++) used[m->F[i]] = 1;
+  int nc = 0;
+  for (int i = 0; i < m->nv; i++) {
+    int r = i;
+    while (p[r] != r) r = p[r];
+    p[i] = r;
+    if (!used[i]) continue;
+    if (comp[r] < 0) comp[r] = nc++;
+    comp[i] = comp[r];
+  }
+  free(p);
+  free(used);
+  return nc;
 }

@@ -11,6 +11,10 @@
 /* 0: proper triangle; 1: repeated vertex index; 2: zero area (relative to its longest edge). */
 int topo_face_degenerate(const ss_mesh *m, int f);
 
+/* Connected components of the faces through shared vertices: comp[v] for every vertex (numbered by
+ * lowest vertex; -1 for a vertex in no face). Returns the count, -1 on OOM. Indices must be valid. */
+int ssi_mesh_components(const ss_mesh *m, int *comp);
+
 /* Index range check: SS_ERR_INVALID naming the first bad face. */
 ss_status topo_check_indices(const ss_mesh *m, ss_error *err);
 

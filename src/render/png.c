@@ -9,21 +9,33 @@
 #include <png.h>
 #include <setjmp.h>
 
+/* libpng reports through these instead of printing (the library never prints): the error message is
+ * kept for ss_error, warnings are dropped */
+static void png_error_fn(png_structp png, png_const_charp msg) {
+  char *buf = png_get_error_ptr(png);
+  if (buf) snprintf(buf, 128, "%s", msg ? msg : "libpng error");
+  png_longjmp(png, 1);
+}
+static void png_warning_fn(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
 ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err) {
   if (width < 1 || height < 1) return ss_fail(err, SS_ERR_INVALID, "%s: empty image", path);
   FILE *f = fopen(path, "wb");
   if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  char pmsg[128] = "";
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, pmsg, png_error_fn, png_warning_fn);
   png_infop info = png ? png_create_info_struct(png) : NULL;
   if (!png || !info) {
     png_destroy_write_struct(&png, &info);
     fclose(f);
     return ss_fail(err, SS_ERR_NOMEM, "%s: cannot create the PNG writer", path);
   }
+  errno = 0;
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
+    int e = errno;
     fclose(f);
-    return ss_fail(err, SS_ERR_IO, "%s: PNG write failed", path);
+    return ss_fail(err, SS_ERR_IO, "%s: PNG write failed: %s", path, e ? strerror(e) : pmsg[0] ? pmsg : "libpng error");
   }
   png_init_io(png, f);
   png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
@@ -36,6 +48,15 @@ ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, in
   return SS_OK;
 }
 #else
+/* libpng reports through these instead of printing (the library never prints): the error message is
+ * kept for ss_error, warnings are dropped */
+static void png_error_fn(png_structp png, png_const_charp msg) {
+  char *buf = png_get_error_ptr(png);
+  if (buf) snprintf(buf, 128, "%s", msg ? msg : "libpng error");
+  png_longjmp(png, 1);
+}
+static void png_warning_fn(png_structp png, png_const_charp msg) { (void)png, (void)msg; }
+
 ss_status ss_write_png(const char *path, const unsigned char *rgb, int width, int height, ss_error *err) {
   (void)rgb; (void)width; (void)height;
   return ss_fail(err, SS_ERR_UNSUPPORTED, "%s: built without libpng", path);

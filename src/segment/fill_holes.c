@@ -40,7 +40,10 @@ ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_er
   qsort(keys, nh, sizeof *keys, cmp_u64);
   for (size_t h = 1; h < nh; h++)
     if (keys[h] == keys[h - 1]) {
-      st = ss_fail(err, SS_ERR_UNSUPPORTED, "fill holes: edge %llu-%llu is used twice in one direction",
+      st = ss_fail(err, SS_ERR_UNSUPPORTED,
+                   "segment: two faces run the edge %llu-%llu in the same direction: the faces are not consistently "
+                   "oriented (or the edge is non-manifold); orient them first, or keep the segmentation's sanitize "
+                   "option on (the default: it re-orients each component and splits non-manifold vertices)",
                    (unsigned long long)(keys[h] / (uint64_t)nv), (unsigned long long)(keys[h] % (uint64_t)nv));
       goto done;
     }
@@ -50,7 +53,10 @@ ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_er
     int a = in->F[h], b = in->F[h - h % 3 + (h % 3 + 1) % 3];
     if (has_key(keys, nh, (uint64_t)b * (uint64_t)nv + (uint64_t)a)) continue;
     if (next[a] >= 0) {
-      st = ss_fail(err, SS_ERR_UNSUPPORTED, "fill holes: vertex %d has two outgoing boundary edges", a);
+      st = ss_fail(err, SS_ERR_UNSUPPORTED,
+                   "segment: two boundary loops pass through vertex %d (a pinched vertex on a hole): split it first, "
+                   "or keep the segmentation's sanitize option on (the default: it splits such vertices)",
+                   a);
       goto done;
     }
     next[a] = b;
@@ -85,7 +91,11 @@ ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_er
       }
       if (v != s || next[v] < 0) {
         free(seen);
-        st = ss_fail(err, SS_ERR_UNSUPPORTED, "fill holes: boundary through vertex %d is not a simple loop", s);
+        st = ss_fail(err, SS_ERR_UNSUPPORTED,
+                     "segment: the boundary through vertex %d is not a simple loop (holes are closed with a fan of "
+                     "triangles); repair the mesh around it (`specseg info` counts boundary loops and non-manifold "
+                     "vertices)",
+                     s);
         goto done;
       }
       nloops++;

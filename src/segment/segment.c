@@ -1,11 +1,13 @@
 /* The segmentation pipeline of paper §4: streamline (CMCF + remesh + Ψ) → Fiedler vector →
  * critical points → iVd on the NPP22 graph → labels and centres back on the input. */
+#include "util/warnings.h"
 #include "specseg/segment.h"
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
 #include "specseg/spectrum.h"
 #include "specseg/streamline.h"
 #include "fill_holes.h"
+#include "mesh/mesh_topology.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -119,42 +121,6 @@ done:
   return st;
 }
 
-static void warn_append(char *w, size_t size, const char *what) {
-  if (!w || !size) return;
-  size_t len = strlen(w);
-  if (len + 1 >= size) return;
-  snprintf(w + len, size - len, "%s%s", len ? "; " : "", what);
-}
-
-/* Connected components of the faces of a (sanitized) mesh through shared vertices: comp[v] for every
- * vertex (numbered by lowest vertex; -1 for a vertex in no face). Returns the count, -1 on OOM. */
-static int mesh_components(const ss_mesh *m, int *comp) {
-  int *p = malloc(sizeof(int) * (size_t)m->nv);
-  if (!p) return -1;
-  for (int i = 0; i < m->nv; i++) p[i] = i, comp[i] = -1;
-  for (int f = 0; f < m->nf; f++)
-    for (int j = 0; j < 3; j++) {
-      int a = m->F[3 * f + j], b = m->F[3 * f + (j + 1) % 3];
-      while (p[a] != a) a = p[a] = p[p[a]];
-      while (p[b] != b) b = p[b] = p[p[b]];
-      if (a != b) { if (a < b) p[b] = a; else p[a] = b; }
-    }
-  unsigned char *used = calloc((size_t)m->nv, 1);
-  if (!used) { free(p); return -1; }
-  for (int i = 0; i < 3 * m->nf; i++) used[m->F[i]] = 1;
-  int nc = 0;
-  for (int i = 0; i < m->nv; i++) {
-    int r = i;
-    while (p[r] != r) r = p[r];
-    p[i] = r;
-    if (!used[i]) continue;
-    if (comp[r] < 0) comp[r] = nc++;
-    comp[i] = comp[r];
-  }
-  free(p);
-  free(used);
-  return nc;
-}
 
 ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_in, ss_segmentation *out,
                           char *warnings, size_t warnings_size, ss_error *err) {
@@ -168,8 +134,11 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (!input || input->nv <= 0 || input->nf <= 0 || !input->V || !input->F)
     return ss_fail(err, SS_ERR_INVALID, "segment: empty mesh");
   if (o.n_eigs < 2) return ss_fail(err, SS_ERR_INVALID, "segment: n_eigs must be at least 2 (got %d)", o.n_eigs);
-  if (!o.no_streamline && o.target_faces < 4)
-    return ss_fail(err, SS_ERR_INVALID, "segment: target face count %d is too small", o.target_faces);
+  if (!o.no_streamline && (o.target_faces < 4 || o.target_faces > SS_REMESH_MAX_FACES))
+    return ss_fail(err, SS_ERR_INVALID,
+                   "segment: target face count %d of the remeshing is outside the supported 4 .. %d (the default "
+                   "15000 is what the paper uses)",
+                   o.target_faces, SS_REMESH_MAX_FACES);
   if (o.cleanup_rings < 0) return ss_fail(err, SS_ERR_INVALID, "segment: negative clean-up radius");
 
   ss_status st = SS_OK;
@@ -186,7 +155,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (o.sanitize) {
     char sw[512];
     if ((st = ss_mesh_sanitize(input, &clean, &to_input, sw, sizeof sw, err))) goto fail;
-    if (sw[0]) warn_append(warnings, warnings_size, sw);
+    if (sw[0]) ssi_warn_append(warnings, warnings_size, sw);
     proc = &clean;
   }
 
@@ -194,7 +163,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   {
     int *comp = malloc(sizeof(int) * (size_t)proc->nv);
     if (!comp) goto nomem;
-    int nc = mesh_components(proc, comp);
+    int nc = ssi_mesh_components(proc, comp);
     if (nc < 0) { free(comp); goto nomem; }
     if (nc > 1) {
       st = segment_components(input, proc, to_input, comp, nc, &o, out, warnings, warnings_size, err);
@@ -222,7 +191,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
       char hw[128];
       snprintf(hw, sizeof hw, "%d hole%s (boundary loop%s) closed internally for smoothing and remeshing", nholes,
                nholes > 1 ? "s" : "", nholes > 1 ? "s" : "");
-      warn_append(warnings, warnings_size, hw);
+      ssi_warn_append(warnings, warnings_size, hw);
     }
     double t0 = ss_time();
     ss_cmcf_options co;
@@ -441,7 +410,7 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
       char line[400];
       snprintf(line, sizeof line, "component %d (input vertex %d onwards): %s", c + 1,
                to_input ? to_input[cfirst[c]] : cfirst[c], cw);
-      warn_append(warnings, warnings_size, line);
+      ssi_warn_append(warnings, warnings_size, line);
     }
     if (st) {
       char msg[sizeof err->msg];
@@ -522,13 +491,13 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
   {
     char w[512];
     snprintf(w, sizeof w, "%d components: %d segmented on their own (%d segments)", ncomp, nsig, m);
-    warn_append(warnings, warnings_size, w);
+    ssi_warn_append(warnings, warnings_size, w);
     if (ntiny) {
       snprintf(w, sizeof w,
                "%d small component%s (under %g%% of the area each; first input vertex %s) got no segment of "
                "their own: their vertices take the segment of the nearest vertex of a larger component",
                ntiny, ntiny > 1 ? "s" : "", 100 * SSI_SIGNIFICANT_AREA, tiny_list);
-      warn_append(warnings, warnings_size, w);
+      ssi_warn_append(warnings, warnings_size, w);
     }
   }
   goto done;

@@ -7,6 +7,10 @@
  * and the Lanczos basis is Euclidean-orthonormal, so φ = M^{-1/2} y is M-orthonormal for free.
  * (W − σM) is factored once with CHOLMOD (simplicial LDLᵀ).
  *
+ * On large meshes (SS_EIGS_AUTO: from SS_EIGS_BLOCK_MIN_N vertices and 32 pairs) the same operator
+ * is iterated by thick-restart block Lanczos instead (eigs_block.c) on a supernodal LLᵀ factor:
+ * everything below (null pairs, completeness, Ritz post-processing) is shared.
+ *
  * Ritz vectors: instead of dseupd (which applies Householder reflectors column by column), we take
  * the final ncv x ncv Lanczos tridiagonal T from ARPACK's workspace, diagonalise it with LAPACK and
  * form Y = V S with one dgemm. Eigenvalues are then Rayleigh quotients φᵀWφ/φᵀMφ (error ~ residual²).
@@ -27,8 +31,8 @@
 /* ARPACK is not reentrant (Fortran SAVE variables): one dsaupd/dseupd run at a time per process. */
 static pthread_mutex_t arpack_lock = PTHREAD_MUTEX_INITIALIZER;
 
-#include "linalg/cholmod_wrap.h"
 #include "specseg/laplacian.h"
+#include "spectrum/eigs_internal.h"
 
 void ss_eigs_default_options(ss_eigs_options *o) {
   o->sigma = -1e-8;
@@ -36,6 +40,8 @@ void ss_eigs_default_options(ss_eigs_options *o) {
   o->ncv = 0;
   o->maxiter = 0;
   o->stats = NULL;
+  o->method = SS_EIGS_AUTO;
+  o->block = 0;
 }
 
 static const char *arpack_info_msg(int info) {
@@ -62,7 +68,7 @@ static const char *arpack_info_msg(int info) {
 
 /* Deterministic start vector: a fixed-seed xorshift sequence, uniform in [-1, 1). Not a constant:
  * a symmetric start vector would miss parts of degenerate eigenspaces. */
-static void start_vector(double *r, int n, uint64_t seed) {
+void ssi_eigs_start_vector(double *r, int n, uint64_t seed) {
   uint64_t s = 0x9E3779B97F4A7C15ull ^ (seed * 0xD1B54A32D192ED03ull);
   for (int i = 0; i < n; i++) {
     s ^= s << 13;
@@ -82,8 +88,9 @@ static ss_status validate(const ss_sparse *W, const double *M, int k, ss_error *
   for (int i = 0; i < n; i++)
     if (!(M[i] > 0) || !isfinite(M[i]))
       return ss_fail(err, SS_ERR_INVALID,
-                     "eigs: mass of vertex %d is %g; all masses must be positive and finite "
-                     "(unreferenced or degenerate vertices?)",
+                     "eigs: mass of vertex %d is %g; all masses must be positive and finite: a vertex no face uses "
+                     "(unreferenced) or only zero-area faces use has none; drop such vertices first "
+                     "(ss_mesh_sanitize does)",
                      i, M[i]);
   return SS_OK;
 }
@@ -201,6 +208,15 @@ static int null_components(const ss_sparse *W, int *label) {
 /* x ← P x, P = I − Σ_c y_c y_cᵀ with y_c = M^{1/2} 1_c / ‖M^{1/2} 1_c‖ (mass[c] = Σ_{i∈c} M_i). */
 static void project_out(double *x, int n, const int *label, const double *sqm, const double *mass, double *acc,
                         int nc) {
+  if (nc == 1) { /* one component (the usual case): the same sums without the scatter */
+    double a = 0;
+    for (int i = 0; i < n; i++)
+      if (label[i] >= 0) a += sqm[i] * x[i];
+    a /= mass[0];
+    for (int i = 0; i < n; i++)
+      if (label[i] >= 0) x[i] -= sqm[i] * a;
+    return;
+  }
   memset(acc, 0, sizeof(double) * (size_t)nc);
   for (int i = 0; i < n; i++)
     if (label[i] >= 0) acc[label[i]] += sqm[i] * x[i];
@@ -209,25 +225,7 @@ static void project_out(double *x, int n, const int *label, const double *sqm, c
     if (label[i] >= 0) x[i] -= sqm[i] * acc[label[i]];
 }
 
-/* What the Lanczos operator needs: OP = P M^{1/2} (W − σM)^{-1} M^{1/2} P, where P projects out the
- * exact null pairs and (when recovering missed eigenvalues) already found eigenvectors. */
-typedef struct {
-  ssi_chol *chol;
-  const double *sqm, *mass;
-  const int *label;
-  double *acc;
-  int n, nnull;
-  const double *defl; /* n x ndefl orthonormal (scaled space), may be NULL */
-  int ndefl;
-  double *coef;       /* ndefl */
-  double sigma, tol;
-  double opscale; /* OP is applied times this power of two (1 at everyday scales, see ss_eigs) */
-  int maxiter, ncv_opt;
-  int nops;
-  double tsolve;
-} lanczos_ctx;
-
-static void project_all(lanczos_ctx *c, double *x) {
+void ssi_eigs_project(ssi_lanczos_ctx *c, double *x) {
   if (c->nnull) project_out(x, c->n, c->label, c->sqm, c->mass, c->acc, c->nnull);
   for (int pass = 0; pass < (c->ndefl ? 2 : 0); pass++) {
     cblas_dgemv(CblasColMajor, CblasTrans, c->n, c->ndefl, 1.0, c->defl, c->n, x, 1, 0.0, c->coef, 1);
@@ -236,7 +234,7 @@ static void project_all(lanczos_ctx *c, double *x) {
 }
 
 /* The reverse-communication loop of dsaupd: OP y = M^-1/2 (W - σM)^-1 M^-1/2 x on the projected space. */
-static ss_status arpack_iterate(lanczos_ctx *c, int nev, int ncv, double *resid, double *V, a_int *iparam,
+static ss_status arpack_iterate(ssi_lanczos_ctx *c, int nev, int ncv, double *resid, double *V, a_int *iparam,
                                 a_int *ipntr, double *workd, double *workl, int lworkl, a_int *info,
                                 ss_error *err) {
   const int n = c->n;
@@ -248,7 +246,7 @@ static ss_status arpack_iterate(lanczos_ctx *c, int nev, int ncv, double *resid,
     const double *x = workd + ipntr[0] - 1;
     double *y = workd + ipntr[1] - 1;
     memcpy(y, x, sizeof(double) * nn);
-    project_all(c, y);
+    ssi_eigs_project(c, y);
     for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
     double ts = ss_time();
     ss_status st = ssi_chol_solve(c->chol, y, y, 1, err);
@@ -259,19 +257,22 @@ static ss_status arpack_iterate(lanczos_ctx *c, int nev, int ncv, double *resid,
       for (int i = 0; i < n; i++) y[i] *= c->sqm[i] * c->opscale;
     else
       for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
-    project_all(c, y);
+    ssi_eigs_project(c, y);
   }
 }
 
 /* The nev eigenpairs of OP of largest |ν| with ARPACK: Y (n x nev, scaled space, orthonormal) and
  * lam (λ = σ + 1/ν), both ordered by ascending λ. */
-static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, double *lam, ss_error *err) {
+static ss_status arpack_run(ssi_lanczos_ctx *c, int nev, uint64_t seed, double *Y, double *lam, ss_error *err) {
   const int n = c->n;
   const size_t nn = (size_t)n;
   int room = n - c->nnull - c->ndefl; /* dimension of the space OP acts on */
-  if (nev < 1 || nev >= room)
-    return ss_fail(err, SS_ERR_NUMERIC, "eigs: cannot compute %d more eigenpairs in a space of dimension %d", nev,
-                   room);
+  if (nev < 1) return ss_fail(err, SS_ERR_NUMERIC, "eigs: asked for %d eigenpairs", nev);
+  if (nev >= room) /* every vertex but one is an eigenpair already: only ever reached for k ~ n */
+    return ss_fail(err, SS_ERR_NUMERIC,
+                   "eigs: k = %d is too close to the number of vertices (%d): %d eigenpair%s still to be found in a "
+                   "space of dimension %d; use k <= %d, which leaves the Lanczos solver the room it needs",
+                   c->k, n, nev, nev == 1 ? " is" : "s are", room, c->nnull + (n - c->nnull - 1) / 2);
   int ncv = c->ncv_opt ? c->ncv_opt : (2 * nev + 1 > 20 ? 2 * nev + 1 : 20);
   if (ncv > room) ncv = room;
   if (ncv <= nev) ncv = nev + 1;
@@ -296,8 +297,8 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
   iparam[2] = c->maxiter;
   iparam[6] = 1; /* mode 1: OP applied by us */
   a_int info = 1;
-  start_vector(resid, n, seed);
-  project_all(c, resid);
+  ssi_eigs_start_vector(resid, n, seed);
+  ssi_eigs_project(c, resid);
   /* ARPACK's Fortran core keeps SAVEd state between reverse-communication calls, so one run must not
    * interleave with another: serialise whole runs across OpenMP threads (the factorisation, the
    * Ritz vectors and everything else stay parallel). */
@@ -310,8 +311,17 @@ static ss_status arpack_run(lanczos_ctx *c, int nev, uint64_t seed, double *Y, d
     goto out;
   }
   if (iparam[4] < nev) {
-    st = ss_fail(err, SS_ERR_NUMERIC, "eigs: ARPACK converged %d of %d eigenpairs (info %d: %s)", (int)iparam[4], nev,
-                 (int)info, info ? arpack_info_msg((int)info) : "no convergence");
+    /* the usual cause: k so close to n that the Krylov space could not get its ~2k vectors */
+    int k = c->k, kmax = c->nnull + (n - c->nnull - 1) / 2;
+    if (!c->ncv_opt && 2 * nev + 1 > room)
+      st = ss_fail(err, SS_ERR_NUMERIC,
+                   "eigs: k = %d is too close to the number of vertices (%d): the Lanczos solver (ARPACK) needs room "
+                   "for about 2k basis vectors and converged only %d of the %d pairs asked (ARPACK info %d); use k "
+                   "<= %d, which leaves it that room",
+                   k, n, (int)iparam[4], nev, (int)info, kmax);
+    else
+      st = ss_fail(err, SS_ERR_NUMERIC, "eigs: ARPACK converged %d of %d eigenpairs (info %d: %s)", (int)iparam[4], nev,
+                   (int)info, info ? arpack_info_msg((int)info) : "no convergence");
     goto out;
   }
   /* Final Lanczos factorisation OP V = V T + f e_ncvᵀ: T's diagonal and subdiagonal sit in workl at
@@ -368,6 +378,9 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   if (o.ncv != 0 && (o.ncv <= k || o.ncv > n))
     return ss_fail(err, SS_ERR_INVALID, "eigs: ncv = %d must satisfy k = %d < ncv <= n = %d", o.ncv, k, n);
   if (o.maxiter < 0) return ss_fail(err, SS_ERR_INVALID, "eigs: maxiter must be >= 0");
+  if (o.method != SS_EIGS_AUTO && o.method != SS_EIGS_ARPACK && o.method != SS_EIGS_BLOCK)
+    return ss_fail(err, SS_ERR_INVALID, "eigs: unknown method %d", o.method);
+  if (o.block < 0 || o.block >= n) return ss_fail(err, SS_ERR_INVALID, "eigs: block = %d must be in [0, n)", o.block);
   /* Scale. W is invariant under a uniform scaling of the shape by s and M scales with s², so the
    * eigenvalues scale with 1/s² while an absolute shift does not: at s = 1e8 a shift of −1e-8 lies
    * 1e8 times farther below 0 than λ₂ is above it, OP = (W − σM)⁻¹ is ~ −M⁻¹/σ up to 1e-8 and the
@@ -437,17 +450,33 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   }
 
   double tt0 = ss_time(), tt1 = tt0, tt2 = tt0;
-  lanczos_ctx lc = {NULL, sqm, mass, label, acc, n, nnull, NULL, 0, NULL, sigma, tol, opscale, maxiter, o.ncv, 0, 0.0};
-  int recovered = 0;
+  ssi_lanczos_ctx lc = {NULL, sqm, mass, label, acc, n, nnull, NULL, 0, NULL, sigma, tol, opscale, maxiter, o.ncv,
+                        0, 0.0, 0, 0, 0, W, M, k};
+  int recovered = 0, method = 0;
   if (kk > 0) {
     lam = malloc(sizeof(double) * (size_t)k);
     if (!lam) { st = ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory"); goto done; }
-    st = ssi_chol_factor(W, -sigma, M, &chol, err);
+    /* block Lanczos: where chosen, for σ <= 0 and room for its basis; mmax basis columns of blocks
+     * of b (defaults measured at 110k vertices, k = 100: bench_eigs) */
+    int b = o.block ? o.block : 8;
+    if (b > kk) b = kk;
+    int mmax = o.ncv ? o.ncv : 2 * kk + 6 * b;
+    if (mmax < kk + b) mmax = kk + b;
+    int room = n - nnull;
+    int use_block = o.method == SS_EIGS_BLOCK || (o.method == SS_EIGS_AUTO && n >= SS_EIGS_BLOCK_MIN_N && kk >= 32);
+    if (sigma > 0 || mmax + b > room) use_block = 0;
+    if (use_block) {
+      ss_error ferr;
+      if (ssi_chol_factor_super(W, -sigma, M, &chol, &ferr) != SS_OK) use_block = 0; /* not definite: LDLᵀ */
+    }
+    if (!use_block) st = ssi_chol_factor(W, -sigma, M, &chol, err);
     tt1 = ss_time();
     if (st) goto done;
     lc.chol = chol;
-    st = arpack_run(&lc, kk, 0, X + nn * (size_t)c0, lam, err);
+    if (use_block) st = ssi_eigs_block_lanczos(&lc, kk, b, mmax, 0, X + nn * (size_t)c0, lam, err);
+    else st = arpack_run(&lc, kk, 0, X + nn * (size_t)c0, lam, err);
     if (st) goto done;
+    method = use_block ? SS_EIGS_BLOCK : SS_EIGS_ARPACK;
     tt2 = ss_time();
     /* Completeness. Lanczos from one start vector sees a single direction of each exactly degenerate
      * eigenspace (symmetric shapes: spheres, tori) and can converge to a later eigenvalue instead of
@@ -546,7 +575,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   st = SS_OK;
   if (o.stats) {
     ss_eigs_stats es = {c0, chol ? ssi_chol_nnz(chol) : 0.0, tt1 - tt0, tt2 - tt1, lc.nops, lc.tsolve,
-                        tp0 - tt2, recovered, tp1 - tp0, ss_time() - tp1};
+                        tp0 - tt2, recovered, tp1 - tp0, ss_time() - tp1, method, lc.block, lc.restarts};
     *o.stats = es;
   }
 
@@ -564,6 +593,19 @@ ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss
   if (!M) return ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory");
   ss_status st = ss_cotan_stiffness(m, &W, err);
   if (!st) st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, M, err);
+  /* a vertex without mass makes the problem singular: say why it has none */
+  for (int i = 0; !st && i < m->nv; i++) {
+    if (M[i] > 0) continue;
+    int used = 0;
+    for (size_t c = 0; c < 3 * (size_t)m->nf && !used; c++) used = m->F[c] == i;
+    st = ss_fail(err, SS_ERR_INVALID,
+                 used ? "eigs: vertex %d is only in zero-area faces, so it has no mass and the eigenproblem is "
+                        "singular; drop degenerate faces and the vertices they leave unused first (ss_mesh_sanitize "
+                        "does; `specseg info` counts them)"
+                      : "eigs: vertex %d is used by no face (unreferenced), so it has no mass and the eigenproblem is "
+                        "singular; drop unreferenced vertices first (ss_mesh_sanitize does; `specseg info` counts them)",
+                 i);
+  }
   if (!st) st = ss_eigs(&W, M, k, NULL, evals, evecs, err);
   ss_sparse_free(&W);
   free(M);

@@ -3,6 +3,7 @@
  * CHOLMOD symbolic analysis serves every step; only the numeric factorisation is redone. */
 #include "specseg/streamline.h"
 #include "specseg/laplacian.h"
+#include "mesh/mesh_geometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -56,6 +57,8 @@ ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt_in, ss_me
       return ss_fail(err, SS_ERR_INVALID, "cmcf: face %d has vertex index %d out of range [0,%d)", i / 3, in->F[i], in->nv);
   for (int i = 0; i < 3 * in->nv; i++)
     if (!isfinite(in->V[i])) return ss_fail(err, SS_ERR_INVALID, "cmcf: vertex %d has a non-finite coordinate", i / 3);
+  ss_status st0 = ssi_mesh_check_coordinates(in, "cmcf", err);
+  if (st0) return st0;
 
   double c_in[3], area_in;
   area_centroid(in, in->V, c_in, &area_in);

@@ -72,7 +72,11 @@ ss_status ss_remesh(const ss_mesh *in, const ss_remesh_options *opt_in, ss_mesh 
   if (opt_in) opt = *opt_in; else ss_remesh_default_options(&opt);
   if (!in || !out) return ss_fail(err, SS_ERR_INVALID, "remesh: NULL mesh");
   memset(out, 0, sizeof *out);
-  if (opt.target_faces < 4) return ss_fail(err, SS_ERR_INVALID, "remesh: target face count must be at least 4 (got %d)", opt.target_faces);
+  if (opt.target_faces < 4 || opt.target_faces > SS_REMESH_MAX_FACES)
+    return ss_fail(err, SS_ERR_INVALID,
+                   "remesh: target face count %d is outside the supported 4 .. %d (the cost grows faster than the "
+                   "face count: 1e6 faces take ~25 s, 2e6 ~1.5 min)",
+                   opt.target_faces, SS_REMESH_MAX_FACES);
   if (opt.iterations < 1 || opt.smooth_only_iterations < 0)
     return ss_fail(err, SS_ERR_INVALID, "remesh: need at least one iteration");
   if (!(opt.tolerance > 0)) return ss_fail(err, SS_ERR_INVALID, "remesh: tolerance must be positive");

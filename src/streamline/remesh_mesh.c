@@ -1,5 +1,6 @@
 /* Topological operations of the isotropic remesher on the corner-table mesh (see remesh_mesh.h). */
 #include "remesh_mesh.h"
+#include "mesh/mesh_geometry.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -53,6 +54,8 @@ ss_status rm_init(rm_mesh *m, const ss_mesh *in, ss_error *err) {
       return ss_fail(err, SS_ERR_INVALID, "remesh: face %d has vertex index %d out of range [0,%d)", i / 3, in->F[i], nv);
   for (int i = 0; i < 3 * nv; i++)
     if (!isfinite(in->V[i])) return ss_fail(err, SS_ERR_INVALID, "remesh: vertex %d has a non-finite coordinate", i / 3);
+  ss_status st0 = ssi_mesh_check_coordinates(in, "remesh", err);
+  if (st0) return st0;
   for (int f = 0; f < nf; f++) {
     const int *t = in->F + 3 * f;
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])

@@ -11,13 +11,13 @@
 
 /* Shared parser: one value per content line of [buf, buf + len) into a growing array of doubles or
  * ints; `path` names the input in messages. */
-static ss_status parse_values(const char *path, const char *buf, size_t len, int as_int, void **out, int *n,
-                              ss_error *err) {
+static ss_status parse_values(const char *path, const char *buf, size_t len, int as_int, void **out, int **lines,
+                              int *n, ss_error *err) {
   ss_status st = SS_OK;
   io_text t;
   io_text_init(&t, buf, len);
   io_dvec dv = {0};
-  io_ivec iv = {0};
+  io_ivec iv = {0}, ln = {0}; /* ln: line numbers, when wanted */
   const char *b, *e, *p, *tb;
   size_t tl;
   char show[48];
@@ -33,7 +33,7 @@ static ss_status parse_values(const char *path, const char *buf, size_t len, int
       long long v;
       if (io_parse_ll(tb, tl, &v) || v < INT_MIN || v > INT_MAX)
         st = io_fail_line(err, SS_ERR_PARSE, path, t.line, "'%s' is not an integer in range", io_tok_show(tb, tl, show, sizeof show));
-      else if (io_ivec_push(&iv, (int)v))
+      else if (io_ivec_push(&iv, (int)v) || (lines && io_ivec_push(&ln, t.line > INT_MAX ? INT_MAX : (int)t.line)))
         st = io_fail_line(err, SS_ERR_NOMEM, path, t.line, "out of memory");
     } else {
       double v;
@@ -48,13 +48,20 @@ static ss_status parse_values(const char *path, const char *buf, size_t len, int
   if (st) {
     free(dv.a);
     free(iv.a);
+    free(ln.a);
     return st;
   }
   void *a = as_int ? (void *)iv.a : (void *)dv.a;
   size_t cnt = as_int ? iv.n : dv.n;
   if (!a) a = malloc(sizeof(double)); /* a valid (empty) array even for an empty file */
-  if (!a) return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", path);
+  if (lines && !ln.a) ln.a = malloc(sizeof(int));
+  if (!a || (lines && !ln.a)) {
+    free(a);
+    free(ln.a);
+    return ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", path);
+  }
   *out = a;
+  if (lines) *lines = ln.a;
   *n = (int)cnt;
   return SS_OK;
 }
@@ -66,7 +73,7 @@ static ss_status read_values(const char *path, int as_int, void **out, int *n, s
   size_t len;
   ss_status st = io_slurp(path, &buf, &len, err);
   if (st) return st;
-  st = parse_values(path, buf, len, as_int, out, n, err);
+  st = parse_values(path, buf, len, as_int, out, NULL, n, err);
   free(buf);
   return st;
 }
@@ -77,7 +84,7 @@ static ss_status read_values_memory(const void *buf, size_t len, const char *nam
   *out = NULL;
   *n = 0;
   if (!buf && len > 0) return ss_fail(err, SS_ERR_INVALID, "%s: NULL buffer", name);
-  return parse_values(name, buf ? (const char *)buf : "", len, as_int, out, n, err);
+  return parse_values(name, buf ? (const char *)buf : "", len, as_int, out, NULL, n, err);
 }
 
 ss_status ss_read_ints_memory(const void *buf, size_t len, const char *name, int **out, int *n, ss_error *err) {
@@ -102,6 +109,32 @@ ss_status ss_read_ints(const char *path, int **out, int *n, ss_error *err) {
   void *a;
   ss_status st = read_values(path, 1, &a, n, err);
   *out = st ? NULL : (int *)a;
+  return st;
+}
+
+ss_status ss_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err) {
+  if (!out || !lines || !n) return ss_fail(err, SS_ERR_INVALID, "%s: NULL output", path ? path : "<null>");
+  *out = NULL, *lines = NULL, *n = 0;
+  char *buf;
+  size_t len;
+  ss_status st = io_slurp(path, &buf, &len, err);
+  if (st) return st;
+  void *a;
+  st = parse_values(path, buf, len, 1, &a, lines, n, err);
+  free(buf);
+  if (!st) *out = a;
+  return st;
+}
+
+ss_status ss_read_ints_lines_memory(const void *buf, size_t len, const char *name, int **out, int **lines, int *n,
+                                    ss_error *err) {
+  if (!name) name = "<memory>";
+  if (!out || !lines || !n) return ss_fail(err, SS_ERR_INVALID, "%s: NULL output", name);
+  *out = NULL, *lines = NULL, *n = 0;
+  if (!buf && len > 0) return ss_fail(err, SS_ERR_INVALID, "%s: NULL buffer", name);
+  void *a;
+  ss_status st = parse_values(name, buf ? (const char *)buf : "", len, 1, &a, lines, n, err);
+  if (!st) *out = a;
   return st;
 }
 
