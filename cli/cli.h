@@ -2,6 +2,7 @@
 #ifndef SPECSEG_CLI_H
 #define SPECSEG_CLI_H
 
+#include <stdarg.h>
 #include <stdio.h>
 
 #include "specseg/specseg.h"
@@ -22,8 +23,9 @@ int cli_parse_double(const char *s, double *out);
 
 /* ---- Argument scanning (cli_args.c): the one option scanner every subcommand uses. ----------------
  * A subcommand declares its options in a NULL-terminated list of names; a name ending in '=' takes a
- * value ("-o=", "--steps="), the others are flags ("--bbox"). A value is the next argument, whatever
- * it looks like ("--steps 3", "-o -"), or follows the first '=' of the same argument ("--steps=3").
+ * value ("-o=", "--steps="), one ending in "==" two ("--descriptors==": A.val and A.val2, the next two
+ * arguments, or "=V1" and the next one), the others are flags ("--bbox"). A value is the next argument,
+ * whatever it looks like ("--steps 3", "-o -"), or follows the first '=' of the same argument ("--steps=3").
  * Handled here once for all: -h / --help anywhere (the usage text on stdout, exit 0), unknown options,
  * "--name needs a value", "--name takes no value" (a flag given "=value"), all usage errors (exit 2).
  * Arguments that do not start with '-', and "-" itself (standard input / output), are positional.
@@ -50,6 +52,7 @@ typedef struct cli_args {
   const char *pos;          /* current positional argument, or NULL */
   const char *opt;          /* current option, as declared without its '=' (NULL for a positional) */
   const char *val;          /* its value (NULL for a flag) */
+  const char *val2;         /* the second value of a two-valued option ("name==") */
   char name[64];            /* storage for opt */
   int rc;                   /* -1 while scanning / at the end; SS_EXIT_OK after --help; SS_EXIT_USAGE */
 } cli_args;
@@ -88,6 +91,9 @@ ss_status cli_read_ints(const char *path, int **out, int *n, ss_error *err);
 ss_status cli_read_ints_lines(const char *path, int **out, int **lines, int *n, ss_error *err); /* + line numbers */
 ss_status cli_read_doubles(const char *path, double **out, int *n, ss_error *err);
 ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, int *n, int *columns, ss_error *err);
+/* A float64 matrix from .npy (file, standard input or pipe): *a malloc'd rows x cols column-major; a
+ * 1-D array is one column. */
+ss_status cli_read_matrix(const char *path, double **a, int *rows, int *cols, ss_error *err);
 ss_status cli_write_ints(const char *path, const int *v, int n, ss_error *err);
 ss_status cli_write_doubles(const char *path, const double *v, int n, ss_error *err);
 /* A mesh by the extension of path; "-" writes format `std_ext` ("off" or "ply") to stdout. */
@@ -105,9 +111,108 @@ int cli_close_out(FILE *f);
 /* Frees the buffered standard input (main, before exiting). */
 void cli_io_cleanup(void);
 
+/* ---- Batches and JSON summaries (cli_batch.c) ------------------------------------------------------
+ * Every per-mesh command (info, eigs, descriptors, smooth, remesh, segment) takes several meshes, or
+ * folders (their files with a mesh extension, sorted by name), and runs them as a batch: -o names a
+ * folder (created if needed) that receives OUTDIR/NAME<suffix> per mesh (NAME: the file name without its
+ * extension; the command's default suffix, or --suffix), options naming other outputs take a suffix
+ * (--ply .ply); --jobs N meshes at once (default: the processors), each with its share of the OpenMP
+ * threads; a progress bar on stderr when it is a terminal; afterwards each mesh's report lines on
+ * stdout, in the order given, prefixed "MESH: ", and a summary line on stderr. A failed mesh does not
+ * stop the others (exit 1 at the end). One mesh with -o naming a folder (or ending in '/') is a batch
+ * too; otherwise one mesh runs exactly as before.
+ * --json (every per-mesh command, match, error, eval): instead of the report lines, one JSON object on
+ * stdout: {"command", "ok": meshes done, "failed", "seconds", "jobs", "results": [{"input", "ok",
+ * "seconds", "outputs": [...], "warnings": [...], "error" (when it failed), and the command's own
+ * counts and timings}]}.
+ *
+ * A command declares CLI_BATCH_OPTS among its options, hands every option to cli_batch_option first
+ * and every mesh to cli_batch_add, checks with cli_batch_setup, then cli_batch_run(b, job, cfg) calls
+ * job(j, cfg) per mesh (j->input), possibly on several threads at once: a job only reads cfg, names its
+ * outputs through cli_job_output / cli_job_extra, writes its report to cli_job_report and may add
+ * fields (cli_job_int / _num / _str); cli_error / cli_warn inside it are recorded in its JSON. */
+#define CLI_BATCH_OPTS "--jobs=", "--json", "--suffix="
+#define CLI_BATCH_HELP                                                                                          \
+  "Several meshes or folders run as a batch: -o OUTDIR receives NAME<suffix> per mesh; other outputs take a\n" \
+  "suffix (e.g. --ply .ply); one mesh with -o DIR/ too. A failed mesh does not stop the others.\n"            \
+  "  --jobs N            batch: meshes at once, 1..256 (default: the processors)\n"                           \
+  "  --suffix SUF        batch: the suffix of the main output (default above)\n"                              \
+  "  --json              a JSON summary on stdout (counts, timings, warnings, errors, output paths)\n"
+
+typedef struct cli_field {
+  char key[48];
+  int kind; /* 'i', 'd', 's', 'j' (JSON text), 'n' (null) */
+  long i;
+  double d;
+  char *s;
+} cli_field;
+
+typedef struct cli_batch cli_batch;
+
+typedef struct cli_job {
+  const cli_batch *b; /* NULL outside a batch run (match, error, eval) */
+  const char *input;  /* the mesh (NULL: no "input" key) */
+  int index, rc;
+  double t0, seconds;
+  char *error;
+  int noutputs, nwarnings, nfields;
+  char **outputs, **warnings;
+  cli_field *fields;
+  FILE *rep; /* the report in memory (batch, --json) */
+  char *rep_buf;
+  size_t rep_len;
+} cli_job;
+
+struct cli_batch {
+  const char *cmd;
+  int jobs, json;
+  const char *suffix, *outdir;
+  int batch;
+  int nin, cap;
+  char **in;
+};
+
+typedef int (*cli_job_fn)(cli_job *j, void *cfg);
+
+void cli_batch_init(cli_batch *b, const char *cmd);
+void cli_batch_free(cli_batch *b); /* the inputs (cli_batch_run frees them itself) */
+/* 1 when the current option is --jobs, --json or --suffix (handled; a bad value sets A->rc), else 0. */
+int cli_batch_option(cli_batch *b, cli_args *A);
+/* A positional mesh (a folder: its mesh files). -1 ok, else the exit code (a usage error was reported). */
+int cli_batch_add(cli_batch *b, cli_args *A, const char *mesh);
+/* After scanning: batch or single run; in a batch the checks (no '-', -o OUTDIR when need_out, the
+ * extras are suffixes, no output overwrites an input or another output) and the folder created.
+ * main_suffix: the main output's default suffix (NULL: none); extras: the other outputs' values.
+ * -1 ok, else the exit code. */
+int cli_batch_setup(cli_batch *b, cli_args *A, const char *outdir, int need_out, const char *main_suffix,
+                    const char *const *extras, int nextras);
+/* Runs the job on every mesh (frees the inputs); the exit code (1 when a mesh failed). */
+int cli_batch_run(cli_batch *b, cli_job_fn fn, void *cfg);
+/* The main output's path: `given` for one mesh, OUTDIR/NAME<suffix> in a batch (recorded for --json). */
+const char *cli_job_output(cli_job *j, const char *given, const char *suffix);
+/* Another output: `given` (NULL: none), in a batch OUTDIR/NAME<given>. */
+const char *cli_job_extra(cli_job *j, const char *given);
+/* Where the job's report goes: stdout (stderr when data_on_stdout or --json) for one mesh, memory in a batch. */
+FILE *cli_job_report(cli_job *j, int data_on_stdout);
+void cli_job_int(cli_job *j, const char *key, long v);
+void cli_job_num(cli_job *j, const char *key, double v);
+void cli_job_str(cli_job *j, const char *key, const char *v);
+/* A field whose value is JSON text as it is (an array or object the caller wrote, e.g. with
+ * open_memstream and cli_json_str / cli_json_num). */
+void cli_job_json(cli_job *j, const char *key, const char *json);
+void cli_json_str(FILE *f, const char *s); /* a JSON string literal, escaped */
+void cli_json_num(FILE *f, double v);      /* %.17g, or null for NaN / inf */
+/* A single run outside a batch (match, error, eval): begin records warnings and errors on this thread;
+ * end prints the JSON (when json) in the batch's format and returns rc. */
+void cli_job_begin(cli_job *j, const char *input);
+int cli_job_end(cli_job *j, const char *cmd, int rc, int json);
+/* "specseg: KIND: MSG" on stderr (the progress bar cleared and redrawn), recorded in the thread's job. */
+void cli_diag(const char *kind, const char *fmt, va_list ap);
+
 /* Each subcommand: argv[0] is the subcommand name. */
 int cmd_info(int argc, char **argv);
 int cmd_eigs(int argc, char **argv);
+int cmd_descriptors(int argc, char **argv);
 int cmd_demo(int argc, char **argv);
 int cmd_smooth(int argc, char **argv);
 int cmd_remesh(int argc, char **argv);

@@ -13,7 +13,10 @@ void cli_print_usage(const char *usage, FILE *f) {
   fputs("  -h, --help          this text\n"
         "An option that takes a value accepts it as the next argument or after '=': --opt VALUE or --opt=VALUE.\n"
         "Vector files (labels, maps, fields, landmarks) are text, or NumPy when named *.npy (read: shape (n,),\n"
-        "(n, 1), landmarks (n, 2), fields F.npy:J for column J; written: (n, 1) int32 / float64).\n",
+        "(n, 1), landmarks (n, 2), fields F.npy:J for column J; written: (n, 1) int32 / float64).\n"
+        "Meshes: OFF, OBJ, PLY (our readers); STL (ascii / binary), glTF 2.0 (.gltf / .glb), FBX, COLLADA, 3DS and\n"
+        "the other formats of assimp when built with libassimp-dev (all meshes of a scene merged, node transforms\n"
+        "applied, vertices welded by exact coordinates).\n",
         f);
 }
 
@@ -28,12 +31,12 @@ void cli_args_init(cli_args *a, int argc, char **argv, const char *usage, const 
   a->rc = -1;
 }
 
-/* The declared option `name` (length n, without '='): 0 unknown, 1 flag, 2 takes a value. */
+/* The declared option `name` (length n, without '='): 0 unknown, 1 flag, 2 takes a value, 3 two. */
 static int lookup(const cli_args *a, const char *name, size_t n) {
   for (const char *const *o = a->opts; o && *o; o++) {
-    size_t L = strlen(*o);
-    int valued = L > 0 && (*o)[L - 1] == '=';
-    if ((valued ? L - 1 : L) == n && !strncmp(*o, name, n)) return valued ? 2 : 1;
+    size_t L = strlen(*o), eqs = 0;
+    while (eqs < L && eqs < 2 && (*o)[L - 1 - eqs] == '=') eqs++;
+    if (L - eqs == n && !strncmp(*o, name, n)) return 1 + (int)eqs;
   }
   return 0;
 }
@@ -47,7 +50,9 @@ static int help_requested(const cli_args *a) {
     const char *s = a->argv[i];
     if (!is_option(s)) continue;
     if (is_help(s)) return 1;
-    if (!strchr(s, '=') && lookup(a, s, strlen(s)) == 2) i++;
+    const char *eq = strchr(s, '=');
+    int kind = lookup(a, s, eq ? (size_t)(eq - s) : strlen(s));
+    if (kind >= 2) i += kind - 1 - (eq != NULL); /* skip the values that follow */
   }
   return 0;
 }
@@ -71,7 +76,7 @@ int cli_bad(cli_args *a, const char *fmt, ...) {
 }
 
 int cli_next(cli_args *a) {
-  a->pos = a->opt = a->val = NULL;
+  a->pos = a->opt = a->val = a->val2 = NULL;
   if (a->rc >= 0) return 0; /* a usage error reported by the caller between two calls */
   if (a->next == 1 && help_requested(a)) {
     cli_print_usage(a->usage, stdout);
@@ -107,8 +112,9 @@ int cli_next(cli_args *a) {
   }
   if (eq) a->val = eq + 1;
   else if (a->next < a->argc) a->val = a->argv[a->next++];
-  if (!a->val || !*a->val) {
-    cli_bad(a, "%s needs a value", a->name);
+  if (kind == 3 && a->next < a->argc) a->val2 = a->argv[a->next++];
+  if (!a->val || !*a->val || (kind == 3 && (!a->val2 || !*a->val2))) {
+    cli_bad(a, kind == 3 ? "%s needs two values" : "%s needs a value", a->name);
     return 0;
   }
   return 1;

@@ -1,5 +1,6 @@
 /* "-" as a file name: standard input for the readers, standard output for the writers (see cli.h). */
 #include <errno.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -66,9 +67,19 @@ static ss_status slurp_stream(FILE *f, const char *name, char **buf, size_t *len
   return SS_OK;
 }
 
+static ss_status stream_input_locked(const char *path, int *is_stream, const char **buf, size_t *len, ss_error *err);
+
 /* *is_stream 1: the bytes of a stream input in *buf, *len; 0: a regular (or missing) file, for the
- * library's path readers. */
+ * library's path readers. Serialised: a batch reads its meshes on several threads. */
 static ss_status stream_input(const char *path, int *is_stream, const char **buf, size_t *len, ss_error *err) {
+  static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+  pthread_mutex_lock(&lock);
+  ss_status st = stream_input_locked(path, is_stream, buf, len, err);
+  pthread_mutex_unlock(&lock);
+  return st;
+}
+
+static ss_status stream_input_locked(const char *path, int *is_stream, const char **buf, size_t *len, ss_error *err) {
   *is_stream = 0;
   int std = cli_is_std(path);
   struct stat st;
@@ -314,6 +325,17 @@ ss_status cli_read_landmarks(const char *path, int **lx, int **ly, int **lines, 
   ss_status st = stream_input(path, &is, &b, &len, err);
   if (st || !is) return st ? st : ss_read_landmarks_lines(path, lx, ly, lines, n, columns, err);
   return ss_read_landmarks_memory(b, len, cli_in_name(path), lx, ly, lines, n, columns, err);
+}
+
+ss_status cli_read_matrix(const char *path, double **a, int *rows, int *cols, ss_error *err) {
+  const char *b;
+  size_t len;
+  int is;
+  *a = NULL;
+  *rows = *cols = 0;
+  ss_status st = stream_input(path, &is, &b, &len, err);
+  if (st) return st;
+  return is ? ss_read_npy_memory(b, len, cli_in_name(path), a, rows, cols, err) : ss_read_npy(path, a, rows, cols, err);
 }
 
 /* ---- standard output ------------------------------------------------------------------------------ */

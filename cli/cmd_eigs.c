@@ -8,20 +8,31 @@
 #include "cli.h"
 
 static const char USAGE[] =
-    "usage: specseg eigs MESH -k K [--evecs FILE.npy] [--mass barycentric|voronoi] [--sigma S]\n"
+    "usage: specseg eigs MESH... -k K [-o EVALS.txt] [--evecs FILE.npy] [--mass barycentric|voronoi] [--sigma S]\n"
+    "                   [--jobs N] [--json]\n"
     "\n"
     "The K smallest eigenvalues of the Laplace-Beltrami problem W phi = lambda M phi (cotangent\n"
     "stiffness W, lumped mass M), one a line (%.17g) on standard output. Vertices without area get 0\n"
     "in every eigenvector (with a warning).\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -k K                number of eigenpairs, 1 <= K < vertices (required); K up to about half the\n"
     "                      vertices leaves the solver the room it needs\n"
-    "  --evecs FILE.npy    also write the eigenvectors, a vertices x K float64 .npy\n"
+    "  -o FILE             the eigenvalues to FILE (text, or .npy) instead of standard output; batch:\n"
+    "                      OUTDIR (required), eigenvalues in OUTDIR/NAME.evals.txt\n"
+    "  --evecs FILE.npy    also write the eigenvectors, a vertices x K float64 .npy (batch: a suffix,\n"
+    "                      e.g. .evecs.npy)\n"
     "  --mass KIND         barycentric (default) or voronoi (mixed Voronoi areas)\n"
-    "  --sigma S           shift: the K eigenvalues nearest S (default -1e-8)\n";
+    "  --sigma S           shift: the K eigenvalues nearest S (default -1e-8)\n" CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"-k=", "--evecs=", "--mass=", "--sigma=", NULL};
+static const char *const OPTS[] = {"-k=", "-o=", "--evecs=", "--mass=", "--sigma=", CLI_BATCH_OPTS, NULL};
+
+typedef struct eigs_cfg {
+  const char *evals, *evecs;
+  int k;
+  ss_mass_kind mass;
+  ss_eigs_options opt;
+} eigs_cfg;
 
 /* Rows/columns of W for the vertices with keep[i] >= 0 (keep[i] = new index). */
 static int restrict_matrix(const ss_sparse *W, const int *keep, int nkeep, ss_sparse *out) {
@@ -45,45 +56,19 @@ static int restrict_matrix(const ss_sparse *W, const int *keep, int nkeep, ss_sp
   return 0;
 }
 
-int cmd_eigs(int argc, char **argv) {
-  const char *mesh_path = NULL, *evecs_path = NULL;
-  int k = -1;
-  ss_mass_kind mass = SS_MASS_BARYCENTRIC;
-  ss_eigs_options opt;
-  ss_eigs_default_options(&opt);
-  cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) {
-      if (mesh_path) return cli_bad(&A, "more than one mesh given ('%s', '%s')", mesh_path, A.pos);
-      mesh_path = A.pos;
-    } else if (cli_is(&A, "-k")) {
-      if (cli_parse_int(v, 1, INT_MAX, &k)) return cli_bad(&A, "-k needs a positive integer, not '%s'", v);
-    } else if (cli_is(&A, "--evecs")) {
-      evecs_path = v;
-    } else if (cli_is(&A, "--mass")) {
-      if (!strcmp(v, "barycentric")) mass = SS_MASS_BARYCENTRIC;
-      else if (!strcmp(v, "voronoi")) mass = SS_MASS_VORONOI;
-      else return cli_bad(&A, "--mass must be barycentric or voronoi, not '%s'", v);
-    } else if (cli_is(&A, "--sigma")) {
-      if (cli_parse_double(v, &opt.sigma) || !(opt.sigma > -1e308 && opt.sigma < 1e308))
-        return cli_bad(&A, "--sigma needs a finite number, not '%s'", v);
-    }
-  }
-  if (A.rc >= 0) return A.rc;
-  if (!mesh_path) return cli_bad(&A, "no mesh given");
-  if (k < 0) return cli_bad(&A, "-k K is required");
-  if (cli_is_std(evecs_path))
-    return cli_bad(&A, "--evecs -: standard output carries the eigenvalues; give a file name");
-
+static int eigs_job(cli_job *j, void *vcfg) {
+  const eigs_cfg *c = vcfg;
+  const char *mesh_path = j->input;
+  const char *evals_path = cli_job_output(j, c->evals, ".evals.txt"), *evecs_path = cli_job_extra(j, c->evecs);
+  const int k = c->k;
+  const ss_mass_kind mass = c->mass;
   ss_error err;
   ss_mesh m = {0};
   if (cli_read_mesh(mesh_path, &m, &err) != SS_OK) return cli_error("%s", err.msg);
   if (k >= m.nv) {
     int nv = m.nv;
     ss_mesh_free(&m);
-    return cli_bad(&A, "-k %d must be smaller than the number of vertices (%d)", k, nv);
+    return cli_usage("eigs: %s: -k %d must be smaller than the number of vertices (%d)", cli_in_name(mesh_path), k, nv);
   }
 
   int rc = SS_EXIT_FAIL;
@@ -102,11 +87,11 @@ int cmd_eigs(int argc, char **argv) {
   const ss_sparse *Wuse = &W;
   const double *Muse = M;
   if (nkeep < m.nv) {
-    for (int j = 0; j < m.nv; j++)
-      if (keep[j] < 0)
-        for (int p = W.colptr[j]; p < W.colptr[j + 1]; p++)
+    for (int v = 0; v < m.nv; v++)
+      if (keep[v] < 0)
+        for (int p = W.colptr[v]; p < W.colptr[v + 1]; p++)
           if (W.val[p] != 0 && W.val[p] == W.val[p]) {
-            cli_error("%s: vertex %d has zero area but non-zero stiffness", cli_in_name(mesh_path), j);
+            cli_error("%s: vertex %d has zero area but non-zero stiffness", cli_in_name(mesh_path), v);
             goto out;
           }
     if (k >= nkeep) {
@@ -126,7 +111,7 @@ int cmd_eigs(int argc, char **argv) {
   evals = malloc(sizeof(double) * (size_t)k);
   Xk = malloc(sizeof(double) * (size_t)nkeep * (size_t)k);
   if (!evals || !Xk) { cli_error("out of memory for %d eigenvectors", k); goto out; }
-  if (ss_eigs(Wuse, Muse, k, &opt, evals, Xk, &err) != SS_OK) {
+  if (ss_eigs(Wuse, Muse, k, &c->opt, evals, Xk, &err) != SS_OK) {
     cli_error("%s: %s", cli_in_name(mesh_path), err.msg);
     goto out;
   }
@@ -135,9 +120,9 @@ int cmd_eigs(int argc, char **argv) {
     if (nkeep < m.nv) {
       X = calloc((size_t)m.nv * (size_t)k, sizeof(double));
       if (!X) { cli_error("out of memory"); goto out; }
-      for (size_t j = 0; j < (size_t)k; j++)
+      for (size_t col = 0; col < (size_t)k; col++)
         for (int i = 0; i < m.nv; i++)
-          if (keep[i] >= 0) X[(size_t)i + (size_t)m.nv * j] = Xk[(size_t)keep[i] + (size_t)nkeep * j];
+          if (keep[i] >= 0) X[(size_t)i + (size_t)m.nv * col] = Xk[(size_t)keep[i] + (size_t)nkeep * col];
       out = X;
     }
     if (cli_write_npy(evecs_path, out, m.nv, k, &err) != SS_OK) {
@@ -145,8 +130,18 @@ int cmd_eigs(int argc, char **argv) {
       goto out;
     }
   }
-  for (int j = 0; j < k; j++) printf("%.17g\n", evals[j]);
-  if (fflush(stdout) != 0) { cli_error("cannot write to standard output"); goto out; }
+  if (evals_path) { /* a file (text or .npy by extension), or - */
+    if (cli_write_doubles(evals_path, evals, k, &err)) { cli_error("%s", err.msg); goto out; }
+  } else {
+    for (int i = 0; i < k; i++) printf("%.17g\n", evals[i]);
+    if (fflush(stdout) != 0) { cli_error("cannot write to standard output"); goto out; }
+  }
+  cli_job_int(j, "vertices", m.nv);
+  cli_job_int(j, "k", k);
+  cli_job_num(j, "lambda_1", k > 1 ? evals[1] : evals[0]);
+  cli_job_num(j, "lambda_max", evals[k - 1]);
+  if (evals_path && j->b && j->b->batch)
+    fprintf(cli_job_report(j, 0), "%d eigenvalues, %g .. %g -> %s\n", k, evals[0], evals[k - 1], evals_path);
   rc = SS_EXIT_OK;
 out:
   ss_sparse_free(&W);
@@ -154,4 +149,51 @@ out:
   free(M); free(Mk); free(keep); free(evals); free(X); free(Xk);
   ss_mesh_free(&m);
   return rc;
+}
+
+int cmd_eigs(int argc, char **argv) {
+  eigs_cfg c;
+  memset(&c, 0, sizeof c);
+  c.k = -1;
+  c.mass = SS_MASS_BARYCENTRIC;
+  ss_eigs_default_options(&c.opt);
+  cli_batch B;
+  cli_batch_init(&B, "eigs");
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  int rc = -1;
+  while (rc < 0 && cli_next(&A)) {
+    const char *v = A.val;
+    if (cli_batch_option(&B, &A)) continue;
+    if (A.pos) {
+      rc = cli_batch_add(&B, &A, A.pos);
+    } else if (cli_is(&A, "-k")) {
+      if (cli_parse_int(v, 1, INT_MAX, &c.k)) rc = cli_bad(&A, "-k needs a positive integer, not '%s'", v);
+    } else if (cli_is(&A, "-o")) {
+      c.evals = v;
+    } else if (cli_is(&A, "--evecs")) {
+      c.evecs = v;
+    } else if (cli_is(&A, "--mass")) {
+      if (!strcmp(v, "barycentric")) c.mass = SS_MASS_BARYCENTRIC;
+      else if (!strcmp(v, "voronoi")) c.mass = SS_MASS_VORONOI;
+      else rc = cli_bad(&A, "--mass must be barycentric or voronoi, not '%s'", v);
+    } else if (cli_is(&A, "--sigma")) {
+      if (cli_parse_double(v, &c.opt.sigma) || !(c.opt.sigma > -1e308 && c.opt.sigma < 1e308))
+        rc = cli_bad(&A, "--sigma needs a finite number, not '%s'", v);
+    }
+  }
+  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
+  if (rc < 0 && c.k < 0) rc = cli_bad(&A, "-k K is required");
+  const char *extras[1] = {c.evecs};
+  if (rc < 0) rc = cli_batch_setup(&B, &A, c.evals, 1, ".evals.txt", extras, 1);
+  if (rc < 0 && !B.batch && cli_is_std(c.evecs))
+    rc = cli_bad(&A, "--evecs -: standard output carries the eigenvalues; give a file name");
+  if (rc < 0 && !B.batch && B.json && (!c.evals || cli_is_std(c.evals)))
+    rc = cli_bad(&A, "--json wants standard output: write the eigenvalues with -o FILE");
+  if (rc >= 0) {
+    cli_batch_free(&B);
+    return rc;
+  }
+  return cli_batch_run(&B, eigs_job, &c);
 }

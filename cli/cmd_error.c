@@ -12,18 +12,26 @@ static const char USAGE[] =
     "'mean_error: E' (on stderr when -o is -).\n"
     "\n"
     "  MAP.txt             line i = vertex of Y that is the image of vertex i of X\n"
-    "  Y                   the target mesh: OFF, OBJ or PLY\n"
+    "  Y                   the target mesh (OFF, OBJ, PLY, STL, glTF, ...)\n"
     "  --gt GT.txt         the ground-truth map, same format (default: the identity)\n"
     "  --sym SYM.txt       a left-right symmetry map of X (line i = mirror of vertex i): the error of x is\n"
     "                      the smaller of the errors to GT(x) and GT(mirror of x), the paper's symmetric\n"
     "                      variant\n"
     "  -o FILE             the per-vertex errors, one a line; - writes them to standard output\n"
+    "  --json              a JSON summary on standard output instead of 'mean_error: E' (the mean, the\n"
+    "                      median and largest error, counts, seconds, output paths, errors)\n"
     "One of the input files may be - (standard input).\n";
 
-static const char *const OPTS[] = {"--gt=", "--sym=", "-o=", NULL};
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static const char *const OPTS[] = {"--gt=", "--sym=", "-o=", "--json", NULL};
 
 int cmd_error(int argc, char **argv) {
   const char *mapf = NULL, *yf = NULL, *gtf = NULL, *symf = NULL, *outf = NULL;
+  int json = 0;
   cli_args A;
   cli_args_init(&A, argc, argv, USAGE, OPTS);
   while (cli_next(&A)) {
@@ -37,13 +45,22 @@ int cmd_error(int argc, char **argv) {
       symf = A.val;
     } else if (cli_is(&A, "-o")) {
       outf = A.val;
+    } else if (cli_is(&A, "--json")) {
+      json = 1;
     }
   }
   if (A.rc >= 0) return A.rc;
   if (!mapf || !yf) return cli_bad(&A, "needs MAP.txt and Y");
   const char *ins[4] = {mapf, yf, gtf, symf};
   if (cli_count_std(ins, 4) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  if (json && cli_is_std(outf)) return cli_bad(&A, "--json and -o - both want standard output");
   FILE *report = cli_is_std(outf) ? stderr : stdout;
+  cli_job J;
+  cli_job_begin(&J, NULL);
+  cli_job_str(&J, "map", cli_in_name(mapf));
+  cli_job_str(&J, "y", cli_in_name(yf));
+  if (gtf) cli_job_str(&J, "gt", cli_in_name(gtf));
+  if (symf) cli_job_str(&J, "sym", cli_in_name(symf));
 
   ss_error err = {{0}};
   int *map = NULL, *gt = NULL, *sym = NULL, n = 0, ngt = 0, nsym = 0, rc = SS_EXIT_OK;
@@ -83,8 +100,23 @@ int cmd_error(int argc, char **argv) {
   if (!(e = malloc(sizeof(double) * n))) { rc = cli_error("out of memory"); goto done; }
   if (ss_map_geodesic_error(&Y, n, map, gt, sym, e, &mean, &err)) { rc = cli_error("%s", err.msg); goto done; }
   if (outf && cli_write_doubles(outf, e, n, &err)) { rc = cli_error("%s", err.msg); goto done; }
-  fprintf(report, "mean_error: %.6f\n", mean);
-  if (fflush(report) != 0) rc = cli_error("cannot write to standard output");
+  cli_job_output(&J, outf, NULL);
+  cli_job_int(&J, "vertices", n);
+  cli_job_num(&J, "mean_error", mean);
+  {
+    double *sorted = malloc(sizeof(double) * n);
+    if (sorted) {
+      memcpy(sorted, e, sizeof(double) * n);
+      qsort(sorted, (size_t)n, sizeof(double), cmp_double);
+      cli_job_num(&J, "median_error", n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]));
+      cli_job_num(&J, "max_error", sorted[n - 1]);
+      free(sorted);
+    }
+  }
+  if (!json) {
+    fprintf(report, "mean_error: %.6f\n", mean);
+    if (fflush(report) != 0) rc = cli_error("cannot write to standard output");
+  }
 done:
   free(lmap), free(lgt), free(lsym);
   free(map);
@@ -92,5 +124,5 @@ done:
   free(sym);
   free(e);
   ss_mesh_free(&Y);
-  return rc;
+  return cli_job_end(&J, "error", rc, json);
 }

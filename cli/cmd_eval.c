@@ -22,14 +22,14 @@ static const char USAGE[] =
     "usage: specseg eval --table1 --data DIR [--pairs N] [--seed S] [--out RESULTS.csv] [--jobs N]\n"
     "                    [--cache DIR] [--shard I/N] [--error-samples N] [--k K]\n"
     "                    [--policies random,subj,pose] [--landmarks best,gt,fps,none] [--methods std,asa,diff,refined]\n"
-    "                    [--quiet]\n"
+    "                    [--quiet] [--json]\n"
     "       specseg eval --table1 --manifest FILE [--out RESULTS.csv] [--landmarks best,gt,fps,none]\n"
     "                    [--pairing paper|confident] [--methods ...] [--cache DIR] [--shard I/N] ...\n"
     "       specseg eval merge CSV... [--out ALL.csv] [--manifest FILE]\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
     "       specseg eval --timings --data DIR [--shapes N]\n"
-    "       specseg eval --figures OUTDIR --data DIR [--landmarks best,gt,fps] [--pair X,Y] [--size WxH]\n"
-    "                    [--gallery-count N | --gallery-only] [--seed S] [--k K] [--cache DIR]\n"
+    "       specseg eval --figures OUTDIR --data DIR [--landmarks best,gt,fps] [--pair X,Y | --candidates N]\n"
+    "                    [--size WxH] [--gallery-count N | --gallery-only] [--seed S] [--k K] [--cache DIR]\n"
     "\n"
     "The paper's evaluation on the FAUST / TOSCA data under DIR: Table 1 (mean geodesic errors of STD,\n"
     "ASA and DIFF maps, one CSV row per map, resumable and shardable), the section 5 coherency and\n"
@@ -65,7 +65,12 @@ static const char USAGE[] =
     "                      specseg match) (default std,asa,diff)\n"
     "  --quiet             no progress bar or stage messages\n"
     "  --shapes N          --timings: FAUST shapes to time, 1..100 (default 100)\n"
-    "  --pair X,Y          --figures: this FAUST pair (shape numbers 0..99) instead of the policy's first\n"
+    "  --pair X,Y          --figures: this FAUST pair (shape numbers 0..99) instead of the showcase pair\n"
+    "  --candidates N      --figures: the showcase pair of each map figure is the one of median error\n"
+    "                      (mean of its STD, ASA and DIFF errors) among the first N pairs its policy\n"
+    "                      draws under the seed, 1..100 (default 9; 1: the first pair drawn)\n"
+    "  --json              --table1, --figures: a JSON summary on standard output (the table, or the\n"
+    "                      figures with their pairs, rule and errors; output paths, seconds, errors)\n"
     "  --size WxH          --figures: panel size, 16..4096 each (default 360x720 gallery, 300x600 maps)\n"
     "  --gallery-count N   --figures: shapes in the gallery, 0..100 (default 10)\n"
     "  --gallery-only      --figures: the gallery only, no map figures\n";
@@ -74,7 +79,7 @@ static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--qu
                                    "--gallery-count=", "--pair=", "--size=", "--data=", "--out=", "-o=", "--cache=",
                                    "--pairs=", "--jobs=", "--k=", "--shapes=", "--error-samples=", "--seed=",
                                    "--shard=", "--policies=", "--landmarks=", "--methods=", "--manifest=",
-                                   "--pairing=", NULL};
+                                   "--pairing=", "--json", "--candidates=", NULL};
 static const char *const MERGE_OPTS[] = {"--out=", "-o=", "--manifest=", NULL};
 
 /* "a,b,c" of names → bit set; -1 on an unknown name */
@@ -195,7 +200,43 @@ static int print_manifest_table(const ss_manifest *m, const ss_eval_row *rows, i
   return SS_EXIT_OK;
 }
 
-static int print_csv_table(const char *path, const ss_manifest *man) {
+
+/* The table as a JSON array: one object per scenario with rows (ours, the paper's, the pair count;
+ * the refined method has no paper value). */
+static void json_table(const ss_table1 *t, cli_job *J) {
+  char *buf = NULL;
+  size_t len = 0;
+  FILE *f = open_memstream(&buf, &len);
+  if (!f) return;
+  static const char *const M[SS_EVAL_NMETHODS] = {"std", "asa", "diff", "refined"};
+  fputc('[', f);
+  int first = 1;
+  for (int i = 0; i < 12; i++) {
+    int any = 0;
+    for (int c = 0; c < SS_EVAL_NMETHODS; c++) any += t->count[i][c];
+    if (!any) continue;
+    fprintf(f, "%s{\"scenario\": ", first ? "" : ", ");
+    first = 0;
+    cli_json_str(f, ss_table1_row_names[i]);
+    for (int c = 0; c < SS_EVAL_NMETHODS; c++) {
+      fprintf(f, ", \"%s\": ", M[c]);
+      if (t->count[i][c]) cli_json_num(f, t->mean[i][c]);
+      else fputs("null", f);
+      fprintf(f, ", \"%s_pairs\": %d", M[c], t->count[i][c]);
+      if (c < 3) { /* the paper has no refined column */
+        fprintf(f, ", \"%s_paper\": ", M[c]);
+        cli_json_num(f, ss_table1_paper[i][c]);
+      }
+    }
+    fputc('}', f);
+  }
+  fputc(']', f);
+  fclose(f);
+  cli_job_json(J, "table", buf);
+  free(buf);
+}
+
+static int print_csv_table(const char *path, const ss_manifest *man, cli_job *J) {
   ss_eval_row *rows;
   int n;
   ss_error e;
@@ -211,8 +252,13 @@ static int print_csv_table(const char *path, const ss_manifest *man) {
     free(rows);
     return cli_error("%s", e.msg);
   }
-  print_table(&t, stdout);
-  print_none_table(rows, n, stdout);
+  if (J) {
+    cli_job_int(J, "rows", n);
+    json_table(&t, J);
+  } else {
+    print_table(&t, stdout);
+    print_none_table(rows, n, stdout);
+  }
   free(rows);
   return SS_EXIT_OK;
 }
@@ -441,46 +487,107 @@ static int run_timings(const char *dir, int nshapes) {
 static double cpu_now(void) { return (double)clock() / CLOCKS_PER_SEC; }
 
 /* Figure 3 (gallery), then one map figure per landmark set: Figure 9 (BEST), 10 (GT), 11 (FPS), each
- * for the first pair of the policy the paper's figure shows (random, subj, pose) under the seed,
- * unless --pair fixes it. */
+ * for the showcase pair of the policy the paper's figure shows (random, subj, pose): the median-score
+ * pair of the first `ncand` pairs that policy draws under the seed (ss_eval_showcase_pair), unless
+ * --pair fixes it. With json, a JSON summary instead of the lines. */
 static int run_figures(const char *data, const char *outdir, const char *cache, int lm_mask, int px, int py,
-                       int width, int height, int gallery, int maps, uint64_t seed, int k) {
+                       int width, int height, int gallery, int maps, uint64_t seed, int k, int ncand, int json) {
   if (mkdir(outdir, 0755) && errno != EEXIST) return cli_error("%s: cannot create: %s", outdir, strerror(errno));
   char path[4096];
   ss_error e;
   ss_render_options ro;
   ss_render_default_options(&ro);
+  cli_job J;
+  cli_job_begin(&J, NULL);
+  FILE *rep = json ? stderr : stdout;
+  char *fj = NULL;
+  size_t fjn = 0;
+  FILE *figs = open_memstream(&fj, &fjn); /* the "figures" array of the JSON */
+  if (!figs) return cli_job_end(&J, "eval", cli_error("out of memory"), json);
+  fputc('[', figs);
+  int nfig = 0, rc = SS_EXIT_OK;
   if (gallery > 0) {
     ro.width = width > 0 ? width : 360, ro.height = height > 0 ? height : 720;
     snprintf(path, sizeof path, "%s/faust_gallery.png", outdir);
     int seg[100];
     double c0 = cpu_now(), t0 = ss_time();
-    if (ss_eval_faust_gallery(data, gallery, &ro, path, seg, &e)) return cli_error("%s", e.msg);
-    printf("%s: Figure 3, segmentations of tr_reg_000..%03d, segments", path, gallery - 1);
-    for (int i = 0; i < gallery; i++) printf(" %d", seg[i]);
-    printf(" (%.1f s CPU, %.1f s)\n", cpu_now() - c0, ss_time() - t0);
-    fflush(stdout);
+    if (ss_eval_faust_gallery(data, gallery, &ro, path, seg, &e)) { rc = cli_error("%s", e.msg); goto done; }
+    fprintf(rep, "%s: Figure 3, segmentations of tr_reg_000..%03d, segments", path, gallery - 1);
+    for (int i = 0; i < gallery; i++) fprintf(rep, " %d", seg[i]);
+    fprintf(rep, " (%.1f s CPU, %.1f s)\n", cpu_now() - c0, ss_time() - t0);
+    fflush(rep);
+    cli_job_output(&J, path, NULL);
+    fprintf(figs, "%s{\"figure\": 3, \"path\": ", nfig++ ? ", " : "");
+    cli_json_str(figs, path);
+    fprintf(figs, ", \"segments\": [");
+    for (int i = 0; i < gallery; i++) fprintf(figs, "%s%d", i ? ", " : "", seg[i]);
+    fprintf(figs, "]}");
   }
-  if (!maps) return SS_EXIT_OK;
+  if (!maps) goto done;
   static const int figno[3] = {9, 10, 11};
   static const ss_pair_policy policy[3] = {SS_POLICY_RANDOM, SS_POLICY_SUBJ, SS_POLICY_POSE};
   ro.width = width > 0 ? width : 300, ro.height = height > 0 ? height : 600;
   for (int l = 0; l < 3; l++) {
     if (!(lm_mask >> l & 1)) continue;
-    int x = px, y = py;
-    if (x < 0 && ss_eval_pairs(policy[l], 10, 10, 1, seed, &x, &y, &e)) return cli_error("%s", e.msg);
+    int x = px, y = py, pick = -1, cx[100], cy[100];
+    double sc[100];
+    char rule[160];
+    double c0 = cpu_now(), t0 = ss_time();
+    if (x < 0) {
+      if (ss_eval_showcase_pair(data, cache, seed, k, (ss_lm_set)l, policy[l], ncand, &x, &y, &pick, cx, cy, sc, &e)) {
+        rc = cli_error("%s", e.msg);
+        goto done;
+      }
+      if (ncand > 1)
+        snprintf(rule, sizeof rule, "%s pair of median error (mean of STD/ASA/DIFF) among the first %d drawn, #%d",
+                 ss_pair_policy_name(policy[l]), ncand, pick + 1);
+      else
+        snprintf(rule, sizeof rule, "first %s pair drawn", ss_pair_policy_name(policy[l]));
+    } else {
+      snprintf(rule, sizeof rule, "given pair");
+    }
     snprintf(path, sizeof path, "%s/figure%d_%03d_%03d.png", outdir, figno[l], x, y);
     ss_map_figure f;
-    double c0 = cpu_now(), t0 = ss_time();
-    if (ss_eval_map_figure(data, cache, seed, k, l, x, y, &ro, path, &f, &e)) return cli_error("%s", e.msg);
-    printf("%s: Figure %d, FAUST %s landmarks, %s pair tr_reg_%03d -> tr_reg_%03d: mean error STD %.4f ASA %.4f "
-           "DIFF %.4f; %d of %d/%d segments paired (%d right); heat scale 0..%g (%.1f s CPU, %.1f s)\n",
-           path, figno[l], ss_lm_set_name((ss_lm_set)l), px < 0 ? ss_pair_policy_name(policy[l]) : "given", x, y,
-           f.mean_error[0], f.mean_error[1], f.mean_error[2], f.paired, f.segments_x, f.segments_y, f.paired_right, f.error_scale,
-           cpu_now() - c0, ss_time() - t0);
-    fflush(stdout);
+    if (ss_eval_map_figure(data, cache, seed, k, l, x, y, &ro, path, &f, &e)) { rc = cli_error("%s", e.msg); goto done; }
+    fprintf(rep, "%s: Figure %d, FAUST %s landmarks, %s: tr_reg_%03d -> tr_reg_%03d: mean error STD %.4f ASA %.4f "
+                 "DIFF %.4f; %d of %d/%d segments paired (%d right); heat scale 0..%g (%.1f s CPU, %.1f s)\n",
+            path, figno[l], ss_lm_set_name((ss_lm_set)l), rule, x, y, f.mean_error[0], f.mean_error[1], f.mean_error[2],
+            f.paired, f.segments_x, f.segments_y, f.paired_right, f.error_scale, cpu_now() - c0, ss_time() - t0);
+    if (pick >= 0 && ncand > 1) {
+      fprintf(rep, "  candidates (x -> y: mean error):");
+      for (int c = 0; c < ncand; c++) fprintf(rep, " %d->%d: %.4f%s", cx[c], cy[c], sc[c], c == pick ? " *" : "");
+      fputc('\n', rep);
+    }
+    fflush(rep);
+    cli_job_output(&J, path, NULL);
+    fprintf(figs, "%s{\"figure\": %d, \"path\": ", nfig++ ? ", " : "", figno[l]);
+    cli_json_str(figs, path);
+    fprintf(figs, ", \"landmarks\": \"%s\", \"x\": %d, \"y\": %d, \"rule\": ", ss_lm_set_name((ss_lm_set)l), x, y);
+    cli_json_str(figs, rule);
+    fprintf(figs, ", \"mean_error\": {\"std\": ");
+    cli_json_num(figs, f.mean_error[0]);
+    fprintf(figs, ", \"asa\": ");
+    cli_json_num(figs, f.mean_error[1]);
+    fprintf(figs, ", \"diff\": ");
+    cli_json_num(figs, f.mean_error[2]);
+    fprintf(figs, "}, \"paired\": %d, \"paired_right\": %d", f.paired, f.paired_right);
+    if (pick >= 0 && ncand > 1) {
+      fprintf(figs, ", \"candidates\": [");
+      for (int c = 0; c < ncand; c++) {
+        fprintf(figs, "%s{\"x\": %d, \"y\": %d, \"score\": ", c ? ", " : "", cx[c], cy[c]);
+        cli_json_num(figs, sc[c]);
+        fputc('}', figs);
+      }
+      fputc(']', figs);
+    }
+    fputc('}', figs);
   }
-  return SS_EXIT_OK;
+done:
+  fputc(']', figs);
+  fclose(figs);
+  cli_job_json(&J, "figures", fj);
+  free(fj);
+  return cli_job_end(&J, "eval", rc, json);
 }
 
 /* The progress bar on a terminal and the stage messages of a Table 1 run (the library prints nothing). */
@@ -516,7 +623,7 @@ static void eval_log(void *user, const char *line) {
   out->on_line = 0;
 }
 
-static int run_table1(ss_table1_options *o, int quiet, const ss_manifest *man) {
+static int run_table1(ss_table1_options *o, int quiet, const ss_manifest *man, int json) {
 #ifdef __GLIBC__
   /* every match allocates and frees tens of MB of probe / operator buffers: keep them in the heap
    * instead of mmap/munmap-ing them each time (page faults were ~20 % of the run's CPU) */
@@ -536,12 +643,18 @@ static int run_table1(ss_table1_options *o, int quiet, const ss_manifest *man) {
   if (eo.on_line) fputc('\n', stderr);
   if (st) return cli_error("%s", e.msg);
   if (!quiet) fprintf(stderr, "eval: %d new rows in %.1f s -> %s\n", nnew, ss_time() - t0, o->out_csv);
-  return print_csv_table(o->out_csv, man);
+  if (!json || man) return print_csv_table(o->out_csv, man, NULL);
+  cli_job J;
+  cli_job_begin(&J, NULL);
+  cli_job_output(&J, o->out_csv, NULL);
+  cli_job_int(&J, "new_rows", nnew);
+  cli_job_num(&J, "t_run", ss_time() - t0);
+  return cli_job_end(&J, "eval", print_csv_table(o->out_csv, NULL, &J), 1);
 }
 
 /* --table1 --manifest: the landmark sets default to those the manifest has (best only when every
  * mesh has landmark files) */
-static int run_manifest(ss_table1_options *o, const char *path, int lm_given, int quiet) {
+static int run_manifest(ss_table1_options *o, const char *path, int lm_given, int quiet, int json) {
   ss_manifest man;
   ss_error e;
   if (o->cache_dir && cli_is_std(o->cache_dir)) return cli_error("--cache takes a folder, not '-'");
@@ -553,7 +666,7 @@ static int run_manifest(ss_table1_options *o, const char *path, int lm_given, in
     o->lm_mask = (best ? 1 << SS_LM_BEST : 0) | 1 << SS_LM_GT | 1 << SS_LM_FPS;
   }
   o->manifest = &man;
-  int rc = run_table1(o, quiet, &man);
+  int rc = run_table1(o, quiet, &man, json);
   ss_manifest_free(&man);
   return rc;
 }
@@ -563,9 +676,9 @@ int cmd_eval(int argc, char **argv) {
   ss_table1_options o;
   ss_table1_default_options(&o);
   o.out_csv = "specseg_table1.csv";
-  int table1 = 0, coherency = 0, timings = 0, quiet = 0, nshapes = 100;
+  int table1 = 0, coherency = 0, timings = 0, quiet = 0, nshapes = 100, json = 0;
   const char *figures = NULL;
-  int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0;
+  int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0, ncand = 9;
   const char *mpath = NULL;
   cli_args A;
   cli_args_init(&A, argc, argv, USAGE, OPTS);
@@ -576,8 +689,10 @@ int cmd_eval(int argc, char **argv) {
     else if (cli_is(&A, "--coherency")) coherency = 1;
     else if (cli_is(&A, "--timings")) timings = 1;
     else if (cli_is(&A, "--quiet")) quiet = 1;
+    else if (cli_is(&A, "--json")) json = 1;
     else if (cli_is(&A, "--figures")) figures = v;
     else if (cli_is(&A, "--gallery-only")) gallery_only = 1;
+    else if (cli_is(&A, "--candidates")) { if (cli_parse_int(v, 1, 100, &ncand)) return cli_bad(&A, "--candidates: integer in [1,100]"); }
     else if (cli_is(&A, "--gallery-count")) { if (cli_parse_int(v, 0, 100, &gallery)) return cli_bad(&A, "--gallery-count: integer in [0,100]"); }
     else if (cli_is(&A, "--pair")) {
       char buf[64], *c;
@@ -628,15 +743,17 @@ int cmd_eval(int argc, char **argv) {
   if (mpath && o.data_dir) return cli_bad(&A, "--manifest and --data: one data set per run");
   if (!o.data_dir && !mpath) return cli_bad(&A, "--data DIR (or --manifest FILE) is required");
   if (mpath && cli_is_std(mpath)) return cli_bad(&A, "--manifest: a file (its folder anchors the paths in it), not '-'");
-  if (mpath) return run_manifest(&o, mpath, lm_given, quiet);
+  if (json && !table1 && !figures) return cli_bad(&A, "--json is for --table1 and --figures");
+  if (mpath && json) return cli_bad(&A, "--json: not with --manifest (its per-group table is text only)");
+  if (mpath) return run_manifest(&o, mpath, lm_given, quiet, json);
   const char *dirs[3] = {o.data_dir, figures, o.cache_dir};
   if (cli_count_std(dirs, 3)) return cli_bad(&A, "--data, --figures and --cache take folders, not '-'");
   if (table1 && cli_is_std(o.out_csv))
     return cli_bad(&A, "--out: the Table 1 CSV is also the resume state and is read back; give a file name");
   if (figures) /* map figures: BEST (Figure 9) unless --landmarks says otherwise */
     return run_figures(o.data_dir, figures, o.cache_dir, lm_given ? o.lm_mask : 1 << SS_LM_BEST, pair_x, pair_y, fig_w,
-                       fig_h, gallery_only && gallery == 0 ? 10 : gallery, !gallery_only, o.seed, o.k);
+                       fig_h, gallery_only && gallery == 0 ? 10 : gallery, !gallery_only, o.seed, o.k, ncand, json);
   if (coherency) return run_coherency(o.data_dir, o.jobs);
   if (timings) return run_timings(o.data_dir, nshapes);
-  return run_table1(&o, quiet, NULL);
+  return run_table1(&o, quiet, NULL, json);
 }

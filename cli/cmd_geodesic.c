@@ -14,7 +14,7 @@ static const char USAGE[] =
     "Distance from every vertex to the nearest source vertex, one value a line (%.17g; unreached or\n"
     "farther than D: inf).\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...); - reads standard input\n"
     "  -s, --source I      source vertex (0-based); repeat for several sources (at least one)\n"
     "  --method M          exact: polyhedral geodesics, VTP window propagation (default); graph:\n"
     "                      Dijkstra on the NPP22 graph; edge: Dijkstra on the mesh edges\n"

@@ -14,7 +14,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K]\n"
-    "                     [--pairs PAIRS.txt] [--timings]\n"
+    "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
     "the paired coherent segments as extra probe functions. The output is refined: ZoomOut up to KMAX\n"
@@ -27,8 +27,9 @@ static const char USAGE[] =
     "thresholds is reported in a 'note:' line (the map may be wrong).\n"
     "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
-    "  X, Y                OFF, OBJ or PLY files, or prepared shapes (specseg prepare, .sss: the same\n"
-    "                      map, without preparing them again); one input may be - (standard input)\n"
+    "  X, Y                mesh files (OFF, OBJ, PLY, STL, glTF, ...), or prepared shapes (specseg\n"
+    "                      prepare, .sss: the same map, without preparing them again); one input may\n"
+    "                      be - (standard input)\n"
     "  --landmarks FILE    one landmark a line: 'i' (same vertex index on both shapes) or 'i j' (i on X,\n"
     "                      j on Y); without it, landmark-free (see above)\n"
     "  -o, --output FILE   the map: line i = vertex of Y that is the image of vertex i of X (required)\n"
@@ -46,16 +47,26 @@ static const char USAGE[] =
     "                      paper's construction)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
     "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
+    "  --descriptors DX.npy DY.npy\n"
+    "                      your own per-vertex descriptors as extra probes: (vertices of X) x d and\n"
+    "                      (vertices of Y) x d float64 arrays, column j of one corresponding to column j\n"
+    "                      of the other (e.g. 'specseg descriptors --wks/--hks', or any features); used\n"
+    "                      as they are (not sub-sampled), each normalised in L2, in the data and the\n"
+    "                      commutativity terms beside the WKS and the landmarks\n"
+    "  --no-wks            without the WKS: the descriptors given replace it\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
+    "  --json              a JSON summary on standard output instead of the summary line (counts,\n"
+    "                      timings, warnings, errors, output paths)\n"
     "One of the output files may be - (standard output).\n";
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
                                    "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
-                                   "--zoomout-step=", "--zoomout-samples=", "--timings", NULL};
+                                   "--zoomout-step=", "--zoomout-samples=", "--timings", "--descriptors==",
+                                   "--no-wks", "--json", NULL};
 
 int cmd_match(int argc, char **argv) {
-  const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL;
-  int timings = 0;
+  const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL, *dxp = NULL, *dyp = NULL;
+  int timings = 0, json = 0;
   ss_match_options o;
   ss_match_default_options(&o);
   o.probes = SS_PROBES_DIFF;
@@ -103,6 +114,12 @@ int cmd_match(int argc, char **argv) {
         return cli_bad(&A, "--descr-k needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--timings")) {
       timings = 1;
+    } else if (cli_is(&A, "--descriptors")) {
+      dxp = v, dyp = A.val2;
+    } else if (cli_is(&A, "--no-wks")) {
+      o.fmap.no_wks = 1;
+    } else if (cli_is(&A, "--json")) {
+      json = 1;
     }
   }
   if (A.rc >= 0) return A.rc;
@@ -111,21 +128,30 @@ int cmd_match(int argc, char **argv) {
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
   if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
-  const char *ins[3] = {xp, yp, lmp ? lmp : ""}, *outs[3] = {outp, fmapp, pairsp};
-  if (cli_count_std(ins, 3) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  if (o.fmap.no_wks && !dxp) return cli_bad(&A, "--no-wks needs --descriptors DX.npy DY.npy (they replace the WKS)");
+  const char *ins[5] = {xp, yp, lmp ? lmp : "", dxp ? dxp : "", dyp ? dyp : ""}, *outs[3] = {outp, fmapp, pairsp};
+  if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
   int to_stdout = cli_count_std(outs, 3);
   if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
+  if (to_stdout && json) return cli_bad(&A, "--json and an output to '-' both want standard output");
   FILE *report = to_stdout ? stderr : stdout;
   const char *xn = cli_in_name(xp), *yn = cli_in_name(yp), *lmn = lmp ? cli_in_name(lmp) : "";
+  cli_job J;
+  cli_job_begin(&J, NULL);
+  cli_job_str(&J, "x", xn);
+  cli_job_str(&J, "y", yn);
+  if (lmp) cli_job_str(&J, "landmarks_file", lmn);
 
   ss_error err = {{0}};
   cli_shape SX = {0}, SY = {0}; /* a mesh, or a prepared shape (then matched as such) */
   const ss_mesh *const X = &SX.ps.mesh, *const Y = &SY.ps.mesh;
   ss_match_result res = {0};
   int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
+  double *DX = NULL, *DY = NULL;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */
-  if (lmp && cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err)) return cli_error("%s", err.msg);
+  if (lmp && cli_read_landmarks(lmp, &lx, &ly, &lline, &nl, NULL, &err))
+    return cli_job_end(&J, "match", cli_error("%s", err.msg), json);
   if (cli_read_shape(xp, &SX, &err) || cli_read_shape(yp, &SY, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
@@ -141,6 +167,23 @@ int cmd_match(int argc, char **argv) {
       goto done;
     }
   }
+  if (dxp) { /* (nX x d) and (nY x d), corresponding columns */
+    int rx, cx, ry, cy;
+    if (cli_read_matrix(dxp, &DX, &rx, &cx, &err) || cli_read_matrix(dyp, &DY, &ry, &cy, &err)) {
+      rc = cli_error("%s", err.msg);
+      goto done;
+    }
+    if (rx != X->nv || ry != Y->nv) {
+      rc = cli_error("%s: %d rows, but %s has %d vertices", cli_in_name(rx != X->nv ? dxp : dyp), rx != X->nv ? rx : ry,
+                     rx != X->nv ? xn : yn, rx != X->nv ? X->nv : Y->nv);
+      goto done;
+    }
+    if (cx != cy) {
+      rc = cli_error("--descriptors: %s has %d columns, %s %d (they must correspond)", cli_in_name(dxp), cx, cli_in_name(dyp), cy);
+      goto done;
+    }
+    o.ndescr = cx, o.descrX = DX, o.descrY = DY;
+  }
   for (int s = 0; s < 2; s++) { /* what the pipeline repairs internally */
     ss_mesh_report rep;
     if (!ss_mesh_check(s ? Y : X, &rep, NULL)) {
@@ -150,6 +193,9 @@ int cmd_match(int argc, char **argv) {
       if (!rep.oriented && rep.orientable)
         cli_warn("%s: faces not consistently oriented: %d re-oriented internally%s", s ? yn : xn, rep.reorient_faces,
                  nl ? "" : "; the landmark-free left / right decision needs consistently oriented meshes");
+      if (rep.boundary_loops && !o.seg.no_streamline)
+        cli_warn("%s: %d hole%s (boundary loop%s) closed internally for the segmentation", s ? yn : xn,
+                 rep.boundary_loops, rep.boundary_loops > 1 ? "s" : "", rep.boundary_loops > 1 ? "s" : "");
     }
   }
   char dropped[1024];
@@ -188,19 +234,36 @@ int cmd_match(int argc, char **argv) {
     fprintf(stderr, "timing: write %.6f\n", t_write);
     fprintf(stderr, "timing: total %.6f\n", ss_time() - t0);
   }
+  char dnote[64] = "";
+  if (o.ndescr) snprintf(dnote, sizeof dnote, ", %d own descriptors%s", o.ndescr, o.fmap.no_wks ? " (no WKS)" : "");
+  const char *pn = o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff";
   static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
-  if (res.autopair.used)
+  if (res.autopair.used && !json)
     fprintf(report, "landmark-free pairing (%s search): energy %.4g, mirror candidate %.4g, next other %.4g (gap %.3f), "
             "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
             res.autopair.mirror_other, res.autopair.confident ? ", confident" : ", NOT confident");
-  fprintf(report, "%d -> %d vertices, %d landmarks%s, %d of %d/%d segments paired, probes %s, k %d%s%s -> %s\n", X->nv,
-          Y->nv, res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", res.pairs.n, res.pairs.nx, res.pairs.ny,
-          o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff", o.fmap.k,
-          o.refine == SS_REFINE_NONE ? "" : ", refined: ",
-          res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "",
-          cli_out_name(outp));
-  if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
+  const char *refined = res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "";
+  const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0;
+  cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
+  cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.pairs.n : nl);
+  cli_job_int(&J, "landmark_free", res.autopair.used);
+  if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.confident);
+  cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);
+  cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
+  cli_job_int(&J, "zoomout", kz);
+  if (o.refine != SS_REFINE_NONE) cli_job_str(&J, "refined", refined);
+  if (res.notes[0]) cli_job_str(&J, "notes", res.notes);
+  cli_job_int(&J, "descriptors", o.ndescr), cli_job_int(&J, "wks", !o.fmap.no_wks);
+  cli_job_num(&J, "t_read", t_read), cli_job_num(&J, "t_segment", res.t_segment), cli_job_num(&J, "t_eigs", res.t_eigs);
+  cli_job_num(&J, "t_pair", res.t_pair), cli_job_num(&J, "t_fmap", res.t_fmap), cli_job_num(&J, "t_zoomout", res.t_zoomout);
+  cli_job_num(&J, "t_write", t_write);
+  if (!json) {
+    fprintf(report, "%d -> %d vertices, %d landmarks%s, %d of %d/%d segments paired, probes %s, k %d%s%s%s -> %s\n",
+            X->nv, Y->nv, res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", res.pairs.n, res.pairs.nx, res.pairs.ny, pn, o.fmap.k, o.refine == SS_REFINE_NONE ? "" : ", refined: ",
+            refined, dnote, cli_out_name(outp));
+    if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
+  }
 done:
   ss_match_result_free(&res);
   cli_shape_free(&SX);
@@ -208,5 +271,7 @@ done:
   free(lx);
   free(ly);
   free(lline);
-  return rc;
+  free(DX);
+  free(DY);
+  return cli_job_end(&J, "match", rc, json);
 }

@@ -29,7 +29,7 @@ static const char USAGE[] =
     "per mesh, in mesh order. Without a colouring option, a PLY's own vertex colours are drawn. Prints a\n"
     "summary line (on stderr with -o -) that names the up axis used.\n"
     "\n"
-    "  MESH ...            OFF, OBJ or PLY files (at most 64)\n"
+    "  MESH ...            mesh files (OFF, OBJ, PLY, STL, glTF, ...; at most 64)\n"
     "  -o, --output FILE   the PNG (required); - writes it to standard output (not to a terminal)\n"
     "  --labels L.txt      segmentation: one colour per segment, boundary triangles neutral\n"
     "  --scalar F.txt      per-vertex field: viridis colormap and colour bar\n"

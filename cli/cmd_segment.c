@@ -10,63 +10,41 @@
 #include <string.h>
 
 static const char USAGE[] =
-    "usage: specseg segment MESH -o LABELS.txt [--centers CENTERS.txt] [--ply OUT.ply] [--faces N]\n"
-    "                       [--no-streamline] [--timings]\n"
+    "usage: specseg segment MESH... -o LABELS.txt [--centers CENTERS.txt] [--ply OUT.ply] [--faces N]\n"
+    "                       [--no-streamline] [--timings] [--jobs N] [--json]\n"
     "\n"
     "Coherent segmentation (paper section 4): CMCF smoothing, isotropic remeshing, critical points of\n"
     "the Fiedler function, intrinsic Voronoi cells, labels mapped back to the input's vertices. Prints\n"
     "a summary line (on stderr when an output goes to standard output).\n"
     "\n"
-    "  MESH                OFF, OBJ or PLY file, or a prepared shape (specseg prepare, .sss: its stored\n"
-    "                      segmentation, the same output; --faces / --no-streamline must match it);\n"
-    "                      - reads standard input\n"
-    "  -o, --output FILE   labels: one segment index (0..m-1) per input vertex, a line (required)\n"
-    "  --centers FILE      line s = input vertex at the centre of segment s\n"
+    "  MESH                mesh file (OFF, OBJ, PLY, STL, glTF, ...), or a prepared shape (specseg\n"
+    "                      prepare, .sss: its stored segmentation, the same output; --faces /\n"
+    "                      --no-streamline must match it); - reads standard input\n"
+    "  -o, --output FILE   labels: one segment index (0..m-1) per input vertex, a line (required);\n"
+    "                      batch: OUTDIR, labels in OUTDIR/NAME.labels.txt\n"
+    "  --centers FILE      line s = input vertex at the centre of segment s (batch: a suffix)\n"
     "  --ply FILE          the input mesh coloured by segment, binary PLY with an int vertex property\n"
-    "                      'label' (the segment) beside red green blue\n"
+    "                      'label' (the segment) beside red green blue (batch: a suffix, e.g. .ply)\n"
     "  --faces N           remeshing target, 4..2000000 triangles (default 15000)\n"
     "  --no-streamline     everything straight on the input (no smoothing, no remeshing)\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
-    "One of the output files may be - (standard output).\n";
+    "One of the output files may be - (standard output).\n" CLI_BATCH_HELP;
 
 static const char *const OPTS[] = {"-o=", "--output=", "--centers=", "--ply=", "--faces=", "--no-streamline",
-                                   "--timings", NULL};
+                                   "--timings", CLI_BATCH_OPTS, NULL};
 
-int cmd_segment(int argc, char **argv) {
-  const char *in = NULL, *labels_path = NULL, *centers_path = NULL, *ply_path = NULL;
-  int timings = 0;
+typedef struct seg_cfg {
+  const char *labels, *centers, *ply;
+  int timings, to_stdout;
   ss_segment_options opt;
-  ss_segment_default_options(&opt);
-  cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) {
-      if (in) return cli_bad(&A, "unexpected argument '%s'", A.pos);
-      in = A.pos;
-    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      labels_path = v;
-    } else if (cli_is(&A, "--centers")) {
-      centers_path = v;
-    } else if (cli_is(&A, "--ply")) {
-      ply_path = v;
-    } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &opt.target_faces))
-        return cli_bad(&A, "--faces needs an integer between 4 and %d, not '%s'", SS_REMESH_MAX_FACES, v);
-    } else if (cli_is(&A, "--no-streamline")) {
-      opt.no_streamline = 1;
-    } else if (cli_is(&A, "--timings")) {
-      timings = 1;
-    }
-  }
-  if (A.rc >= 0) return A.rc;
-  if (!in) return cli_bad(&A, "missing MESH");
-  if (!labels_path) return cli_bad(&A, "missing -o LABELS.txt");
-  const char *outs[3] = {labels_path, centers_path, ply_path};
-  int to_stdout = cli_count_std(outs, 3);
-  if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
-  FILE *report = to_stdout ? stderr : stdout;
+} seg_cfg;
 
+static int segment_job(cli_job *j, void *vcfg) {
+  const seg_cfg *c = vcfg;
+  const char *in = j->input;
+  const char *labels_path = cli_job_output(j, c->labels, ".labels.txt");
+  const char *centers_path = cli_job_extra(j, c->centers), *ply_path = cli_job_extra(j, c->ply);
+  FILE *report = cli_job_report(j, c->to_stdout);
   ss_error err = {{0}};
   ss_mesh m = {0};
   ss_segmentation seg = {0};
@@ -79,7 +57,7 @@ int cmd_segment(int argc, char **argv) {
   if (S.prepared) { /* the stored segmentation (nothing computed here: its timings are 0) */
     const ss_segment_options *so = &S.ps.seg;
     /* the output is the one from the mesh with these options only */
-    if (opt.no_streamline != so->no_streamline || (!so->no_streamline && opt.target_faces != so->target_faces)) {
+    if (c->opt.no_streamline != so->no_streamline || (!so->no_streamline && c->opt.target_faces != so->target_faces)) {
       char was[64];
       if (so->no_streamline) snprintf(was, sizeof was, "--no-streamline");
       else snprintf(was, sizeof was, "--faces %d", so->target_faces);
@@ -95,7 +73,7 @@ int cmd_segment(int argc, char **argv) {
     memset(&S.ps.mesh, 0, sizeof m);
   }
   cli_shape_free(&S);
-  if (!seg.labels && ss_segment_warn(&m, &opt, &seg, warnings, sizeof warnings, &err)) {
+  if (!seg.labels && ss_segment_warn(&m, &c->opt, &seg, warnings, sizeof warnings, &err)) {
     rc = cli_error("%s: %s", cli_in_name(in), err.msg);
     goto done;
   }
@@ -124,20 +102,80 @@ int cmd_segment(int argc, char **argv) {
     }
   }
   if (seg.empty_segments)
-    cli_warn("%d of the %d segments received no input vertex", seg.empty_segments, seg.m);
-  if (timings) {
-    fprintf(stderr, "timing: read %.6f\n", seg.t_read);
-    fprintf(stderr, "timing: smooth %.6f\n", seg.t_smooth);
-    fprintf(stderr, "timing: remesh %.6f\n", seg.t_remesh + seg.t_psi);
-    fprintf(stderr, "timing: spectrum %.6f\n", seg.t_spectrum);
-    fprintf(stderr, "timing: critical %.6f\n", seg.t_critical);
-    fprintf(stderr, "timing: ivd %.6f\n", seg.t_ivd);
-    fprintf(stderr, "timing: total %.6f\n", seg.t_read + seg.t_total);
+    cli_warn("%s: %d of the %d segments received no input vertex", cli_in_name(in), seg.empty_segments, seg.m);
+  if (c->timings) { /* stderr; in a batch with the report (prefixed by the mesh) */
+    FILE *tf = j->b && j->b->batch ? report : stderr;
+    fprintf(tf, "timing: read %.6f\n", seg.t_read);
+    fprintf(tf, "timing: smooth %.6f\n", seg.t_smooth);
+    fprintf(tf, "timing: remesh %.6f\n", seg.t_remesh + seg.t_psi);
+    fprintf(tf, "timing: spectrum %.6f\n", seg.t_spectrum);
+    fprintf(tf, "timing: critical %.6f\n", seg.t_critical);
+    fprintf(tf, "timing: ivd %.6f\n", seg.t_ivd);
+    fprintf(tf, "timing: total %.6f\n", seg.t_read + seg.t_total);
   }
   fprintf(report, "%d segments (%d critical points before clean-up), %d vertices -> %s\n", seg.m, seg.ncrit_raw,
           seg.nv, cli_out_name(labels_path));
+  cli_job_int(j, "segments", seg.m);
+  cli_job_int(j, "critical_points", seg.ncrit_raw);
+  cli_job_int(j, "vertices", seg.nv);
+  cli_job_int(j, "faces", m.nf);
+  cli_job_int(j, "empty_segments", seg.empty_segments);
+  cli_job_num(j, "t_read", seg.t_read);
+  cli_job_num(j, "t_smooth", seg.t_smooth);
+  cli_job_num(j, "t_remesh", seg.t_remesh + seg.t_psi);
+  cli_job_num(j, "t_spectrum", seg.t_spectrum);
+  cli_job_num(j, "t_critical", seg.t_critical);
+  cli_job_num(j, "t_ivd", seg.t_ivd);
+  cli_job_num(j, "t_total", seg.t_read + seg.t_total);
 done:
   ss_segmentation_free(&seg);
   ss_mesh_free(&m);
   return rc;
+}
+
+int cmd_segment(int argc, char **argv) {
+  seg_cfg c;
+  memset(&c, 0, sizeof c);
+  ss_segment_default_options(&c.opt);
+  cli_batch B;
+  cli_batch_init(&B, "segment");
+  cli_args A;
+  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  int rc = -1;
+  while (rc < 0 && cli_next(&A)) {
+    const char *v = A.val;
+    if (cli_batch_option(&B, &A)) continue;
+    if (A.pos) {
+      rc = cli_batch_add(&B, &A, A.pos);
+    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
+      c.labels = v;
+    } else if (cli_is(&A, "--centers")) {
+      c.centers = v;
+    } else if (cli_is(&A, "--ply")) {
+      c.ply = v;
+    } else if (cli_is(&A, "--faces")) {
+      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &c.opt.target_faces))
+        rc = cli_bad(&A, "--faces needs an integer between 4 and %d, not '%s'", SS_REMESH_MAX_FACES, v);
+    } else if (cli_is(&A, "--no-streamline")) {
+      c.opt.no_streamline = 1;
+    } else if (cli_is(&A, "--timings")) {
+      c.timings = 1;
+    }
+  }
+  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "missing MESH");
+  const char *extras[2] = {c.centers, c.ply};
+  if (rc < 0) rc = cli_batch_setup(&B, &A, c.labels, 1, ".labels.txt", extras, 2);
+  if (rc < 0 && !c.labels) rc = cli_bad(&A, "missing -o LABELS.txt");
+  if (rc < 0 && !B.batch) {
+    const char *outs[3] = {c.labels, c.centers, c.ply};
+    c.to_stdout = cli_count_std(outs, 3);
+    if (c.to_stdout > 1) rc = cli_bad(&A, "only one output can go to standard output ('-')");
+    else if (c.to_stdout && B.json) rc = cli_bad(&A, "--json and an output to '-' both want standard output");
+  }
+  if (rc >= 0) {
+    cli_batch_free(&B);
+    return rc;
+  }
+  return cli_batch_run(&B, segment_job, &c);
 }

@@ -12,9 +12,7 @@
 int cli_error(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fputs("specseg: error: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  cli_diag("error", fmt, ap);
   va_end(ap);
   return SS_EXIT_FAIL;
 }
@@ -22,9 +20,7 @@ int cli_error(const char *fmt, ...) {
 int cli_usage(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fputs("specseg: usage: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  cli_diag("usage", fmt, ap);
   va_end(ap);
   return SS_EXIT_USAGE;
 }
@@ -32,9 +28,7 @@ int cli_usage(const char *fmt, ...) {
 void cli_warn(const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fputs("specseg: warning: ", stderr);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  cli_diag("warning", fmt, ap);
   va_end(ap);
 }
 
@@ -67,6 +61,7 @@ typedef struct {
 static const command commands[] = {
     {"info", cmd_info, "mesh statistics and checks"},
     {"eigs", cmd_eigs, "Laplace-Beltrami eigenvalues (and eigenvectors as .npy)"},
+    {"descriptors", cmd_descriptors, "WKS / HKS per-vertex descriptors as .npy (for match --descriptors)"},
     {"demo", cmd_demo, "the pipeline on built-in synthetic shapes, no data needed"},
     {"smooth", cmd_smooth, "conformalized mean curvature flow"},
     {"remesh", cmd_remesh, "isotropic remeshing"},
@@ -85,8 +80,8 @@ static void print_help(FILE *f) {
   fprintf(f, "specseg %s — coherent spectral segmentation and functional-map matching\n\n"
              "usage: specseg COMMAND [ARGS]\n\ncommands:\n",
           ss_version());
-  for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-9s %s\n", commands[i].name, commands[i].what);
-  fprintf(f, "  %-9s %s\n  %-9s %s\n\n", "help", "this list; help COMMAND: the command's usage and options", "version",
+  for (int i = 0; i < NCOMMANDS; i++) fprintf(f, "  %-11s %s\n", commands[i].name, commands[i].what);
+  fprintf(f, "  %-11s %s\n  %-11s %s\n\n", "help", "this list; help COMMAND: the command's usage and options", "version",
           "the version (also --version)");
   fprintf(f, "specseg COMMAND --help (or -h) prints the command's usage and options. Options that take a\n"
              "value accept --opt VALUE and --opt=VALUE; '-' as a file name is standard input or output.\n"

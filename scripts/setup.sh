@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-pkgs=(cmake make gcc pkg-config libsuitesparse-dev libarpack2-dev libopenblas-dev liblapacke-dev libpng-dev
+pkgs=(cmake make gcc pkg-config libsuitesparse-dev libarpack2-dev libopenblas-dev liblapacke-dev libpng-dev libassimp-dev
       python3 python3-numpy python3-venv python3-pip python3-setuptools python3-wheel)
 missing=()
 for p in "${pkgs[@]}"; do

@@ -57,7 +57,7 @@ fi
 "$BIN" --version extra > /dev/null 2>&1; [ $? = 2 ] && ok || bad "--version extra: not a usage error"
 
 # ---- help ---------------------------------------------------------------------------------------
-CMDS="info eigs demo smooth remesh geodesic segment match error eval render"
+CMDS="info eigs descriptors demo smooth remesh geodesic segment match error eval render"
 "$BIN" help > "$TMP/help" 2> "$TMP/err" && [ ! -s "$TMP/err" ] && ok || bad "help: exit $? $(cat "$TMP/err")"
 for c in $CMDS help version; do
   grep -q "^  $c " "$TMP/help" && ok || bad "help does not list $c"

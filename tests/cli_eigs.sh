@@ -65,7 +65,7 @@ expect 2 "$TMP/ico.off" -k 3 --bogus
 expect 2 -k 3
 expect 2 "$TMP/ico.off" "$TMP/ico.off" -k 3
 expect 1 "$TMP/missing.off" -k 3
-expect 1 "$TMP" -k 3
+expect 2 "$TMP" -k 3   # a folder is a batch, which needs -o OUTDIR
 expect 1 "$TMP/ico.off" -k 3 --evecs "$TMP/no/such/dir/ev.npy"
 expect 1 "$TMP/ico.off" -k 1 --sigma 0.0 --mass barycentric --evecs "$TMP/no/x.npy"
 if [ -d "$TESTS/data/malformed" ]; then

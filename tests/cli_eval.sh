@@ -54,6 +54,26 @@ head -c 30 <(sed -n 7p "$TMP/merged.csv") >> "$TMP/cut.csv"
 cut -d, -f1-10,12 "$TMP/cut_sorted.csv" > "$TMP/c"
 cmp -s "$TMP/c" "$TMP/b" && ok || bad "resumed rows differ: $(diff "$TMP/c" "$TMP/b" | head -4)"
 
+# --json: the same table as the CSV's rows (a re-run: nothing new), the CSV among the outputs
+"$BIN" "${ARGS[@]}" --out "$TMP/single.csv" --json > "$TMP/t.json" 2> "$TMP/err" && ok || bad "--json: $(cat "$TMP/err")"
+if [ -n "$PY" ]; then
+  "$PY" - "$TMP" <<'PYEOF' && ok || bad "eval --table1 --json"
+import csv, json, sys
+t = sys.argv[1]
+d = json.load(open(t + "/t.json"))
+r, = d["results"]
+assert d["command"] == "eval" and r["ok"] and r["outputs"] == [t + "/single.csv"] and r["new_rows"] == 0 and r["rows"] == 8, r
+rows = list(csv.DictReader(open(t + "/single.csv")))
+best = [x for x in r["table"] if x["scenario"] == "FAUST BEST"][0]
+want = [float(x["error"]) for x in rows if x["policy"] == "random" and x["landmarks"] == "best" and x["method"] == "std"]
+assert best["std_pairs"] == len(want) == 1 and abs(best["std"] - want[0]) < 1e-15 and best["diff"] is None, best
+assert best["refined"] is None and best["refined_pairs"] == 0 and "refined_paper" not in best, best
+assert abs(best["std_paper"] - 0.027) < 1e-12, best
+PYEOF
+fi
+"$BIN" eval --coherency --data "$D" --json > /dev/null 2> "$TMP/err"
+[ $? = 2 ] && grep -q -- "--json is for --table1 and --figures" "$TMP/err" && ok || bad "--json with --coherency: $(cat "$TMP/err")"
+
 # damaged cache entries (D8): two eigenvector columns swapped, bytes flipped, a file cut short, a key
 # line of another version under the same name: each is reported through the log, recomputed (never
 # used) and rewritten; the rows stay those of the intact run, and the next run uses the cache silently

@@ -2,7 +2,9 @@
 # `specseg eval --figures`: usage errors (2) without data; with FAUST, a small run (2-shape gallery,
 # Figure 9 of a given pair, 100x200 panels, k = 20) writes PNGs of the expected layout: the gallery
 # 2 panels wide with segment colours, the map figure 5 panels + colour bar wide, 2 rows + heading
-# high, with heat-map red in its error row; --gallery-only writes no map figure.
+# high, with heat-map red in its error row; --gallery-only writes no map figure; the showcase rule
+# (--candidates 3: the median of the candidates' mean errors, the candidates the first pairs drawn,
+# the figure's errors those the pair was scored with) through --json.
 # Usage: cli_eval_figures.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
@@ -56,5 +58,31 @@ fi
 "$BIN" eval --figures "$TMP/g" --data "$D" --gallery-only --gallery-count 1 --size 64x128 > "$TMP/out2" 2> "$TMP/err" &&
   ok || bad "--gallery-only: $(tail -3 "$TMP/err")"
 [ -s "$TMP/g/faust_gallery.png" ] && [ -z "$(ls "$TMP/g" | grep figure)" ] && ok || bad "--gallery-only wrote $(ls "$TMP/g")"
+
+# the showcase pair: the median of 3 candidates, checked through --json (no --pair)
+if [ -z "$PY" ]; then
+  skip "showcase rule (no python3)"
+else
+  SA=(eval --data "$D" --gallery-count 0 --size 40x80 --k 20 --cache "$TMP/cache" --json)
+  "$BIN" "${SA[@]}" --figures "$TMP/s3" --candidates 3 > "$TMP/s3.json" 2> "$TMP/err" && ok || bad "--candidates 3: $(tail -3 "$TMP/err")"
+  "$BIN" "${SA[@]}" --figures "$TMP/s1" --candidates 1 > "$TMP/s1.json" 2> "$TMP/err" && ok || bad "--candidates 1: $(tail -3 "$TMP/err")"
+  "$PY" - "$TMP" <<'PYEOF' && ok || bad "the showcase pair is not the median of the candidates"
+import json, os, sys
+t = sys.argv[1]
+d3, d1 = (json.load(open(t + "/s%d.json" % n)) for n in (3, 1))
+f3, = d3["results"][0]["figures"]
+f1, = d1["results"][0]["figures"]
+c = f3["candidates"]
+assert len(c) == 3 and "median" in f3["rule"] and f3["figure"] == 9 and f3["landmarks"] == "best", f3
+med = sorted(c, key=lambda p: p["score"])[1]
+assert (f3["x"], f3["y"]) == (med["x"], med["y"]), (f3, med)
+# the figure's errors are those the pair was scored with
+e = f3["mean_error"]
+assert abs((e["std"] + e["asa"] + e["diff"]) / 3 - med["score"]) < 1e-12, (e, med)
+# --candidates 1: the first pair drawn, the first candidate of the three
+assert (f1["x"], f1["y"]) == (c[0]["x"], c[0]["y"]) and "first" in f1["rule"] and "candidates" not in f1, f1
+assert os.path.exists(f3["path"]) and d3["results"][0]["outputs"] == [f3["path"]], d3
+PYEOF
+fi
 
 finish

@@ -45,7 +45,7 @@ printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$TMP/noext"
 chmod 000 "$TMP/noext"
 if [ "$(id -u)" != 0 ]; then expect_fail 1 info "$TMP/noext"; fi  # unreadable (root reads anyway)
 expect_fail 2 info                                 # no mesh
-expect_fail 2 info a.off b.off                     # two meshes
+expect_fail 1 info a.off b.off                     # two meshes: a batch, both missing
 expect_fail 2 info --bogus "$CORPUS/off_empty.off" # unknown option
 expect_fail 2 nosuchcommand                        # unknown subcommand
 

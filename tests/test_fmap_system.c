@@ -101,7 +101,7 @@ static void test_probes_split(void) {
   ss_fmap_match_options o;
   ss_fmap_match_default_options(&o);
   o.k = k, o.n_energies = ne, o.descr_step = step;
-  ss_fmap_shape s = {&mesh, M, ev, phi, k};
+  ss_fmap_shape s = {&mesh, M, ev, phi, k, NULL, 0};
   ss_fmap_probes base, wave, raw;
   CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &base, NULL) == SS_OK);
   CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &wave, NULL) == SS_OK);
@@ -167,7 +167,7 @@ static void test_descr_k(void) {
   ss_fmap_match_options o;
   ss_fmap_match_default_options(&o);
   o.k = k, o.n_energies = ne, o.descr_step = step;
-  ss_fmap_shape s = {&mesh, M, ev, phi, kd};
+  ss_fmap_shape s = {&mesh, M, ev, phi, kd, NULL, 0};
   ss_fmap_probes b0, bk, w0, wk, bd, wd, bbig, wbig;
   CHECK(o.descr_k == 0);
   CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &b0, NULL) == SS_OK);

@@ -608,6 +608,37 @@ static void test_match_components(void) {
     CHECK(r.pairs.n == r0.pairs.n && r.kc == r0.kc && !memcmp(r.C, r0.C, sizeof(double) * (size_t)r.kc * r.kc));
   }
   ss_match_result_free(&r);
+  /* the caller's descriptors (rows of the input vertices) follow the kept components: with crumbs
+   * (whatever their rows hold) the body's map is the one of the body and its own rows, bit for bit */
+  {
+    ss_match_options od;
+    ss_match_paper_options(&od);
+    od.fmap.k = 30;
+    double *DX = malloc(sizeof(double) * 2 * (size_t)Xc.nv), *DY = malloc(sizeof(double) * 2 * (size_t)Yc.nv);
+    double *BX = malloc(sizeof(double) * 2 * (size_t)X.nv), *BY = malloc(sizeof(double) * 2 * (size_t)Y.nv);
+    for (int s = 0; s < 2; s++) {
+      const ss_mesh *m = s ? &Yc : &Xc;
+      const int nb = s ? Y.nv : X.nv;
+      double *D = s ? DY : DX, *B = s ? BY : BX;
+      for (int i = 0; i < m->nv; i++) {
+        D[i] = i < nb ? m->V[3 * (size_t)i + 1] : 1e3;           /* height; the crumbs' rows: anything */
+        D[i + (size_t)m->nv] = i < nb ? m->V[3 * (size_t)i + 2] : -7;
+        if (i < nb) B[i] = D[i], B[i + (size_t)nb] = D[i + (size_t)m->nv];
+      }
+    }
+    ss_match_result rb = {0}, rc = {0};
+    od.ndescr = 2, od.descrX = BX, od.descrY = BY;
+    CHECK_MSG(ss_match(&X, &Y, 3, lm, lm, &od, &rb, &e) == SS_OK, "%s", e.msg);
+    od.descrX = DX, od.descrY = DY;
+    CHECK_MSG(ss_match_warn(&Xc, &Yc, 3, lm, lm, &od, &rc, warn, sizeof warn, &e) == SS_OK, "%s", e.msg);
+    if (rb.map && rc.map) {
+      CHECK(rc.nX == Xc.nv);
+      CHECK_MSG(!memcmp(rc.map, rb.map, sizeof(int) * (size_t)X.nv), "descriptors with crumbs: another body map");
+      CHECK(rc.kc == rb.kc && !memcmp(rc.C, rb.C, sizeof(double) * (size_t)rc.kc * rc.kc));
+    }
+    ss_match_result_free(&rb), ss_match_result_free(&rc);
+    free(DX), free(DY), free(BX), free(BY);
+  }
   /* a landmark on a crumb keeps that crumb, which has no segmentation of its own: said so (was "source
    * vertex -1 outside [0,7502)") */
   int lm2[3] = {lm[0], lm[1], Xc.nv - 1};

@@ -297,6 +297,18 @@ typedef struct ss_map_figure {
 SS_API ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64_t seed, int k, ss_lm_set lmset, int x,
                                     int y, const ss_render_options *o, const char *png, ss_map_figure *info, ss_error *err);
 
+/* The showcase pair of a map figure, by a rule fixed before looking at any result: the first ncand
+ * pairs (1..100) the policy draws under seed (ss_eval_pairs, as Table 1 draws them), each matched with
+ * STD, ASA and DIFF at landmark set lmset as the Table 1 rows are (exact all-vertex errors); its score
+ * is the mean of the three methods' mean errors, and the pair whose score is the median — the
+ * ((ncand + 1) / 2)-th smallest, ties in draw order — is the showcase: a typical pair of the row,
+ * neither its best nor its worst, whichever method wins on it. ncand = 1: the first pair, unscored.
+ * *x, *y: the pair; index (may be NULL): its place in the draw; xs, ys, scores (ncand each, may be
+ * NULL): every candidate in draw order (scores 0 when ncand = 1). */
+SS_API ss_status ss_eval_showcase_pair(const char *data_dir, const char *cache_dir, uint64_t seed, int k, ss_lm_set lmset,
+                                       ss_pair_policy policy, int ncand, int *x, int *y, int *index, int *xs, int *ys,
+                                       double *scores, ss_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -45,6 +45,22 @@ SS_API ss_status ss_wks_filter(int n, int k, const double *evals, const double *
 SS_API ss_status ss_wks_landmarks(int n, int k, const double *evals, const double *evecs, const double *M, int ne,
                                   double sigma_factor, int nl, const int *lm, double *out, ss_error *err);
 
+/* ------------------------------------------------------------------ heat kernel (hks.c) */
+
+/* The HKS time filters (Sun, Ovsjanikov, Guibas 2009), in the WKS's style: nt times t_j log-spaced from
+ * 4 ln 10 / λ_max to 4 ln 10 / λ_min (λ_min, λ_max: the first non-zero and the largest of the k
+ * eigenvalues; e^{−λ t} then spans 1e-4 at either end, as in the reference code and pyFM), ascending
+ * (nt = 1: their geometric mean). Writes the nt x k matrix G, G[j,i] = exp(−λ_i t_j), 0 for the
+ * (numerically) zero eigenvalues (|λ| ≤ 1e-8·λ_max) as the WKS filters, so the constant function does
+ * not enter; times (nt, may be NULL) receives t_j. Needs k ≥ 2 and a non-zero eigenvalue. */
+SS_API ss_status ss_hks_filters(const double *evals, int k, int nt, double *G, double *times, ss_error *err);
+
+/* HKS descriptors: out (n x nt, column-major), out[x,j] = Σ_i G[j,i] φ_i(x)², each column then
+ * normalised to unit L²(M) norm (M: n lumped masses) as ss_wks does (instead of pyFM's division by the
+ * heat trace: the scale of each column is lost either way). */
+SS_API ss_status ss_hks(int n, int k, const double *evals, const double *evecs, const double *M, int nt, double *out,
+                        ss_error *err);
+
 /* ------------------------------------------------------- functional map (fmap_solve.c) */
 
 /* Spectral coefficients A = Φᵀ M F (k x p) of p functions F (n x p), Φ the first k columns of evecs. */
@@ -228,13 +244,18 @@ SS_API ss_status ss_p2p_descr_residual(int n_S, int n_T, const double *evecs_S, 
 /* ----------------------------------------------------------- pipeline (fmap_match.c) */
 
 /* One shape as the matcher sees it: its mesh (for the area), lumped masses (M; NULL = barycentric
- * masses of the mesh, as ss_mesh_eigs uses) and eigenpairs (kev of them, evecs nv x kev). */
+ * masses of the mesh, as ss_mesh_eigs uses) and eigenpairs (kev of them, evecs nv x kev). descr (may
+ * be NULL with ndescr = 0): the caller's own descriptors, nv x ndescr column-major (e.g. `specseg
+ * descriptors`, or any per-vertex features), column j corresponding to column j of the other shape's;
+ * they join the base probes (ss_fmap_base_probes) as they are, each normalised in L²(M). */
 typedef struct ss_fmap_shape {
   const ss_mesh *mesh;
   const double *M;
   const double *evals;
   const double *evecs;
   int kev;
+  const double *descr;
+  int ndescr;
 } ss_fmap_shape;
 
 typedef enum ss_probe_filter {
@@ -269,15 +290,19 @@ typedef struct ss_fmap_match_options {
    * iteration on every vertex at the end); 0 (default) or at least X's vertex count: on every vertex
    * (ss_zoomout). */
   int zoomout_samples;
+  /* 1: no WKS columns among the base probes, so the shapes' own descriptors (ss_fmap_shape.descr)
+   * replace them; default 0 (WKS, then the shapes' descriptors, if any) */
+  int no_wks;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);
 
 /* Base probes of one shape (WKS descriptors and the wave-kernel maps of its nl landmarks lm), as
  * ss_fmap_match builds them: the virtual column list [WKS | landmark 1 | … | landmark nl]
- * (n_energies columns per item) sub-sampled by descr_step, each column normalised in L²(M); their
- * coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
- * multiplication operators. They depend on the shape and its landmarks only, so an evaluation can
+ * (n_energies columns per item; without the WKS item when opts->no_wks) sub-sampled by descr_step,
+ * then the shape's own s->ndescr descriptors (not sub-sampled), each column normalised in L²(M);
+ * their coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
+ * multiplication operators. No WKS, no landmark and no descriptor is an error. They depend on the shape and its landmarks only, so an evaluation can
  * build them once per shape and landmark set. opts NULL: defaults. */
 SS_API ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
                                      int with_operators, ss_fmap_probes *out, ss_error *err);
@@ -301,7 +326,8 @@ SS_API ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shap
 SS_API ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
                                       const double *Ck, int *map, double *C_out, ss_error *err);
 
-/* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape, the wave-kernel maps
+/* The STD / ASA / DIFF pipeline: probes are the WKS descriptors of each shape (unless opts->no_wks),
+ * the shapes' own descriptors (X->ndescr = Y->ndescr columns), the wave-kernel maps
  * of the landmarks (lmX[i] on X ↔ lmY[i] on Y), plus nextra paired functions (extraX nX x nextra,
  * extraY nY x nextra; e.g. segment indicators) used raw or wave-filtered. All descriptors are
  * normalised in L²(M) and sub-sampled by descr_step; the multiplication operators of the kept

@@ -15,13 +15,30 @@ extern "C" {
  * (colours, normals) ignored. PLY: ascii / binary LE / binary BE, x y z of any numeric type, faces
  * from the list `vertex_indices` (or `vertex_index`), everything else skipped. NaN/Inf coordinate
  * literals are read as such (ss_mesh_check reports them). Files without faces, polygons with fewer
- * than 3 vertices and out-of-range indices are errors (SS_ERR_PARSE). On failure *m is zeroed. */
+ * than 3 vertices and out-of-range indices are errors (SS_ERR_PARSE). On failure *m is zeroed.
+ *
+ * Other formats go through the Open Asset Import Library (Debian's libassimp-dev, when the build found
+ * it): STL (ascii and binary), glTF 2.0 (.gltf with embedded or external buffers, .glb), FBX, COLLADA
+ * (.dae), 3DS and every other extension assimp supports; in memory, STL and glTF are recognised by
+ * content. The scene is flattened: the meshes of every node, in depth-first order, with the node's
+ * accumulated transform applied to their vertices (a mesh instanced twice appears twice); polygons are
+ * triangulated, points and lines dropped; then vertices with exactly equal coordinates are welded
+ * (O(n log n), by a sort; each kept vertex is the first of its group in the order the
+ * scene lists them, for STL facet by facet), which joins STL's
+ * per-facet vertex soup and the vertices other formats split at normal creases or texture seams into
+ * one connected mesh. Coordinates are assimp's float32 values. Without assimp these files fail with
+ * SS_ERR_UNSUPPORTED and a message naming libassimp-dev. Imports through assimp are serialised by a
+ * process-wide lock (its error message is one global string); they are safe to call from any thread. */
 SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
+/* Does ss_read_mesh read files named like path by their extension? 1: OFF, OBJ or PLY (our readers);
+ * 2: a format read through assimp (only when the library was built with it); 0: no. */
+SS_API int ss_mesh_extension_supported(const char *path);
 SS_API ss_status ss_read_off(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
 SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
 /* The same from len bytes in memory (e.g. a program's standard input): the format always comes from
- * content sniffing (a "ply" first line, an OFF header or counts, OBJ keywords); name (NULL:
+ * content sniffing (a "ply" first line, an OFF header or counts, OBJ keywords; with assimp also STL,
+ * ascii or binary, glTF JSON and GLB); name (NULL:
  * "<memory>") stands for the file in messages, "NAME:LINE: what". buf is not modified or kept. */
 SS_API ss_status ss_read_mesh_memory(const void *buf, size_t len, const char *name, ss_mesh *m, ss_error *err);
 /* ss_read_mesh / ss_read_mesh_memory that also return the file's per-vertex colours: *rgb gets 3*nv

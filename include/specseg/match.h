@@ -231,6 +231,12 @@ typedef struct ss_match_options {
   int refine_single;
   /* the landmark-free pairing (used when ss_match_prepared gets no landmarks) */
   ss_autopair_options autopair;
+  /* the caller's own descriptors (default none): ndescr columns on each shape, descrX nX x ndescr and
+   * descrY nY x ndescr column-major, column j of one corresponding to column j of the other; probes
+   * beside the WKS (or instead of it with fmap.no_wks), as ss_fmap_shape.descr; rows of the input
+   * meshes' vertices (ss_match keeps the rows of the components it matches) */
+  int ndescr;
+  const double *descrX, *descrY;
 } ss_match_options;
 
 SS_API void ss_match_default_options(ss_match_options *o);

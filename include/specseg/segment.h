@@ -94,8 +94,8 @@ typedef struct ss_segmentation {
 SS_API ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts, ss_segmentation *out,
                             ss_error *err);
 /* The same, with a human-readable summary of what was done to the input beyond the paper's pipeline
- * in `warnings` (may be NULL; "" when nothing): the sanitizer's repairs (ss_mesh_sanitize) and the
- * treatment of several components.
+ * in `warnings` (may be NULL; "" when nothing): the sanitizer's repairs (ss_mesh_sanitize), the holes
+ * (boundary loops) closed for smoothing and remeshing, and the treatment of several components.
  * Components (after sanitizing; faces joined through shared vertices): a mesh of one component goes
  * through the pipeline as described above. With several, each component of at least 1% of the total
  * area (and the largest one, when none reaches 1%) is segmented on its own, as if it were the only shape (own CMCF, remeshing to the full

@@ -33,7 +33,7 @@ from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_
 from ._version import __version__
 
 __all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
-           "remesh", "segment", "Segmentation", "geodesic", "match", "Match", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
+           "remesh", "segment", "Segmentation", "geodesic", "wks", "hks", "match", "Match", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
            "label_colors", "align_labels", "library_version", "library_path", "render_library_path"]
 
 #: Path of the loaded core library (libspecseg.so...).
@@ -61,10 +61,14 @@ def _err():
 
 
 def read_mesh(path):
-    """Read a triangle mesh from an OFF, OBJ or PLY file.
+    """Read a triangle mesh: OFF, OBJ, PLY, STL, glTF 2.0 or another format assimp reads.
 
     The format is chosen by the extension (case-insensitive), else by the content. Polygons are
-    fan-triangulated; PLY may be ASCII or binary.
+    fan-triangulated; PLY may be ASCII or binary. STL (ASCII or binary), glTF (.gltf, .glb), FBX,
+    COLLADA, 3DS, ... are read through the Open Asset Import Library when the C library was built
+    with libassimp-dev: all meshes of the scene merged with their node transforms applied, vertices
+    with exactly equal coordinates welded (in order of first occurrence), so an STL's per-facet vertex
+    soup becomes one connected mesh; coordinates are float32 values.
 
     Parameters
     ----------
@@ -82,7 +86,8 @@ def read_mesh(path):
     ------
     SpecsegError
         The file cannot be read ("i/o error") or is malformed ("parse error": the message gives
-        the file and line or byte offset).
+        the file and line or byte offset); an STL / glTF / ... file with a library built without
+        assimp ("unsupported", the message names libassimp-dev).
     """
     m, e = _clib.ss_mesh(), _err()
     _check(lib.ss_read_mesh(os.fsencode(path), C.byref(m), C.byref(e)), e)
@@ -217,6 +222,88 @@ def eigs(V, F, k):
     _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
                            C.byref(e)), e)
     return evals, np.ascontiguousarray(evecs.T)
+
+
+def _descriptors(fn, V, F, k, n, extra):
+    m, V, F = _clib.as_mesh(V, F)
+    nv = V.shape[0]
+    if nv < 4:
+        raise ValueError("descriptors need a mesh with at least 4 vertices (got %d)" % nv)
+    k = _as_int32(k, "k", 3, nv - 1)
+    n = _as_int32(n, "n", 1, 10000)
+    evals, evecs = np.zeros(k), np.zeros((k, nv))  # column-major nv x k
+    M, D = np.zeros(nv), np.zeros((n, nv))
+    e = _err()
+    _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), C.byref(e)), e)
+    _check(lib.ss_mass_lumped(C.byref(m), 0, _clib.ptr(M, C.c_double), C.byref(e)), e)
+    _check(fn(nv, k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), _clib.ptr(M, C.c_double), n,
+              *extra, _clib.ptr(D, C.c_double), C.byref(e)), e)
+    return np.ascontiguousarray(D.T)
+
+
+def wks(V, F, k=100, n=100):
+    """Wave kernel signature (Aubry et al. 2011) per vertex, as ``specseg descriptors --wks``.
+
+    From the k smallest Laplace-Beltrami eigenpairs (barycentric masses): n log-spaced energies with
+    sigma = 7 energy spacings, the zero eigenvalue filtered out, each column normalised to unit L2(M)
+    norm — the WKS ``specseg match`` uses (its defaults: descriptors from 100 eigenpairs, n = 100). The result can be saved with
+    numpy.save and given to ``specseg match --descriptors``, or passed to `match` as ``descriptors``.
+
+    Parameters
+    ----------
+    V : array_like of float, shape (nv, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    k : int, optional
+        Eigenpairs, 3 <= k < nv (default 100, the eigenpairs `match` computes its WKS from).
+    n : int, optional
+        Energies, 1..10000 (default 100).
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (nv, n)
+
+    Raises
+    ------
+    ValueError
+        k or n out of range, wrong shapes or a face index outside 0..nv-1.
+    SpecsegError
+        The eigensolver or the filters failed (e.g. fewer than two distinct non-zero eigenvalues).
+    """
+    return _descriptors(lib.ss_wks, V, F, k, n, (C.c_double(7.0),))
+
+
+def hks(V, F, k=100, n=100):
+    """Heat kernel signature (Sun et al. 2009) per vertex, as ``specseg descriptors --hks``.
+
+    From the k smallest Laplace-Beltrami eigenpairs: n times log-spaced from 4 ln 10 / lambda_max to
+    4 ln 10 / lambda_1, HKS(x, t) = sum_i exp(-lambda_i t) phi_i(x)^2 without the constant function,
+    each column normalised to unit L2(M) norm (as `wks`).
+
+    Parameters
+    ----------
+    V : array_like of float, shape (nv, 3)
+        Vertex coordinates.
+    F : array_like of int, shape (m, 3)
+        Triangles as 0-based vertex indices.
+    k : int, optional
+        Eigenpairs, 3 <= k < nv (default 100, as `wks`).
+    n : int, optional
+        Times, 1..10000 (default 100).
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (nv, n)
+
+    Raises
+    ------
+    ValueError
+        k or n out of range, wrong shapes or a face index outside 0..nv-1.
+    SpecsegError
+        The eigensolver failed.
+    """
+    return _descriptors(lib.ss_hks, V, F, k, n, ())
 
 
 def smooth(V, F, steps=None, dt=None):
@@ -471,7 +558,7 @@ _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
 def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None,
-          segment_profile=None):
+          segment_profile=None, descriptors=None, wks=True):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
 
@@ -506,6 +593,13 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
     segment_profile : {"indicator", "tent", "soft"}, optional
         The paired segments' probe functions, as ``specseg match --segment-profile`` (library default
         "tent").
+    descriptors : (array_like, array_like), optional
+        Your own per-vertex descriptors (DX, DY) of shapes (nX, d) and (nY, d), column j of DX
+        corresponding to column j of DY (e.g. `wks` / `hks`, or any features), as
+        ``specseg match --descriptors``: extra probes used as they are, each normalised in L2(M).
+    wks : bool, optional
+        False: no WKS among the probes (the descriptors replace it; needs `descriptors`), as
+        ``--no-wks``. Default True.
 
     Returns
     -------
@@ -571,6 +665,29 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         o.fmap.zoomout_kmax = _as_int32(zoomout, "zoomout")
     if segment_profile is not None:
         o.segment_profile = profiles[segment_profile]
+    if not wks and descriptors is None:
+        raise ValueError("wks=False needs descriptors: they replace the WKS")
+    o.fmap.no_wks = 0 if wks else 1
+    if descriptors is not None:
+        if len(descriptors) != 2:
+            raise ValueError("descriptors must be a pair (DX, DY)")
+        DX, DY = (_as_float64_array(d, name, finite=True)
+                  for d, name in zip(descriptors, ("descriptors[0]", "descriptors[1]")))
+        if DX.ndim == 1:
+            DX = DX[:, None]
+        if DY.ndim == 1:
+            DY = DY[:, None]
+        if DX.ndim != 2 or DX.shape[0] != nX:
+            raise ValueError("descriptors[0] must be (nX, d) with nX = %d (got shape %s)" % (nX, DX.shape))
+        if DY.ndim != 2 or DY.shape[0] != nY:
+            raise ValueError("descriptors[1] must be (nY, d) with nY = %d (got shape %s)" % (nY, DY.shape))
+        if DX.shape[1] != DY.shape[1]:
+            raise ValueError("descriptors: %d columns on X, %d on Y (they must correspond)" % (DX.shape[1], DY.shape[1]))
+        if DX.shape[1] == 0 or not (np.isfinite(DX).all() and np.isfinite(DY).all()):
+            raise ValueError("descriptors must have at least one column and finite values")
+        DX, DY = np.asfortranarray(DX), np.asfortranarray(DY)  # column-major nX x d
+        o.ndescr = _as_int32(DX.shape[1], "descriptor columns")
+        o.descrX, o.descrY = _clib.ptr(DX, C.c_double), _clib.ptr(DY, C.c_double)
     r, e = _clib.ss_match_result(), _err()
     if shapes:
         st = lib.ss_match_prepared_shapes(C.byref(X._s), C.byref(Y._s), lx.size, _clib.ptr(lx, C.c_int),

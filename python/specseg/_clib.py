@@ -106,7 +106,7 @@ class ss_fmap_match_options(C.Structure):
                 ("w_descr", C.c_double), ("w_lap", C.c_double), ("w_dcomm", C.c_double), ("fix_constant", C.c_int),
                 ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int),
                 ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("descr_k", C.c_int),
-                ("zoomout_samples", C.c_int)]
+                ("zoomout_samples", C.c_int), ("no_wks", C.c_int)]
 
 
 class ss_pairing_options(C.Structure):
@@ -131,7 +131,8 @@ class ss_match_options(C.Structure):
     _fields_ = [("probes", C.c_int), ("fmap", ss_fmap_match_options), ("seg", ss_segment_options),
                 ("segment_profile", C.c_int), ("pairing", ss_pairing_options), ("refine", C.c_int),
                 ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double),
-                ("seg_descr_k", C.c_int), ("refine_single", C.c_int), ("autopair", ss_autopair_options)]
+                ("seg_descr_k", C.c_int), ("refine_single", C.c_int), ("autopair", ss_autopair_options),
+                ("ndescr", C.c_int), ("descrX", C.POINTER(C.c_double)), ("descrY", C.POINTER(C.c_double))]
 
 
 class ss_segment_pairs(C.Structure):
@@ -460,6 +461,8 @@ _sig(lib, "ss_cotan_stiffness", _i, _PM, C.POINTER(ss_sparse), _PE)
 _sig(lib, "ss_mass_lumped", _i, _PM, _i, _PD, _PE)
 _sig(lib, "ss_sparse_free", None, C.POINTER(ss_sparse))
 _sig(lib, "ss_mesh_eigs", _i, _PM, _i, _PD, _PD, _PE)
+_sig(lib, "ss_wks", _i, _i, _i, _PD, _PD, _PD, _i, _d, _PD, _PE)
+_sig(lib, "ss_hks", _i, _i, _i, _PD, _PD, _PD, _i, _PD, _PE)
 _sig(lib, "ss_cmcf_default_options", None, C.POINTER(ss_cmcf_options))
 _sig(lib, "ss_cmcf_smooth", _i, _PM, C.POINTER(ss_cmcf_options), _PM, _PE)
 _sig(lib, "ss_remesh_default_options", None, C.POINTER(ss_remesh_options))

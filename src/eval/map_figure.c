@@ -13,31 +13,101 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The matching context of the figures: the Table 1 runner's options at basis size k, the BEST set from
+ * the data folder and the GT set of `seed` (always, as a full Table 1 run has it: the per-shape cache
+ * key then matches its files). */
+static ss_status figure_context(const char *data_dir, uint64_t seed, int k, ev_context *ctx, ss_error *err) {
+  memset(ctx, 0, sizeof *ctx);
+  ss_match_paper_options(&ctx->mopt); /* Table 1: the paper's STD / ASA / DIFF */
+  ctx->mopt.fmap.k = k;
+  ctx->kev = k;
+  int *lmb = NULL, nlmb = 0, gt_shape;
+  char path[4096];
+  snprintf(path, sizeof path, "%s/faust/landmarks_best.txt", data_dir);
+  ss_status st = ss_read_ints(path, &lmb, &nlmb, err);
+  if (!st && nlmb != EV_NL) st = ss_fail(err, SS_ERR_PARSE, "%s: %d landmarks, %d expected", path, nlmb, EV_NL);
+  if (!st) memcpy(ctx->best, lmb, sizeof ctx->best);
+  free(lmb);
+  if (!st) st = ev_gt_landmarks(data_dir, seed, ctx, ctx->gt, &gt_shape, err);
+  return st;
+}
+
+ss_status ss_eval_showcase_pair(const char *data_dir, const char *cache_dir, uint64_t seed, int k, ss_lm_set lmset,
+                                ss_pair_policy policy, int ncand, int *x, int *y, int *index, int *xs, int *ys,
+                                double *scores, ss_error *err) {
+  if (!data_dir || !x || !y || lmset < 0 || lmset > 2 || ncand < 1 || ncand > 100 || k < 3)
+    return ss_fail(err, SS_ERR_INVALID, "showcase: bad arguments (landmarks %d, %d candidates, k %d)", lmset, ncand, k);
+  int cx[100], cy[100];
+  ss_status st = ss_eval_pairs(policy, 10, 10, ncand, seed, cx, cy, err);
+  if (st) return st;
+  double sc[100];
+  ev_context ctx;
+  ev_shape *sh = calloc(100, sizeof *sh); /* each shape prepared once, by id */
+  char *loaded = calloc(100, 1);
+  int *maps[SS_EVAL_NMETHODS] = {NULL}; /* STD, ASA, DIFF (not the refined method) */
+  if (!sh || !loaded) { st = ss_fail(err, SS_ERR_NOMEM, "showcase: out of memory"); goto done; }
+  if (ncand > 1 && (st = figure_context(data_dir, seed, k, &ctx, err))) goto done;
+  for (int c = 0; c < ncand && ncand > 1; c++) {
+    const int ids[2] = {cx[c], cy[c]};
+    for (int s = 0; s < 2; s++)
+      if (!loaded[ids[s]]) {
+        if ((st = ev_shape_load(data_dir, cache_dir, ids[s], &ctx, &sh[ids[s]], NULL, 0, err))) goto done;
+        loaded[ids[s]] = 1;
+      }
+    const ev_shape *X = &sh[cx[c]], *Y = &sh[cy[c]];
+    for (int m = 0; m < 3; m++)
+      if (!maps[m] && !(maps[m] = malloc(sizeof(int) * (size_t)X->mesh.nv))) {
+        st = ss_fail(err, SS_ERR_NOMEM, "showcase: out of memory");
+        goto done;
+      }
+    int paired[SS_EVAL_NMETHODS];
+    if ((st = ev_match_methods(&ctx, X, Y, lmset, 7, maps, NULL, paired, err))) goto done;
+    double sum = 0;
+    for (int m = 0; m < 3; m++) {
+      double mean;
+      if ((st = ss_map_geodesic_error(&Y->mesh, X->mesh.nv, maps[m], NULL, NULL, NULL, &mean, err))) goto done;
+      sum += mean;
+    }
+    sc[c] = sum / 3;
+  }
+  /* the median of the candidates' scores: the (ncand + 1) / 2-th smallest, ties in draw order */
+  int order[100];
+  for (int c = 0; c < ncand; c++) order[c] = c;
+  for (int a = 1; a < ncand; a++)
+    for (int b = a; b > 0 && (sc[order[b]] < sc[order[b - 1]] || (sc[order[b]] == sc[order[b - 1]] && order[b] < order[b - 1])); b--) {
+      int t = order[b];
+      order[b] = order[b - 1], order[b - 1] = t;
+    }
+  int pick = ncand > 1 ? order[(ncand - 1) / 2] : 0;
+  *x = cx[pick], *y = cy[pick];
+  if (index) *index = pick;
+  for (int c = 0; c < ncand; c++) {
+    if (xs) xs[c] = cx[c];
+    if (ys) ys[c] = cy[c];
+    if (scores) scores[c] = ncand > 1 ? sc[c] : 0.0;
+  }
+done:
+  for (int i = 0; sh && loaded && i < 100; i++)
+    if (loaded[i]) ev_shape_free(&sh[i]);
+  free(sh), free(loaded);
+  for (int m = 0; m < 3; m++) free(maps[m]);
+  return st;
+}
+
 ss_status ss_eval_map_figure(const char *data_dir, const char *cache_dir, uint64_t seed, int k, ss_lm_set lmset, int x,
                              int y, const ss_render_options *o, const char *png, ss_map_figure *info, ss_error *err) {
   if (!data_dir || !o || !png || lmset < 0 || lmset > 2 || x < 0 || x > 99 || y < 0 || y > 99 || x == y || k < 3)
     return ss_fail(err, SS_ERR_INVALID, "figure: bad arguments (pair %d, %d, landmarks %d, k %d)", x, y, lmset, k);
   ev_context ctx;
-  memset(&ctx, 0, sizeof ctx);
-  ss_match_paper_options(&ctx.mopt); /* Table 1: the paper's STD / ASA / DIFF */
-  ctx.mopt.fmap.k = k;
-  ctx.kev = k;
   ev_shape X, Y;
   memset(&X, 0, sizeof X), memset(&Y, 0, sizeof Y);
-  int *lmb = NULL, nlmb = 0, *map[3] = {NULL, NULL, NULL}, *ident = NULL;
+  int *map[3] = {NULL, NULL, NULL}, *ident = NULL;
   double *errs = NULL, mean[3] = {0};
   unsigned char *img = NULL;
   ss_segment_pairs pr;
   memset(&pr, 0, sizeof pr);
-  char path[4096];
-  snprintf(path, sizeof path, "%s/faust/landmarks_best.txt", data_dir);
-  ss_status st = ss_read_ints(path, &lmb, &nlmb, err);
-  if (!st && nlmb != EV_NL) st = ss_fail(err, SS_ERR_PARSE, "%s: %d landmarks, %d expected", path, nlmb, EV_NL);
+  ss_status st = figure_context(data_dir, seed, k, &ctx, err);
   if (st) goto done;
-  memcpy(ctx.best, lmb, sizeof ctx.best);
-  /* the GT set always, as the full Table 1 run has it: the per-shape cache key then matches its files */
-  int gt_shape;
-  if ((st = ev_gt_landmarks(data_dir, seed, &ctx, ctx.gt, &gt_shape, err))) goto done;
   if ((st = ev_shape_load(data_dir, cache_dir, x, &ctx, &X, NULL, 0, err))) goto done;
   if ((st = ev_shape_load(data_dir, cache_dir, y, &ctx, &Y, NULL, 0, err))) goto done;
   const int nx = X.mesh.nv, ny = Y.mesh.nv;
@@ -103,6 +173,6 @@ done:
   ev_shape_free(&Y);
   ss_segment_pairs_free(&pr);
   for (int m = 0; m < 3; m++) free(map[m]);
-  free(lmb), free(ident), free(errs), free(img);
+  free(ident), free(errs), free(img);
   return st;
 }

@@ -71,6 +71,9 @@ ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, 
   if (st) return st;
   if (nl < 0 || nextra < 0 || (nl > 0 && (!lmX || !lmY)) || (nextra > 0 && (!extraX || !extraY)))
     return ss_fail(err, SS_ERR_INVALID, "match: missing landmarks or extra probes");
+  if (X->ndescr != Y->ndescr)
+    return ss_fail(err, SS_ERR_INVALID, "match: %d descriptors on X, %d on Y (columns must correspond)", X->ndescr,
+                   Y->ndescr);
   const int k = o.k, ops = o.w_dcomm > 0, xops = ops && o.extra_dcomm;
   ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0};
   ss_fmap_system *sys = NULL;

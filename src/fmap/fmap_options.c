@@ -20,6 +20,7 @@ void ss_fmap_match_default_options(ss_fmap_match_options *o) {
   o->extra_dcomm = 0;
   o->descr_k = 0;
   o->zoomout_samples = 0;
+  o->no_wks = 0;
 }
 
 ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) {

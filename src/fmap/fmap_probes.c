@@ -114,6 +114,12 @@ ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, con
   if (nl < 0 || (nl > 0 && !lm)) return ss_fail(err, SS_ERR_INVALID, "probes: missing landmarks");
   for (int l = 0; l < nl; l++)
     if (lm[l] < 0 || lm[l] >= n) return ss_fail(err, SS_ERR_INVALID, "landmark %d: vertex %d out of range [0,%d)", l, lm[l], n);
+  if (s->ndescr < 0 || (s->ndescr > 0 && !s->descr))
+    return ss_fail(err, SS_ERR_INVALID, "probes: %d descriptors without their values", s->ndescr);
+  for (size_t i = 0; i < (size_t)n * (size_t)(s->ndescr > 0 ? s->ndescr : 0); i++)
+    if (!isfinite(s->descr[i]))
+      return ss_fail(err, SS_ERR_INVALID, "probes: descriptor %d is not finite at vertex %d", (int)(i / (size_t)n),
+                     (int)(i % (size_t)n));
   double *own = NULL, *coef = malloc(sizeof(double) * (size_t)kd * (nl > 0 ? nl : 1)), *F = NULL;
   const double *M = NULL;
   int p = 0;
@@ -122,7 +128,18 @@ ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, con
   /* landmark deltas in the spectral domain: φ_i(l) (the L²-delta δ_l / M_l projects to these) */
   for (int l = 0; l < nl; l++)
     for (int i = 0; i < kd; i++) coef[i + (size_t)kd * l] = s->evecs[lm[l] + (size_t)n * i];
-  if ((st = kept_columns(n, kd, s->evals, s->evecs, &o, 1, coef, 0, o.n_energies * (1 + nl), &F, &p, err))) goto done;
+  /* without the WKS the list starts at the first landmark item: the same landmark columns are kept */
+  if ((st = kept_columns(n, kd, s->evals, s->evecs, &o, 1, coef, o.no_wks ? o.n_energies : 0, o.n_energies * (1 + nl),
+                         &F, &p, err)))
+    goto done;
+  if (s->ndescr > 0) { /* the shape's own descriptors after the kept columns, as they are */
+    double *G = realloc(F, sizeof(double) * (size_t)n * (size_t)(p + s->ndescr));
+    if (!G) { st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory"); goto done; }
+    F = G;
+    memcpy(F + (size_t)n * p, s->descr, sizeof(double) * (size_t)n * s->ndescr);
+    p += s->ndescr;
+  }
+  if (p == 0) { st = ss_fail(err, SS_ERR_INVALID, "probes: no WKS, no landmark and no descriptor"); goto done; }
   st = finish(n, k, s->evecs, M, F, p, with_operators, out, err);
 done:
   free(own), free(coef), free(F);

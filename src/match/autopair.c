@@ -392,7 +392,8 @@ ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centr
   if (!lA || !lB || !T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   if (!st) {
     for (int a = 0; a < na; a++) lA[a] = A->centers[a], lB[a] = B->centers[p[a]];
-    ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev}, sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev};
+    ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0},
+                  sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
     st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
   }
   if (!st) *score = ssi_map_orientation(A, B, T);

@@ -172,6 +172,8 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     return ss_fail(err, SS_ERR_INVALID, "match: refine weights %g, %g must be finite and non-negative", o.refine_w_lap,
                    o.refine_w_descr);
   if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
+  if (o.ndescr < 0 || (o.ndescr > 0 && (!o.descrX || !o.descrY)))
+    return ss_fail(err, SS_ERR_INVALID, "match: %d descriptors without their values", o.ndescr);
   const int nX = X->mesh->nv, nY = Y->mesh->nv, k = o.fmap.k;
   for (int i = 0; i < nl; i++) {
     if (lmX[i] < 0 || lmX[i] >= nX)
@@ -227,7 +229,8 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   }
   /* candidate starts: 0 STD, 1 segment-aided */
   const int want_std = !use_seg || o.refine == SS_REFINE_BEST, want_seg = use_seg;
-  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev}, sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev};
+  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr},
+                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr};
   /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
    * assembled system per distinct descriptor basis */
   ss_fmap_match_options fo[2] = {o.fmap, o.fmap};
@@ -573,9 +576,24 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   }
   const ss_mesh *PX = kx.active ? &kx.sub : X, *PY = ky.active ? &ky.sub : Y;
   int *lx = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1)), *ly = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1));
+  double *dX = NULL, *dY = NULL; /* the caller's descriptors on the kept vertices */
   ss_shape_prep pX = {0}, pY = {0};
   int have_x = 0, have_y = 0;
   if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  if (o.ndescr > 0 && o.descrX && o.descrY) {
+    for (int s = 0; s < 2; s++) {
+      const kept *kk = s ? &ky : &kx;
+      if (!kk->active) continue;
+      const int n_in = s ? Y->nv : X->nv, n_sub = kk->sub.nv;
+      const double *in = s ? o.descrY : o.descrX;
+      double *d = malloc(sizeof(double) * (size_t)n_sub * (size_t)o.ndescr);
+      if (!d) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+      for (int j = 0; j < o.ndescr; j++)
+        for (int i = 0; i < n_sub; i++) d[i + (size_t)n_sub * j] = in[kk->to_in[i] + (size_t)n_in * j];
+      if (s) dY = d, o.descrY = d;
+      else dX = d, o.descrX = d;
+    }
+  }
   for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
   int kev = ss_match_eigenpairs(&o, nl);
   if ((st = ss_shape_prep_compute(PX, &o.seg, kev, &pX, err))) { name_shape(err, "X (the first mesh)"); goto done; }
@@ -632,6 +650,8 @@ done:
   if (have_y) ss_shape_prep_free(&pY);
   free(lx);
   free(ly);
+  free(dX);
+  free(dY);
   kept_free(&kx);
   kept_free(&ky);
   return st;

@@ -24,6 +24,25 @@ ss_status io_parse_ply_rgb(const char *path, const char *buf, size_t len, ss_mes
 typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err);
 
+/* ---- formats read through assimp (read_assimp.c) ----
+ * Does the extension of path belong to a format read through assimp (STL, glTF, FBX, ...; never OFF,
+ * OBJ or PLY)? Then 1, and the lower-case extension in hint (cap bytes) when hint is not NULL. Without
+ * assimp in the build, the common formats' extensions still answer 1 (ssi_read_assimp then refuses). */
+int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap);
+/* The assimp format of loaded bytes by content: "stl" (binary: the size matches the facet count;
+ * ascii: "solid" then "facet"), "glb" (the glTF magic), "gltf" (JSON with an "asset" key), else NULL. */
+const char *ssi_mesh_assimp_sniff(const char *buf, size_t len);
+/* Read a scene through assimp, by path (path not NULL: a regular file) or from len bytes in buf with
+ * the format hint ("stl", "glb", ...); name for messages. All node meshes merged with their transforms,
+ * triangles only, vertices welded exactly (ssi_mesh_weld). Without assimp: SS_ERR_UNSUPPORTED naming
+ * libassimp-dev. */
+ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, size_t len, const char *hint, ss_mesh *m,
+                          ss_error *err);
+/* Merge vertices with exactly equal coordinates (-0 = 0; NaN never merged), O(n log n) by a sort: the
+ * vertices keep the order of their first occurrence, faces are renumbered (a face may become
+ * degenerate; none is removed). *merged (may be NULL): vertices removed. */
+ss_status ssi_mesh_weld(ss_mesh *m, int *merged, ss_error *err);
+
 /* Moves grown arrays into a mesh (shrinks to fit; frees the vectors). */
 ss_status io_finish_mesh(io_dvec *V, io_ivec *F, ss_mesh *m, const char *path, ss_error *err);
 

@@ -3,7 +3,9 @@
 #include <ctype.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "mesh/io_internal.h"
 #include "specseg/io.h"
@@ -60,20 +62,28 @@ static int sniff(const char *buf, size_t len) {
   return 0;
 }
 
-/* The parser for a loaded buffer: by the extension of `path` when given, else by content. */
+/* The parser for a loaded buffer: by the extension of `path` when given, else by content (our formats
+ * first, then those assimp reads). */
 static ss_status parse_any(const char *path, const char *name, const char *buf, size_t len, ss_mesh *m,
                            unsigned char **rgb, ss_error *err) {
+  char hint[16];
   int kind = path && ext_is(path, "off")   ? 'o'
              : path && ext_is(path, "obj") ? 'j'
              : path && ext_is(path, "ply") ? 'p'
+             : path && ssi_mesh_assimp_ext(path, hint, sizeof hint) ? 'a'
                                            : sniff(buf, len);
+  const char *sniffed = kind ? NULL : ssi_mesh_assimp_sniff(buf, len);
+  if (sniffed) snprintf(hint, sizeof hint, "%s", sniffed), kind = 'a';
   switch (kind) {
     case 'o': return io_parse_off(name, buf, len, m, err);
     case 'j': return io_parse_obj(name, buf, len, m, err);
     case 'p': return io_parse_ply_rgb(name, buf, len, m, rgb, err);
+    case 'a': return ssi_read_assimp(NULL, name, buf, len, hint, m, err);
     default:
       return len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", name)
-                      : ss_fail(err, SS_ERR_UNSUPPORTED, "%s:1: unknown mesh format (expected OFF, OBJ or PLY)", name);
+                      : ss_fail(err, SS_ERR_UNSUPPORTED,
+                                "%s:1: unknown mesh format (expected OFF, OBJ, PLY, STL, glTF or another format assimp reads)",
+                                name);
   }
 }
 
@@ -82,6 +92,11 @@ ss_status ss_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb,
   memset(m, 0, sizeof *m);
   if (rgb) *rgb = NULL;
   if (!path) return ss_fail(err, SS_ERR_INVALID, "read mesh: NULL path");
+  /* a regular file in an assimp format goes to assimp by path (a .gltf's buffers lie beside it) */
+  char hint[16];
+  struct stat sb;
+  if (ssi_mesh_assimp_ext(path, hint, sizeof hint) && stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+    return ssi_read_assimp(path, path, NULL, 0, hint, m, err);
   char *buf;
   size_t len;
   ss_status st = io_slurp(path, &buf, &len, err);
@@ -124,4 +139,13 @@ ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_er
   st = parse(path, buf, len, m, err);
   free(buf);
   return st;
+}
+
+int ss_mesh_extension_supported(const char *path) {
+  if (!path) return 0;
+  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply")) return 1;
+#ifdef SS_HAVE_ASSIMP
+  if (ssi_mesh_assimp_ext(path, NULL, 0)) return 2;
+#endif
+  return 0;
 }

@@ -187,6 +187,12 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
      * extra vertices are smoothed and remeshed with the rest but no input vertex maps to them */
     int nholes = 0;
     if ((st = ssi_fill_holes_fan(proc, &closed, &nholes, err))) goto fail;
+    if (nholes > 0) {
+      char hw[128];
+      snprintf(hw, sizeof hw, "%d hole%s (boundary loop%s) closed internally for smoothing and remeshing", nholes,
+               nholes > 1 ? "s" : "", nholes > 1 ? "s" : "");
+      ssi_warn_append(warnings, warnings_size, hw);
+    }
     double t0 = ss_time();
     ss_cmcf_options co;
     ss_cmcf_default_options(&co);
@@ -398,7 +404,14 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
       }
     ss_segment_options oc = *o;
     oc.sanitize = 0; /* proc is clean already */
-    st = ss_segment(&sub, &oc, &part[c], err);
+    char cw[256];
+    st = ss_segment_warn(&sub, &oc, &part[c], cw, sizeof cw, err);
+    if (!st && cw[0]) { /* e.g. its holes closed */
+      char line[400];
+      snprintf(line, sizeof line, "component %d (input vertex %d onwards): %s", c + 1,
+               to_input ? to_input[cfirst[c]] : cfirst[c], cw);
+      ssi_warn_append(warnings, warnings_size, line);
+    }
     if (st) {
       char msg[sizeof err->msg];
       snprintf(msg, sizeof msg, "%s", err ? err->msg : "");

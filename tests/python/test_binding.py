@@ -114,6 +114,22 @@ else:
     ms = np.loadtxt(path("ms.txt"), dtype=np.int64)
     rs = specseg.match(V, F, V, F, lm, k=20, segment_profile="soft")
     check(np.array_equal(rs.map, ms), "match: map with the soft segment profile")
+    # own descriptors: the kept WKS columns (k = 20, as the match's basis) with wks=False give the same map
+    Wd = specseg.wks(V, F, k=20)[:, ::5]
+    rd = specseg.match(V, F, V, F, lm, k=20, descriptors=(Wd, Wd), wks=False)
+    check(np.mean(rd.map == r.map) >= 0.999, "match: the WKS as own descriptors with wks=False")
+    np.save(path("wd.npy"), Wd)
+    cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "--descriptors", path("wd.npy"), path("wd.npy"),
+        "-o", path("md.txt"))
+    md = np.loadtxt(path("md.txt"), dtype=np.int64)
+    check(np.array_equal(specseg.match(V, F, V, F, lm, k=20, descriptors=(Wd, Wd)).map, md),
+          "match: descriptors beside the WKS as the CLI's --descriptors")
+    for bad in (dict(wks=False), dict(descriptors=(Wd, Wd[:, :2])), dict(descriptors=(Wd[:5], Wd))):
+        try:
+            specseg.match(V, F, V, F, lm, k=20, **bad)
+            check(False, "match: %s accepted" % list(bad))
+        except ValueError:
+            check(True, "")
     try:
         specseg.match(V, F, V, F, lm, k=20, segment_profile="round")
         check(False, "match: unknown segment profile accepted")
@@ -188,6 +204,48 @@ check(np.array_equal(al, seg.labels), "align_labels undoes a permutation")
 specseg.write_png(path("b.png"), img)
 with open(path("b.png"), "rb") as f:
     check(f.read(8) == b"\x89PNG\r\n\x1a\n", "write_png signature")
+
+# --- read_mesh of STL (binary) and glTF: the vertices welded in order of first occurrence, as float32;
+#     the same mesh as the CLI reads (segment --ply writes the input mesh it read, float64) ---
+first = np.unique(F.ravel(), return_index=True)
+order = first[0][np.argsort(first[1])]            # vertices in order of first occurrence in F
+new_id = np.full(n, -1, np.int64)
+new_id[order] = np.arange(order.size)
+V32 = V.astype(np.float32)
+with open(path("m.stl"), "wb") as f:
+    f.write(b"binary stl".ljust(80, b" ") + np.uint32(F.shape[0]).tobytes())
+    rec = np.zeros(F.shape[0], dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    rec["v"] = V32[F]
+    f.write(rec.tobytes())
+try:
+    Vs, Fs = specseg.read_mesh(path("m.stl"))
+    check(Vs.shape == (order.size, 3) and np.array_equal(Fs, new_id[F]), "read_mesh STL: welded faces")
+    check(np.array_equal(Vs, V32[order].astype(np.float64)), "read_mesh STL: float32 vertices, first-occurrence order")
+    import base64, json
+    blob = V32.tobytes() + F.astype(np.uint32).tobytes()
+    g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "scale": [2, 2, 2]}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+         "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+         "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": V32.nbytes},
+                         {"buffer": 0, "byteOffset": V32.nbytes, "byteLength": F.size * 4}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+                        "min": V32.min(0).tolist(), "max": V32.max(0).tolist()},
+                       {"bufferView": 1, "componentType": 5125, "count": F.size, "type": "SCALAR"}]}
+    with open(path("m.gltf"), "w") as f:
+        json.dump(g, f)
+    Vg, Fg = specseg.read_mesh(path("m.gltf"))
+    # an indexed mesh: the weld keeps the first of equal vertices in the file's vertex order
+    _, first_i, inv = np.unique(V32, axis=0, return_index=True, return_inverse=True)
+    keep = np.sort(first_i)
+    gid = np.searchsorted(keep, first_i[inv.ravel()])
+    check(np.array_equal(Fg, gid[F]) and np.array_equal(Vg, 2 * V32[keep].astype(np.float64)),
+          "read_mesh glTF: the node's scale applied, equal vertices welded")
+    cli("segment", path("m.stl"), "-o", path("ls.txt"), "--ply", path("ms.ply"), "--faces", 4000)
+    Vp, Fp = specseg.read_mesh(path("ms.ply"))
+    check(np.array_equal(Vp, Vs) and np.array_equal(Fp, Fs), "read_mesh STL = the mesh specseg reads")
+except specseg.SpecsegError as ex:
+    check("libassimp-dev" in str(ex), "read_mesh STL without assimp names libassimp-dev: %s" % ex)
+    print("SKIP: STL / glTF (%s)" % ex)
 
 # --- errors come back as exceptions carrying the library message ---
 try:
