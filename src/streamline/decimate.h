@@ -9,8 +9,11 @@
 /* Inputs with more vertices than this are coarsened before CMCF by ss_segment (and matched through a
  * coarse proxy by ss_match); at or below it the pipeline is unchanged (FAUST 6,890, TOSCA ≤ 53k). */
 #define SSI_COARSEN_ABOVE_NV 100000
-/* The coarse mesh's face count (≈ 50k vertices on a closed surface). */
+/* The coarse mesh's face count before the flow (≈ 50k vertices on a closed surface). */
 #define SSI_COARSE_FACES 100000
+/* The face count of the proxies ss_match matches very large meshes through (≈ 20k vertices: the
+ * segmentation's work mesh has 15k faces, the spectrum k ≤ 120; matching costs grow with it). */
+#define SSI_MATCH_PROXY_FACES 40000
 
 /* Decimates `in` (closed, edge- and vertex-manifold, consistently oriented: what ss_remesh takes) to
  * about target_faces faces (never fewer; the count stops above it when no collapse is left that keeps
