@@ -81,6 +81,7 @@ static int ensure_mesh(const char *data, const char *dir, int shape, int level, 
 /* Runs argv (NULL-terminated) with stdout/stderr to `log`; CPU seconds (user + sys) and peak RSS
  * (MB) of the child. Returns its exit status (-1: could not run). */
 static int run(char **argv, const char *log, double *cpu, double *rss_mb) {
+  fflush(stdout); /* or the child's copy of the buffer is printed twice */
   pid_t pid = fork();
   if (pid < 0) return -1;
   if (pid == 0) {
