@@ -1,57 +1,49 @@
 /* Close boundary loops with a centroid fan (see fill_holes.h). */
 #include "fill_holes.h"
 
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cmp_u64(const void *a, const void *b) {
-  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-  return x < y ? -1 : x > y;
-}
-
-static int has_key(const uint64_t *keys, size_t n, uint64_t k) {
-  size_t lo = 0, hi = n;
-  while (lo < hi) {
-    size_t mid = lo + (hi - lo) / 2;
-    if (keys[mid] < k) lo = mid + 1;
-    else hi = mid;
-  }
-  return lo < n && keys[lo] == k;
-}
 
 ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_error *err) {
   memset(out, 0, sizeof *out);
   *nholes = 0;
   int nv = in->nv, nf = in->nf;
   size_t nh = 3 * (size_t)nf;
-  uint64_t *keys = malloc(sizeof(uint64_t) * (nh ? nh : 1));
+  /* half-edges grouped by their origin (counting sort): list[start[a] ..] = heads b of a→b */
+  int *start = calloc((size_t)nv + 1, sizeof(int)), *list = malloc(sizeof(int) * (nh ? nh : 1));
   int *next = malloc(sizeof(int) * (size_t)(nv ? nv : 1)); /* boundary half-edge a→next[a] */
   int *loop = NULL;
   ss_status st = SS_OK;
-  if (!keys || !next) {
+  if (!start || !list || !next) {
     st = ss_fail(err, SS_ERR_NOMEM, "fill holes: out of memory");
     goto done;
   }
-  for (size_t h = 0; h < nh; h++) {
-    int a = in->F[h], b = in->F[h - h % 3 + (h % 3 + 1) % 3];
-    keys[h] = (uint64_t)a * (uint64_t)nv + (uint64_t)b;
-  }
-  qsort(keys, nh, sizeof *keys, cmp_u64);
-  for (size_t h = 1; h < nh; h++)
-    if (keys[h] == keys[h - 1]) {
+  for (size_t h = 0; h < nh; h++) start[in->F[h] + 1]++;
+  for (int v = 0; v < nv; v++) start[v + 1] += start[v];
+  for (int v = 0; v < nv; v++) next[v] = start[v];
+  for (size_t h = 0; h < nh; h++) list[next[in->F[h]]++] = in->F[h - h % 3 + (h % 3 + 1) % 3];
+  {
+    /* an edge run twice in the same direction: report the lowest (a, b) */
+    int da = -1, db = -1;
+    for (int a = 0; a < nv && da < 0; a++)
+      for (int p = start[a]; p < start[a + 1]; p++)
+        for (int q = p + 1; q < start[a + 1]; q++)
+          if (list[p] == list[q] && (da < 0 || list[p] < db)) da = a, db = list[p];
+    if (da >= 0) {
       st = ss_fail(err, SS_ERR_UNSUPPORTED,
                    "segment: two faces run the edge %llu-%llu in the same direction: the faces are not consistently "
                    "oriented (or the edge is non-manifold); orient them first, or keep the segmentation's sanitize "
                    "option on (the default: it re-orients each component and splits non-manifold vertices)",
-                   (unsigned long long)(keys[h] / (uint64_t)nv), (unsigned long long)(keys[h] % (uint64_t)nv));
+                   (unsigned long long)da, (unsigned long long)db);
       goto done;
     }
+  }
   for (int i = 0; i < nv; i++) next[i] = -1;
   size_t nb = 0;
   for (size_t h = 0; h < nh; h++) {
-    int a = in->F[h], b = in->F[h - h % 3 + (h % 3 + 1) % 3];
-    if (has_key(keys, nh, (uint64_t)b * (uint64_t)nv + (uint64_t)a)) continue;
+    int a = in->F[h], b = in->F[h - h % 3 + (h % 3 + 1) % 3], twin = 0;
+    for (int p = start[b]; p < start[b + 1] && !twin; p++) twin = list[p] == a;
+    if (twin) continue;
     if (next[a] >= 0) {
       st = ss_fail(err, SS_ERR_UNSUPPORTED,
                    "segment: two boundary loops pass through vertex %d (a pinched vertex on a hole): split it first, "
@@ -131,7 +123,8 @@ ss_status ssi_fill_holes_fan(const ss_mesh *in, ss_mesh *out, int *nholes, ss_er
   }
   *nholes = nloops;
 done:
-  free(keys);
+  free(start);
+  free(list);
   free(next);
   free(loop);
   return st;

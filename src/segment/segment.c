@@ -7,6 +7,7 @@
 #include "specseg/spectrum.h"
 #include "specseg/streamline.h"
 #include "fill_holes.h"
+#include "streamline/decimate.h"
 #include "mesh/mesh_topology.h"
 
 #include <math.h>
@@ -73,6 +74,35 @@ done:
 static double dist2(const double *a, const double *b) {
   double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
   return x * x + y * y + z * z;
+}
+
+/* Ψ of a coarsened input: proc vertex j → coarse vertex to_coarse[j] → the work vertex nearest to that
+ * vertex's smoothed position. A vertex in no face (no coarse vertex; only without the sanitizer) takes
+ * the work vertex nearest to its own position. */
+static ss_status compose_psi(const ss_mesh *proc, const int *to_coarse, const ss_mesh *smooth_coarse,
+                             const ss_mesh *work, int *psi, ss_error *err) {
+  const int np = proc->nv;
+  int *pc = malloc(sizeof(int) * (size_t)smooth_coarse->nv);
+  if (!pc) return ss_fail(err, SS_ERR_NOMEM, "segment: out of memory");
+  ss_status st = ss_closest_vertices(smooth_coarse->V, smooth_coarse->nv, work, pc, err);
+  int nfree = 0;
+  for (int j = 0; !st && j < np; j++) {
+    psi[j] = to_coarse[j] >= 0 ? pc[to_coarse[j]] : -1;
+    nfree += psi[j] < 0;
+  }
+  free(pc);
+  if (st || nfree == 0) return st;
+  double *Q = malloc(sizeof(double) * 3 * (size_t)nfree);
+  int *near = malloc(sizeof(int) * (size_t)nfree);
+  if (!Q || !near) st = ss_fail(err, SS_ERR_NOMEM, "segment: out of memory");
+  for (int j = 0, q = 0; !st && j < np; j++)
+    if (psi[j] < 0) memcpy(Q + 3 * (size_t)q++, proc->V + 3 * (size_t)j, 3 * sizeof(double));
+  if (!st && !(st = ss_closest_vertices(Q, nfree, work, near, err))) {
+    for (int j = 0, q = 0; j < np; j++)
+      if (psi[j] < 0) psi[j] = near[q++];
+  }
+  free(Q), free(near);
+  return st;
 }
 
 static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, const int *to_input, const int *comp,
@@ -142,8 +172,9 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (o.cleanup_rings < 0) return ss_fail(err, SS_ERR_INVALID, "segment: negative clean-up radius");
 
   ss_status st = SS_OK;
-  ss_mesh clean = {0}, closed = {0}, smooth = {0};
+  ss_mesh clean = {0}, closed = {0}, smooth = {0}, coarse = {0};
   int *to_input = NULL; /* vertex of `proc` → input vertex (NULL: identity) */
+  int *to_coarse = NULL; /* vertex of `closed` → vertex of `coarse` (NULL: not coarsened) */
   int *pts = NULL, *count = NULL, *input_src = NULL, *psi = NULL;
   signed char *types = NULL;
   ss_graph g = {0};
@@ -194,19 +225,31 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
       ssi_warn_append(warnings, warnings_size, hw);
     }
     double t0 = ss_time();
+    /* a very large input is coarsened first (topology kept): the flow and the remeshing see the
+     * coarse mesh, and Ψ is composed input → coarse → work */
+    const ss_mesh *flow_in = &closed;
+    if (closed.nv > SSI_COARSEN_ABOVE_NV && closed.nf > SSI_COARSE_FACES) {
+      to_coarse = malloc(sizeof(int) * (size_t)closed.nv);
+      if (!to_coarse) goto nomem;
+      if ((st = ssi_decimate(&closed, SSI_COARSE_FACES, &coarse, to_coarse, NULL, err))) goto fail;
+      ss_mesh_free(&closed);
+      flow_in = &coarse;
+    }
     ss_cmcf_options co;
     ss_cmcf_default_options(&co);
     if (o.cmcf_steps > 0) co.steps = o.cmcf_steps;
     if (o.cmcf_dt > 0) co.dt = o.cmcf_dt;
-    if ((st = ss_cmcf_smooth(&closed, &co, &smooth, err))) goto fail;
+    if ((st = ss_cmcf_smooth(flow_in, &co, &smooth, err))) goto fail;
     double t1 = ss_time();
     ss_remesh_options ro;
     ss_remesh_default_options(&ro);
     ro.target_faces = o.target_faces;
     if ((st = ss_remesh(&smooth, &ro, &out->work, err))) goto fail;
     double t2 = ss_time();
-    if ((st = ss_closest_vertices(smooth.V, np, &out->work, psi, err))) goto fail;
-    out->t_smooth = t1 - t0;
+    if (!to_coarse) {
+      if ((st = ss_closest_vertices(smooth.V, np, &out->work, psi, err))) goto fail;
+    } else if ((st = compose_psi(proc, to_coarse, &smooth, &out->work, psi, err))) goto fail;
+    out->t_smooth = t1 - t0; /* the coarsening of a very large input included */
     out->t_remesh = t2 - t1;
     out->t_psi = ss_time() - t2;
   }
@@ -277,10 +320,24 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
    * input, which a tiny cell between Ψ's samples could be). */
   {
     const double *P = o.no_streamline ? proc->V : smooth.V;
+    double *Pc = NULL; /* coarsened: the smoothed twin of proc vertex j is estimated as its coarse
+                          vertex's smoothed position plus j's offset from that vertex before the flow */
+    if (to_coarse) {
+      Pc = malloc(sizeof(double) * 3 * (size_t)np);
+      if (!Pc) goto nomem;
+      for (int j = 0; j < np; j++) {
+        int c = to_coarse[j];
+        for (int k = 0; k < 3; k++)
+          Pc[3 * (size_t)j + k] = c < 0 ? proc->V[3 * (size_t)j + k]
+                                        : smooth.V[3 * (size_t)c + k] + proc->V[3 * (size_t)j + k] - coarse.V[3 * (size_t)c + k];
+      }
+      P = Pc;
+    }
     double *best = malloc(sizeof(double) * (size_t)npts);
     count = calloc((size_t)npts, sizeof(int));
     if (!best || !count) {
       free(best);
+      free(Pc);
       goto nomem;
     }
     for (int s = 0; s < npts; s++) best[s] = INFINITY, out->centers[s] = -1;
@@ -302,6 +359,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
       }
     }
     free(best);
+    free(Pc);
   }
   out->t_total = ss_time() - t_start;
   goto done;
@@ -314,7 +372,9 @@ done:
   ss_mesh_free(&clean);
   ss_mesh_free(&closed);
   ss_mesh_free(&smooth);
+  ss_mesh_free(&coarse);
   free(to_input);
+  free(to_coarse);
   free(pts);
   free(types);
   free(count);

@@ -82,7 +82,9 @@ ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt_in, ss_me
   cholmod_start(&cc);
   cc.print = 0;               /* the library never prints: failures are reported through err */
   cc.error_handler = NULL;
-  cc.supernodal = CHOLMOD_SIMPLICIAL; /* faster than supernodal at these sizes (paper-notes) */
+  /* simplicial is faster up to ~100k vertices (paper-notes); above, the supernodal factor is (half the
+   * time at 441k). ss_segment coarsens such inputs first, so this is for direct calls. */
+  cc.supernodal = n > 100000 ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
   cholmod_sparse *A = NULL;
   cholmod_factor *L = NULL;
   cholmod_dense *B = NULL, *Xs = NULL;

@@ -258,7 +258,7 @@ static int collapse_ok(rm_mesh *m, int h, const double *p, double hi2) {
 }
 
 /* Remove v0 = F[h], merge it into v1 = F[next(h)], placed at p. */
-static void collapse_edge(rm_mesh *m, int h, const double *p) {
+void rm_collapse_edge(rm_mesh *m, int h, const double *p) {
   int o = m->opp[h];
   int v0 = m->F[h], v1 = m->F[rm_next(h)], a = m->F[rm_prev(h)], b = m->F[rm_prev(o)];
   int e1 = m->opp[rm_next(h)], e2 = m->opp[rm_prev(h)];
@@ -283,10 +283,9 @@ static void collapse_edge(rm_mesh *m, int h, const double *p) {
 }
 
 /* Collapse the edge of h if the link condition, the valences and the geometry allow it. */
-static int try_collapse(rm_mesh *m, int h, double hi2) {
+int rm_link_ok(rm_mesh *m, int h) {
   int o = m->opp[h];
   int v0 = m->F[h], v1 = m->F[rm_next(h)];
-  const double *p0 = m->V + 3 * v0, *p1 = m->V + 3 * v1;
   int a = m->F[rm_prev(h)], b = m->F[rm_prev(o)];
   if (a == b || m->val[a] <= 3 || m->val[b] <= 3) return 0;
   /* link condition: the only common neighbours of v0 and v1 are a and b */
@@ -295,13 +294,19 @@ static int try_collapse(rm_mesh *m, int h, double hi2) {
   do { m->mark[m->F[rm_next(hh)]] = st; hh = m->opp[rm_prev(hh)]; } while (hh != s && ++n < MAX_VALENCE_WALK);
   s = m->vh[v1]; hh = s; n = 0;
   do { if (m->mark[m->F[rm_next(hh)]] == st) common++; hh = m->opp[rm_prev(hh)]; } while (hh != s && ++n < MAX_VALENCE_WALK);
-  if (common != 2) return 0;
+  return common == 2;
+}
+
+static int try_collapse(rm_mesh *m, int h, double hi2) {
+  int v0 = m->F[h], v1 = m->F[rm_next(h)];
+  const double *p0 = m->V + 3 * v0, *p1 = m->V + 3 * v1;
+  if (!rm_link_ok(m, h)) return 0;
   double mid[3] = {0.5 * (p0[0] + p1[0]), 0.5 * (p0[1] + p1[1]), 0.5 * (p0[2] + p1[2])};
   double q0[3] = {p0[0], p0[1], p0[2]}, q1[3] = {p1[0], p1[1], p1[2]};
   const double *cand[3] = {mid, q1, q0};
   for (int c = 0; c < 3; c++) {
     if (collapse_ok(m, h, cand[c], hi2)) {
-      collapse_edge(m, h, cand[c]);
+      rm_collapse_edge(m, h, cand[c]);
       return 1;
     }
   }

@@ -37,6 +37,12 @@ int rm_flip_valence(rm_mesh *m);
  * operation (2 faces) of `target`. Returns the number of operations, -1 on allocation failure. */
 int rm_adjust_count(rm_mesh *m, int target, double hi, ss_error *err);
 void rm_compact(rm_mesh *m);
+/* May the edge of half-edge h collapse without changing the topology? (link condition: v0 and v1
+ * share exactly the two neighbours opposite the edge, each of valence > 3.) Uses the mark stamps. */
+int rm_link_ok(rm_mesh *m, int h);
+/* Remove v0 = F[h], merge it into v1 = F[next(h)], placed at p (3 doubles). The faces of h and its
+ * twin die; no geometric check (the caller's). */
+void rm_collapse_edge(rm_mesh *m, int h, const double *p);
 int rm_live_faces(const rm_mesh *m);
 
 #endif
