@@ -4,6 +4,9 @@
  *   bench_autopair [--data DIR] [--cache DIR] [--split tune|held|all] [--pairs N] [--seed S]
  *                  [--all-pairs] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
  *                  [--ok K] [--odk K] (orientation test's basis / descriptor eigenpairs)
+ *                  [--recheck M] [--rk K] [--rz K] [--rs N] (the second test: below margin M, basis K,
+ *                  ZoomOut to K on N samples) [--keep F] (the test's landmarks: the fraction F of the
+ *                  centres farthest from the others)
  *                  [--match N] [--verbose] [--dump DIR]
  *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
  *                  [--self]   the orientation test of the first 5 shapes with themselves
@@ -118,6 +121,7 @@ static void next_pair(unsigned *r, int lo, int n, int *a, int *b) {
 }
 
 int main(int argc, char **argv) {
+  setvbuf(stdout, NULL, _IOLBF, 0);
   const char *tosca_class = NULL, *data = SS_DATA_DIR_DEFAULT, *cache = "/tmp/specseg_autopair_cache", *split = "tune", *dump = NULL;
   int tosca = 0, selftest = 0, npairs = 20, allpairs = 0, verbose = 0, nmatch = 0, gtrho = 0, n_gt = 0, n_gtok = 0;
   double gt_margin = 0;
@@ -142,6 +146,11 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--energies") && v) ao.n_energies = atoi(v), i++;
     else if (!strcmp(a, "--ok") && v) ao.orient_k = atoi(v), i++;
     else if (!strcmp(a, "--odk") && v) ao.orient_descr_k = atoi(v), i++;
+    else if (!strcmp(a, "--recheck") && v) ao.recheck_margin = atof(v), i++;
+    else if (!strcmp(a, "--keep") && v) ao.orient_keep = atof(v), i++;
+    else if (!strcmp(a, "--rk") && v) ao.recheck_k = atoi(v), i++;
+    else if (!strcmp(a, "--rz") && v) ao.recheck_zoomout = atoi(v), i++;
+    else if (!strcmp(a, "--rs") && v) ao.recheck_samples = atoi(v), i++;
     else if (!strcmp(a, "--exact-max") && v) ao.exact_max = atoi(v), i++;
     else if (!strcmp(a, "--match") && v) nmatch = atoi(v), i++;
     else if (!strcmp(a, "--dump") && v) dump = v, i++;
@@ -239,7 +248,7 @@ int main(int argc, char **argv) {
     }
     return 0;
   }
-  int n_right = 0, n_mirror = 0, n_conf = 0, n_conf_wrong = 0, n_done = 0, n_unequal = 0;
+  int n_right = 0, n_mirror = 0, n_conf = 0, n_conf_wrong = 0, n_done = 0, n_unequal = 0, n_rechecked = 0;
   double cpu_sum = 0, cpu_max = 0, err_sum = 0, sig_sum = 0;
   int nerr = 0, nsig = 0;
   for (int q = 0; q < np; q++) {
@@ -277,6 +286,7 @@ int main(int argc, char **argv) {
     n_right += all;
     n_mirror += all || allm;
     n_conf += info.confident;
+    n_rechecked += info.rechecked;
     n_conf_wrong += info.confident && !all;
     n_unequal += S[a].sig.m != S[b].sig.m;
     n_done++;
@@ -296,9 +306,10 @@ int main(int argc, char **argv) {
     }
     if (verbose)
       printf("%3d -> %3d  m %d/%d  right %d/%d mirror-right %d  E %.4g mirror %.4g other %.4g  gap %.3f rho %.3f "
-             "rho_m %.3f conf %d  %s %.4f s  err %.4f\n",
+             "rho_m %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d\n",
              a, b, S[a].sig.m, S[b].sig.m, right, pr.n, mright, info.energy, info.energy_mirror, info.energy_other, info.gap,
-             info.mirror, info.mirror_other, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr);
+             info.mirror, info.mirror_other, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr,
+             info.mirror_first, info.mirror_other_first, info.rechecked);
     ss_segment_pairs_free(&pr);
   }
   int nsig_ok = 0, nsig_all = 0;
@@ -320,6 +331,7 @@ int main(int argc, char **argv) {
          split, seed, n_done, n_unequal, ao.w_descr, ao.w_geo, ao.orient_k, ao.descr_radius, n_right,
          100.0 * n_right / n_done, n_mirror, 100.0 * n_mirror / n_done, n_conf, n_conf_wrong, cpu_sum / n_done, cpu_max,
          nsig ? sig_sum / nsig : 0);
+  if (ao.recheck_margin > 0) printf("; second test (margin < %g, k %d, ZoomOut %d on %d samples) on %d pairs", ao.recheck_margin, ao.recheck_k, ao.recheck_zoomout, ao.recheck_samples, n_rechecked);
   if (n_gt) printf("; orientation test on the ground-truth pairing right on %d of %d (mean margin %.3f)", n_gtok, n_gt, gt_margin / n_gt);
   if (nerr) printf("; landmark-free map error mean %.4f over %d pairs", err_sum / nerr, nerr);
   printf("\n");

@@ -48,8 +48,8 @@ static void mirror_map(const ss_mesh *m, int *sym, double *maxd) {
 
 /* pairing of X and Y through their signatures; right = pairs whose X centre, carried by gt (X vertex
  * -> Y vertex), lies in the paired segment of Y */
-static int pair_and_count(const ss_shape_prep *pX, const ss_shape_prep *pY, const int *gt, ss_autopair_info *info,
-                          int *npairs) {
+static int pair_and_count_opts(const ss_shape_prep *pX, const ss_shape_prep *pY, const int *gt,
+                               const ss_autopair_options *ao, ss_autopair_info *info, int *npairs) {
   ss_centre_signature sX, sY;
   ss_segment_pairs pr;
   ss_error e;
@@ -59,7 +59,7 @@ static int pair_and_count(const ss_shape_prep *pX, const ss_shape_prep *pY, cons
     printf("signature: %s\n", e.msg);
     return -1;
   }
-  if (ss_pair_centres_auto(&sX, &sY, NULL, &pr, info, &e) == SS_OK) {
+  if (ss_pair_centres_auto(&sX, &sY, ao, &pr, info, &e) == SS_OK) {
     right = 0;
     for (int p = 0; p < pr.n; p++) right += pY->seg.labels[gt[pX->seg.centers[pr.sx[p]]]] == pr.sy[p];
     *npairs = pr.n;
@@ -70,6 +70,11 @@ static int pair_and_count(const ss_shape_prep *pX, const ss_shape_prep *pY, cons
   ss_centre_signature_free(&sX);
   ss_centre_signature_free(&sY);
   return right;
+}
+
+static int pair_and_count(const ss_shape_prep *pX, const ss_shape_prep *pY, const int *gt, ss_autopair_info *info,
+                          int *npairs) {
+  return pair_and_count_opts(pX, pY, gt, NULL, info, npairs);
 }
 
 static void test_permuted_and_mirrored(void) {
@@ -127,6 +132,41 @@ static void test_permuted_and_mirrored(void) {
   CHECK(np == pX.seg.m && right == np);
   CHECK(ident < np); /* the identity pairing differs: the decision was the orientation's */
   CHECK(info.mirror > info.mirror_other);
+
+  /* 2b. the second orientation test (recheck_*): forced on every pairing it decides, reports its own
+   * scores and keeps the first test's; off, the reported scores are the first test's */
+  {
+    ss_autopair_options ao;
+    ss_autopair_default_options(&ao);
+    ss_autopair_info i0, i1;
+    ao.recheck_margin = 0;
+    int np0, r0 = pair_and_count_opts(&pX, &pR, sym, &ao, &i0, &np0);
+    CHECK(r0 == np0 && !i0.rechecked && i0.mirror == i0.mirror_first && i0.mirror_other == i0.mirror_other_first);
+    ao.recheck_margin = 2.0; /* margins are at most 1: always */
+    ao.recheck_k = 20, ao.recheck_zoomout = 40, ao.recheck_samples = 500;
+    int np1, r1 = pair_and_count_opts(&pX, &pR, sym, &ao, &i1, &np1);
+    printf("reflected, second test forced: %d of %d right, first %.3f vs %.3f, second %.3f vs %.3f%s\n", r1, np1,
+           i1.mirror_first, i1.mirror_other_first, i1.mirror, i1.mirror_other, i1.confident ? ", confident" : "");
+    CHECK(i1.rechecked == 1 && r1 == np1 && i1.mirror > i1.mirror_other);
+    CHECK(i1.mirror_first == i0.mirror_first && i1.mirror_other_first == i0.mirror_other_first);
+    CHECK(i1.mirror != i1.mirror_first); /* another map: ZoomOut to 40 from k 20 */
+    /* only the 5 centres farthest from the others as the test's landmarks: another map, same answer */
+    ss_autopair_options ak;
+    ss_autopair_default_options(&ak);
+    ak.orient_keep = 0.625;
+    ss_autopair_info i2;
+    int np2, r2 = pair_and_count_opts(&pX, &pR, sym, &ak, &i2, &np2);
+    printf("reflected, 5 protrusion centres in the test: %d of %d right, %.3f vs %.3f\n", r2, np2, i2.mirror, i2.mirror_other);
+    CHECK(r2 == np2 && i2.mirror > i2.mirror_other && i2.mirror != i0.mirror);
+    ao.recheck_k = 2;
+    ss_centre_signature sX, sR;
+    ss_segment_pairs pr;
+    CHECK(ss_centre_signature_compute(&pX, NULL, &sX, &e) == SS_OK && ss_centre_signature_compute(&pR, NULL, &sR, &e) == SS_OK);
+    CHECK(ss_pair_centres_auto(&sX, &sR, &ao, &pr, NULL, &e) == SS_ERR_INVALID);
+    ak.orient_keep = 0;
+    CHECK(ss_pair_centres_auto(&sX, &sR, &ak, &pr, NULL, &e) == SS_ERR_INVALID);
+    ss_centre_signature_free(&sX), ss_centre_signature_free(&sR);
+  }
 
   /* 3. ss_match_prepared without landmarks: the map of the permuted copy is near the truth */
   ss_match_options mo;

@@ -144,6 +144,21 @@ typedef struct ss_autopair_options {
   int orient_descr_k;  /* eigenpairs of its descriptors (default 100; min with what the shapes have) */
   double min_gap;      /* confidence thresholds: below either the result says so (notes) */
   double min_mirror;
+  /* Second orientation test, only when the first one's margin (score − mirror's score) / 2 is below
+   * recheck_margin (0: never): both candidates' maps again with recheck_k eigenfunctions,
+   * descriptors from orient_descr_k eigenpairs, ZoomOut up to recheck_zoomout (0: none; step 5 on
+   * recheck_samples samples of the smaller-count shape, then once on every vertex); that test
+   * decides and its margin is the one reported. Off by default (recheck_margin 0): neither k 50
+   * nor ZoomOut to 60 decided better on the tuning split (docs/tuning.md). */
+  double recheck_margin;
+  int recheck_k;
+  /* The left / right test (both tests) uses only round(orient_keep · m), at least 3, of the smaller
+   * shape's centres as landmarks: those with the largest summed geodesic distance to the others
+   * (the protrusions; the torso saddles fall front or back inconsistently between shapes). Default
+   * 1 (all): 5 of 8 on FAUST was cheaper but not more often right (docs/tuning.md). */
+  double orient_keep;
+  int recheck_zoomout;
+  int recheck_samples;
 } ss_autopair_options;
 
 SS_API void ss_autopair_default_options(ss_autopair_options *o);
@@ -179,6 +194,8 @@ typedef struct ss_autopair_info {
   double mirror_other;  /* that of the mirror candidate */
   int confident;        /* gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror */
   double cpu;           /* CPU seconds of the search and the orientation test (signatures excluded) */
+  int rechecked;        /* 1: the second orientation test decided (mirror / mirror_other are its scores) */
+  double mirror_first, mirror_other_first; /* the first test's scores */
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:

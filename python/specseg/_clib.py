@@ -118,13 +118,16 @@ class ss_autopair_options(C.Structure):
     _fields_ = [("descr_k", C.c_int), ("n_energies", C.c_int), ("sigma_factor", C.c_double),
                 ("descr_radius", C.c_double), ("w_descr", C.c_double), ("w_geo", C.c_double),
                 ("exact_max", C.c_int), ("orient_k", C.c_int), ("orient_descr_k", C.c_int),
-                ("min_gap", C.c_double), ("min_mirror", C.c_double)]
+                ("min_gap", C.c_double), ("min_mirror", C.c_double),
+                ("recheck_margin", C.c_double), ("recheck_k", C.c_int), ("orient_keep", C.c_double),
+                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int)]
 
 
 class ss_autopair_info(C.Structure):
     _fields_ = [("used", C.c_int), ("exact", C.c_int), ("energy", C.c_double), ("energy_mirror", C.c_double),
                 ("energy_other", C.c_double), ("gap", C.c_double), ("mirror", C.c_double),
-                ("mirror_other", C.c_double), ("confident", C.c_int), ("cpu", C.c_double)]
+                ("mirror_other", C.c_double), ("confident", C.c_int), ("cpu", C.c_double),
+                ("rechecked", C.c_int), ("mirror_first", C.c_double), ("mirror_other_first", C.c_double)]
 
 
 class ss_match_options(C.Structure):

@@ -26,6 +26,11 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->orient_descr_k = 100;
   o->min_gap = 0.05;
   o->min_mirror = 0.3;
+  o->orient_keep = 1.0;
+  o->recheck_margin = 0;
+  o->recheck_k = 30;
+  o->recheck_zoomout = 0;
+  o->recheck_samples = 1000;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
@@ -372,33 +377,79 @@ static void run_search(search *S, int exact, int ntop, int self, int *status) {
   else if (relaxed(S, self)) *status = 1;
 }
 
-/* The orientation test of a pairing p (A index -> B index): ρ of the small functional map C from
- * functions on B to functions on A fitted to the WKS and the paired centres' wave-kernel maps. */
 /* The orientation test of a pairing p (A index -> B index): score of the map A -> B of a small
- * functional map with the paired centres as landmarks. */
-ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                              const ss_autopair_options *o, double *score, ss_error *err) {
+ * functional map (k eigenfunctions, descriptors from descr_k eigenpairs, ZoomOut up to zk when
+ * zk > k, on ns samples of A) with the paired centres as landmarks. */
+static ss_status orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k, int descr_k,
+                              int zk, int ns, double keep, double *score, ss_error *err) {
   const ss_shape_prep *pA = A->prep, *pB = B->prep;
-  const int na = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
+  const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
   ss_fmap_match_options fo;
   ss_fmap_match_default_options(&fo);
-  fo.k = o->orient_k < kmin ? o->orient_k : kmin;
-  fo.descr_k = o->orient_descr_k < kmin ? o->orient_descr_k : kmin;
+  fo.k = k < kmin ? k : kmin;
+  fo.descr_k = descr_k < kmin ? descr_k : kmin;
   if (fo.descr_k < fo.k) fo.descr_k = fo.k;
   fo.zoomout_kmax = 0;
-  int *lA = malloc(sizeof(int) * (size_t)na), *lB = malloc(sizeof(int) * (size_t)na);
-  int *T = malloc(sizeof(int) * (size_t)pA->mesh->nv);
+  if (zk > fo.k) {
+    fo.zoomout_kmax = zk < kmin ? zk : kmin;
+    fo.zoomout_step = 5;
+    fo.zoomout_samples = ns > 0 && ns < pA->mesh->nv ? ns : 0;
+    if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
+  }
+  int *lA = malloc(sizeof(int) * (size_t)m), *lB = malloc(sizeof(int) * (size_t)m);
+  int *T = malloc(sizeof(int) * (size_t)pA->mesh->nv), *ord = malloc(sizeof(int) * (size_t)m);
+  double *ecc = malloc(sizeof(double) * (size_t)m);
   ss_status st = SS_OK;
-  if (!lA || !lB || !T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  int na = m;
+  if (!lA || !lB || !T || !ord || !ecc) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   if (!st) {
-    for (int a = 0; a < na; a++) lA[a] = A->centers[a], lB[a] = B->centers[p[a]];
+    /* keep < 1: only the round(keep · m) (at least 3) centres of A farthest on average from the
+     * others (the protrusions: head, hands, feet on a body), in A's order */
+    if (keep > 0 && keep < 1 && m > 3) {
+      na = (int)floor(keep * m + 0.5);
+      if (na < 3) na = 3;
+      if (na > m) na = m;
+    }
+    for (int a = 0; a < m; a++) {
+      ecc[a] = 0;
+      for (int c = 0; c < m; c++) ecc[a] += A->D[a + (size_t)m * c];
+      ord[a] = a;
+    }
+    for (int i = 1; i < m; i++) /* insertion sort by eccentricity, descending (ties: lower index) */
+      for (int j = i; j > 0 && ecc[ord[j]] > ecc[ord[j - 1]]; j--) {
+        int t = ord[j];
+        ord[j] = ord[j - 1], ord[j - 1] = t;
+      }
+    int q = 0;
+    for (int a = 0; a < m; a++) {
+      int kept = 0;
+      for (int i = 0; i < na; i++) kept |= ord[i] == a;
+      if (kept) lA[q] = A->centers[a], lB[q++] = B->centers[p[a]];
+    }
     ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0},
                   sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
     st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
   }
   if (!st) *score = ssi_map_orientation(A, B, T);
-  free(lA), free(lB), free(T);
+  free(lA), free(lB), free(T), free(ord), free(ecc);
   return st;
+}
+
+ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+                                    const ss_autopair_options *o, double *score, ss_error *err) {
+  return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, 1.0, score, err);
+}
+
+/* the left / right test of a candidate pairing (orient_keep applies) */
+static ss_status candidate_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+                                 const ss_autopair_options *o, double *score, ss_error *err) {
+  return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, o->orient_keep, score, err);
+}
+
+ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+                                     const ss_autopair_options *o, double *score, ss_error *err) {
+  return orient_score(A, B, p, o->recheck_k, o->orient_descr_k, o->recheck_zoomout, o->recheck_samples, o->orient_keep,
+                      score, err);
 }
 
 static int same(const int *a, const int *b, int n) { return !memcmp(a, b, sizeof(int) * (size_t)n); }
@@ -499,6 +550,10 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     return ss_fail(err, SS_ERR_INVALID, "autopair: signatures computed with different options");
   if (!(o.w_descr >= 0) || !(o.w_geo >= 0) || !isfinite(o.w_descr + o.w_geo))
     return ss_fail(err, SS_ERR_INVALID, "autopair: weights must be finite and non-negative");
+  if (!(o.orient_keep > 0 && o.orient_keep <= 1))
+    return ss_fail(err, SS_ERR_INVALID, "autopair: orient_keep must be in (0, 1]");
+  if (!(o.recheck_margin >= 0) || (o.recheck_margin > 0 && (o.recheck_k < 3 || o.recheck_zoomout < 0 || o.recheck_samples < 0)))
+    return ss_fail(err, SS_ERR_INVALID, "autopair: bad second-test options (recheck_margin >= 0, recheck_k >= 3)");
   double c0 = cpu_now();
   const int swap = X->m > Y->m;
   const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
@@ -533,13 +588,22 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     }
   /* left / right: the candidate whose map preserves orientation */
   double r1 = 0, r2 = 0;
-  if ((st = ssi_autopair_orient_score(A, B, pi1, &o, &r1, err))) goto done;
+  if ((st = candidate_score(A, B, pi1, &o, &r1, err))) goto done;
   if (same(pi1, pi2, na)) { /* no symmetry found: the runner-up is the other candidate */
     if (isfinite(e3)) memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
   }
   if (same(pi1, pi2, na)) r2 = r1;
-  else if ((st = ssi_autopair_orient_score(A, B, pi2, &o, &r2, err))) goto done;
+  else if ((st = candidate_score(A, B, pi2, &o, &r2, err))) goto done;
+  const double r1_first = r1, r2_first = r2;
+  int rechecked = 0;
+  if (!same(pi1, pi2, na) && fabs(r1 - r2) / 2 < o.recheck_margin) { /* a close call: the second test decides */
+    if ((st = ssi_autopair_recheck_score(A, B, pi1, &o, &r1, err))) goto done;
+    if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
+    rechecked = 1;
+  }
+  double f1 = r1_first, f2 = r2_first;
   if (r2 > r1) {
+    f1 = r2_first, f2 = r1_first;
     int *t = pi1;
     pi1 = pi2, pi2 = t;
     double x = r1;
@@ -575,6 +639,9 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     info->mirror = r1;
     info->mirror_other = r2;
     info->confident = info->gap >= o.min_gap && (r1 - r2) / 2 >= o.min_mirror;
+    info->rechecked = rechecked;
+    info->mirror_first = f1;
+    info->mirror_other_first = f2;
     info->cpu = cpu_now() - c0;
   }
 done:
