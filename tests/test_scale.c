@@ -1,0 +1,254 @@
+/* Scale invariance of every stage (issue 13, item 4): a mesh scaled by s in 1e-8 ... 1e8 gives the same
+ * results up to the right power of s.
+ *
+ * Two kinds of scale factor:
+ *  - powers of two (2^-27 ≈ 7.5e-9 ... 2^27 ≈ 1.3e8, and 2^±200 ≈ 1e±60 where cheap): the scaled mesh
+ *    is exact, so every stage must give bit-identical results (smoothed and remeshed vertices ×s,
+ *    distances ×s, the same labels, centres and maps). Any absolute tolerance or epsilon in a stage
+ *    shows up here as a difference;
+ *  - decimal factors (1e-8, 3.7, 1e8, ...): the scaled coordinates are rounded, i.e. the mesh is the
+ *    unscaled one perturbed by ~1 ulp. Continuous outputs (smoothing, distances, the map error) agree
+ *    to round-off; the remesher's discrete choices amplify that perturbation exactly as they amplify
+ *    a 1-ulp perturbation of the unscaled mesh (which changes 0.06-0.6% of the labels too), so the
+ *    segmentation and the segment-aided maps are checked against bounds of that size instead.
+ * Meshes: the synthetic humanoid (two poses), and FAUST tr_reg_000 when the data set is there. */
+#include "specseg/specseg.h"
+#include "specseg/synth.h"
+#include "testlib.h"
+
+#include <time.h>
+
+static const double EXACT[] = {0x1p-27, 0x1p27}; /* ≈ 7.5e-9, 1.3e8 */
+static const double DECIMAL[] = {1e-8, 1e8};
+
+static void scaled(const ss_mesh *m, double s, ss_mesh *out) {
+  ss_error e;
+  CHECK(ss_mesh_copy(m, out, &e) == SS_OK);
+  for (int i = 0; i < 3 * out->nv; i++) out->V[i] *= s;
+}
+
+static void humanoid_landmarks(const ss_mesh *m, int lm[5]) { /* head, hands, feet (as tests/test_match.c) */
+  double best[5] = {-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
+  for (int i = 0; i < m->nv; i++) {
+    const double *p = m->V + 3 * (size_t)i;
+    double score[5] = {p[1], p[0], -p[0], p[0] > 0.05 ? -p[1] + 0.1 * p[2] : -INFINITY,
+                       p[0] < -0.05 ? -p[1] + 0.1 * p[2] : -INFINITY};
+    for (int l = 0; l < 5; l++)
+      if (score[l] > best[l]) best[l] = score[l], lm[l] = i;
+  }
+}
+
+/* ---- CMCF: the output of the scaled mesh is s times the output of the mesh ---------------------- */
+static void test_cmcf(const ss_mesh *h) {
+  ss_error e;
+  const double diag = ss_mesh_bbox_diagonal(h);
+  for (int nm = 0; nm < 2; nm++) {
+    ss_cmcf_options o;
+    ss_cmcf_default_options(&o);
+    o.normalization = nm ? SS_CMCF_UNIT_BBOX : SS_CMCF_UNIT_AREA;
+    ss_mesh ref = {0};
+    CHECK_MSG(ss_cmcf_smooth(h, &o, &ref, &e) == SS_OK, "%s", e.msg);
+    const double sc[] = {0x1p-27, 0x1p27, 0x1p-200, 0x1p200, 1e-8, 1e-4, 3.7, 1e4, 1e8};
+    for (size_t q = 0; q < sizeof sc / sizeof sc[0]; q++) {
+      const double s = sc[q];
+      const int exact = frexp(s, &(int){0}) == 0.5;
+      ss_mesh b = {0}, out = {0};
+      scaled(h, s, &b);
+      ss_status st = ss_cmcf_smooth(&b, &o, &out, &e);
+      CHECK_MSG(st == SS_OK, "cmcf x%g: %s", s, e.msg);
+      double worst = 0;
+      int same = 1;
+      for (int i = 0; !st && i < 3 * h->nv; i++) {
+        worst = fmax(worst, fabs(out.V[i] / s - ref.V[i]));
+        same &= out.V[i] == ref.V[i] * s;
+      }
+      if (exact) CHECK_MSG(same, "cmcf (%s) x%g: not exactly s times the unscaled output (%.3g of the diagonal)",
+                           nm ? "bbox" : "area", s, worst / diag);
+      else CHECK_MSG(worst <= 1e-12 * diag, "cmcf (%s) x%g: vertices / s differ by %.3g of the diagonal",
+                     nm ? "bbox" : "area", s, worst / diag);
+      if (q == 4 || q == 8) printf("cmcf (%s) x%g: max |V/s - V1| = %.2e diagonal\n", nm ? "bbox" : "area", s, worst / diag);
+      ss_mesh_free(&out);
+      ss_mesh_free(&b);
+    }
+    ss_mesh_free(&ref);
+  }
+}
+
+/* ---- isotropic remeshing: the same mesh ×s; at decimal scales the same count and quality ---------- */
+static void test_remesh(const ss_mesh *h) {
+  ss_error e;
+  ss_mesh sm = {0}, ref = {0};
+  CHECK(ss_cmcf_smooth(h, NULL, &sm, &e) == SS_OK);
+  ss_remesh_options o;
+  ss_remesh_default_options(&o);
+  o.target_faces = 4000;
+  CHECK_MSG(ss_remesh(&sm, &o, &ref, &e) == SS_OK, "%s", e.msg);
+  ss_remesh_quality q0;
+  CHECK(ss_remesh_quality_measure(&ref, &sm, &q0, &e) == SS_OK);
+  const double sc[] = {0x1p-27, 0x1p27, 0x1p-200, 0x1p200, 1e-8, 3.7, 1e8};
+  for (size_t k = 0; k < sizeof sc / sizeof sc[0]; k++) {
+    const double s = sc[k];
+    const int exact = frexp(s, &(int){0}) == 0.5;
+    ss_mesh b = {0}, out = {0};
+    scaled(&sm, s, &b);
+    ss_status st = ss_remesh(&b, &o, &out, &e);
+    CHECK_MSG(st == SS_OK, "remesh x%g: %s", s, e.msg);
+    ss_remesh_quality q = {0};
+    if (!st) CHECK(ss_remesh_quality_measure(&out, &b, &q, &e) == SS_OK);
+    if (exact) {
+      int same = out.nv == ref.nv && out.nf == ref.nf && !memcmp(out.F, ref.F, sizeof(int) * 3 * (size_t)ref.nf);
+      for (int i = 0; same && i < 3 * ref.nv; i++) same &= out.V[i] == ref.V[i] * s;
+      CHECK_MSG(same, "remesh x%g: not the unscaled remesh times s (%d / %d faces)", s, out.nf, ref.nf);
+    }
+    /* the count is snapped to the target (±2), the quality figures are scale-free */
+    CHECK_MSG(abs(q.faces - q0.faces) <= 2, "remesh x%g: %d faces, unscaled %d", s, q.faces, q0.faces);
+    CHECK_MSG(fabs(q.frac_min_angle_30 - q0.frac_min_angle_30) <= 0.005 && fabs(q.frac_valence_6 - q0.frac_valence_6) <= 0.02 &&
+                  fabs(q.min_angle_deg - q0.min_angle_deg) <= 3 && q.max_deviation <= 1e-12,
+              "remesh x%g: quality %.4f / %.4f / %.2f deg / %.2g vs unscaled %.4f / %.4f / %.2f deg / %.2g", s,
+              q.frac_min_angle_30, q.frac_valence_6, q.min_angle_deg, q.max_deviation, q0.frac_min_angle_30,
+              q0.frac_valence_6, q0.min_angle_deg, q0.max_deviation);
+    if (!exact)
+      printf("remesh x%g: %d faces (unscaled %d), >=30 deg %.4f (%.4f), valence 6 %.4f (%.4f)\n", s, q.faces, q0.faces,
+             q.frac_min_angle_30, q0.frac_min_angle_30, q.frac_valence_6, q0.frac_valence_6);
+    ss_mesh_free(&out);
+    ss_mesh_free(&b);
+  }
+  ss_mesh_free(&ref);
+  ss_mesh_free(&sm);
+}
+
+/* ---- exact (VTP), NPP22-graph and edge geodesics: distances ×s ----------------------------------- */
+static void test_geodesics(const ss_mesh *h) {
+  ss_error e;
+  const int n = h->nv, src[2] = {0, h->nv / 2};
+  double *d0 = malloc(sizeof(double) * n), *d = malloc(sizeof(double) * n);
+  const char *names[3] = {"exact", "graph", "edge"};
+  for (int meth = 0; meth < 3; meth++) {
+    CHECK(ss_geodesic_distances(h, (ss_geodesic_method)meth, src, 2, 0, d0, &e) == SS_OK);
+    const double sc[] = {0x1p-27, 0x1p27, 0x1p-200, 0x1p200, 1e-8, 1e-4, 3.7, 1e4, 1e8};
+    for (size_t q = 0; q < sizeof sc / sizeof sc[0]; q++) {
+      const double s = sc[q];
+      const int exact = frexp(s, &(int){0}) == 0.5;
+      ss_mesh b = {0};
+      scaled(h, s, &b);
+      ss_status st = ss_geodesic_distances(&b, (ss_geodesic_method)meth, src, 2, 0, d, &e);
+      CHECK_MSG(st == SS_OK, "%s x%g: %s", names[meth], s, e.msg);
+      double worst = 0;
+      int same = 1;
+      for (int i = 0; !st && i < n; i++) {
+        same &= d[i] == d0[i] * s;
+        double r = d0[i] > 0 ? fabs(d[i] / s / d0[i] - 1) : d[i] == 0 ? 0 : INFINITY;
+        if (!(r <= worst)) worst = r;
+      }
+      if (exact) CHECK_MSG(same, "%s geodesics x%g: not exactly s times the unscaled distances (rel %.2g)", names[meth], s, worst);
+      else CHECK_MSG(worst <= 1e-12, "%s geodesics x%g: distances / s off by %.3g relative", names[meth], s, worst);
+      if (q == 4 || q == 8) printf("%s geodesics x%g: max relative error of d/s %.2e\n", names[meth], s, worst);
+      ss_mesh_free(&b);
+    }
+  }
+  free(d0);
+  free(d);
+}
+
+/* ---- map error: ÷ √area(Y), so the same number at every scale ------------------------------------- */
+static void test_map_error(const ss_mesh *h) {
+  ss_error e;
+  int *map = malloc(sizeof(int) * h->nv);
+  for (int i = 0; i < h->nv; i++) map[i] = i;
+  for (int f = 0; f < h->nf; f += 20) map[h->F[3 * f]] = h->F[3 * f + 1]; /* some 1-ring errors */
+  map[0] = h->nv / 2; /* and one far one */
+  double m0 = 0, m1 = 0;
+  CHECK(ss_map_geodesic_error(h, h->nv, map, NULL, NULL, NULL, &m0, &e) == SS_OK);
+  CHECK(m0 > 0);
+  const double sc[] = {0x1p-27, 0x1p27, 0x1p-200, 0x1p200, 1e-8, 3.7, 1e8};
+  for (size_t q = 0; q < sizeof sc / sizeof sc[0]; q++) {
+    const double s = sc[q];
+    const int exact = frexp(s, &(int){0}) == 0.5;
+    ss_mesh b = {0};
+    scaled(h, s, &b);
+    CHECK_MSG(ss_map_geodesic_error(&b, h->nv, map, NULL, NULL, NULL, &m1, &e) == SS_OK, "%s", e.msg);
+    if (exact) CHECK_MSG(m1 == m0, "map error x%g: %.17g vs %.17g", s, m1, m0);
+    else CHECK_MSG(fabs(m1 / m0 - 1) <= 1e-12, "map error x%g: %.17g vs %.17g", s, m1, m0);
+    ss_mesh_free(&b);
+  }
+  printf("map error %.6f at every scale\n", m0);
+  free(map);
+}
+
+/* ---- segmentation: identical labels and centres under exact scaling; at decimal scales the
+ * differences of a 1-ulp perturbation (same count, labels within 1%, centres within 5% of √area) ---- */
+static void test_segment(const ss_mesh *m, const char *name) {
+  ss_error e;
+  ss_segmentation ref = {0};
+  CHECK_MSG(ss_segment(m, NULL, &ref, &e) == SS_OK, "%s: %s", name, e.msg);
+  ss_geodesic_mesh *gm = NULL;
+  CHECK(ss_geodesic_mesh_build(m, &gm, &e) == SS_OK);
+  const double sa = sqrt(ss_mesh_area(m));
+  for (int kind = 0; kind < 2; kind++)
+    for (int q = 0; q < 2; q++) {
+      const double s = kind ? DECIMAL[q] : EXACT[q];
+      ss_mesh b = {0};
+      scaled(m, s, &b);
+      ss_segmentation g = {0};
+      ss_status st = ss_segment(&b, NULL, &g, &e);
+      CHECK_MSG(st == SS_OK, "%s x%g: %s", name, s, e.msg);
+      if (st) { ss_mesh_free(&b); continue; }
+      int dl = 0, dc = 0, dpsi = 0;
+      double far = 0;
+      for (int i = 0; i < m->nv; i++) dl += g.labels[i] != ref.labels[i], dpsi += g.psi[i] != ref.psi[i];
+      for (int j = 0; j < g.m && j < ref.m; j++)
+        if (g.centers[j] != ref.centers[j]) {
+          double d = INFINITY;
+          CHECK(ss_geodesic_one_to_many(gm, NULL, ref.centers[j], &g.centers[j], 1, &d, &e) == SS_OK);
+          dc++, far = fmax(far, d / sa);
+        }
+      CHECK_MSG(g.m == ref.m, "%s x%g: %d segments, unscaled %d", name, s, g.m, ref.m);
+      if (!kind) {
+        CHECK_MSG(dl == 0 && dc == 0 && dpsi == 0 && g.work.nf == ref.work.nf,
+                  "%s x%g: %d labels, %d centres, %d psi entries differ from the unscaled segmentation", name, s, dl, dc, dpsi);
+        CHECK_MSG(fabs(g.lambda2 * s * s / ref.lambda2 - 1) <= 1e-12, "%s x%g: lambda2 s^2 %.17g vs %.17g", name, s,
+                  g.lambda2 * s * s, ref.lambda2);
+      } else {
+        CHECK_MSG(dl <= m->nv / 100, "%s x%g: %d of %d labels differ", name, s, dl, m->nv);
+        CHECK_MSG(far <= 0.05, "%s x%g: a centre moved by %.3f sqrt(area)", name, s, far);
+      }
+      printf("segment %s x%g: %d segments, %d labels and %d centres differ (farthest %.4f sqrt(area))\n", name, s, g.m, dl,
+             dc, far);
+      ss_segmentation_free(&g);
+      ss_mesh_free(&b);
+    }
+  ss_geodesic_mesh_free(gm);
+  ss_segmentation_free(&ref);
+}
+
+int main(void) {
+  ss_error e;
+  ss_mesh X = {0}, Y = {0};
+  CHECK(ss_synth_humanoid(0, &X, &e) == SS_OK);
+  CHECK(ss_synth_humanoid(1, &Y, &e) == SS_OK);
+  int lm[5];
+  humanoid_landmarks(&X, lm);
+  double t = (double)clock() / CLOCKS_PER_SEC;
+  test_cmcf(&X);
+  test_remesh(&X);
+  test_geodesics(&X);
+  test_map_error(&X);
+  printf("-- %.1f s CPU\n", (double)clock() / CLOCKS_PER_SEC - t);
+  test_segment(&X, "humanoid");
+  printf("-- %.1f s CPU\n", (double)clock() / CLOCKS_PER_SEC - t);
+  const char *dir = tl_data_dir();
+  if (dir) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/faust/tr_reg_000.off", dir);
+    ss_mesh f = {0};
+    CHECK_MSG(ss_read_mesh(path, &f, &e) == SS_OK, "%s", e.msg);
+    test_segment(&f, "tr_reg_000");
+    ss_mesh_free(&f);
+  } else {
+    SKIP("FAUST not found (SS_DATA_DIR): segmentation of tr_reg_000 at extreme scales not checked");
+  }
+  printf("-- %.1f s CPU\n", (double)clock() / CLOCKS_PER_SEC - t);
+  ss_mesh_free(&X);
+  ss_mesh_free(&Y);
+  TEST_MAIN_END();
+}
