@@ -38,7 +38,8 @@ static const char USAGE[] =
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
     "  --descr-k K         eigenpairs the descriptors are computed from (default 100; = K for the\n"
     "                      paper's construction)\n"
-    "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K) as .npy\n"
+    "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K, in the bases of\n"
+    "                      both shapes scaled to unit area) as .npy\n"
     "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
     "One of the output files may be - (standard output).\n";

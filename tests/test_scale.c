@@ -254,6 +254,116 @@ static void test_fmap_raw(const ss_mesh *X, const ss_mesh *Y, const int lm[5]) {
   free(ref), free(map);
 }
 
+/* ---- matching: the same point map when both shapes are scaled by s, or X by a and Y by b ----------
+ * Each shape is prepared once per scale (ss_shape_prep_compute: segmentation and eigenpairs, at unit
+ * area) and matched with three option sets: the paper's DIFF (segments + descriptors), STD
+ * (descriptors) and the refined default at a smaller size (ZoomOut on samples, selection energies).
+ * Before the preparation took the shapes at unit area, x2^-10 / x2^10 changed 6,789 of 6,864 DIFF
+ * images (k 50): C[0] was fixed to sqrt(area_X / area_Y) = 2^-20 while the descriptor terms asked for an O(1)
+ * map, the eigenvalues of the Laplacian term were 2^40 apart and the orthonormality energy compared
+ * C^T C with I, which holds at equal areas only. */
+enum { NOPT = 3, KEV = 40 };
+
+/* smaller than the defaults to keep the test short: k 30 (the refined one: descriptors from 40
+ * eigenpairs, ZoomOut to 40 on 1,000 samples), remeshing to 6,000 faces */
+static void match_options(ss_match_options o[NOPT]) {
+  ss_match_paper_options(&o[0]);
+  o[0].fmap.k = 30, o[0].seg.target_faces = 6000;
+  o[1] = o[0];
+  o[1].probes = SS_PROBES_STD;
+  ss_match_default_options(&o[2]);
+  o[2].fmap.k = 30, o[2].fmap.descr_k = 40, o[2].fmap.zoomout_kmax = 40, o[2].fmap.zoomout_samples = 1000;
+  o[2].seg.target_faces = 6000;
+}
+
+static int prepare(const ss_mesh *m, double s, ss_mesh *b, ss_shape_prep *p) {
+  ss_error e;
+  ss_match_options o[NOPT];
+  match_options(o);
+  scaled(m, s, b);
+  ss_status st = ss_shape_prep_compute(b, &o[0].seg, KEV, p, &e);
+  CHECK_MSG(st == SS_OK, "prep x%g: %s", s, e.msg);
+  return st == SS_OK;
+}
+
+/* the three maps of X scaled by sx and Y by sy */
+static int match_all(const ss_mesh *X, const ss_mesh *Y, double sx, double sy, const int lm[5], ss_match_result r[NOPT]) {
+  ss_error e;
+  ss_mesh a = {0}, b = {0};
+  ss_shape_prep pa, pb;
+  memset(r, 0, sizeof(ss_match_result) * NOPT);
+  int ok = prepare(X, sx, &a, &pa);
+  ok = prepare(Y, sy, &b, &pb) && ok;
+  ss_match_options o[NOPT];
+  match_options(o);
+  for (int c = 0; ok && c < NOPT; c++) {
+    ss_status st = ss_match_prepared(&pa, &pb, 5, lm, lm, &o[c], &r[c], &e);
+    CHECK_MSG(st == SS_OK, "match x%g / x%g (options %d): %s", sx, sy, c, e.msg);
+    ok = st == SS_OK;
+  }
+  ss_shape_prep_free(&pa), ss_shape_prep_free(&pb);
+  ss_mesh_free(&a), ss_mesh_free(&b);
+  return ok;
+}
+
+static void free_all(ss_match_result r[NOPT]) {
+  for (int c = 0; c < NOPT; c++) ss_match_result_free(&r[c]);
+}
+
+static int differ(const int *a, const int *b, int n) {
+  int d = 0;
+  for (int i = 0; i < n; i++) d += a[i] != b[i];
+  return d;
+}
+
+static void test_match(const ss_mesh *X, const ss_mesh *Y, const int lm[5]) {
+  ss_error e;
+  static const char *const name[NOPT] = {"DIFF", "STD", "refined"};
+  ss_match_result ref[NOPT], r[NOPT];
+  if (!match_all(X, Y, 1, 1, lm, ref)) return free_all(ref);
+  /* exact factors: the same maps, pairing, refinement choice and functional maps (unit-area bases) */
+  const double ex[][2] = {{0x1p-27, 0x1p-27}, {0x1p27, 0x1p-27}};
+  for (int q = 0; q < 2; q++) {
+    if (match_all(X, Y, ex[q][0], ex[q][1], lm, r))
+      for (int c = 0; c < NOPT; c++) {
+        int d = differ(r[c].map, ref[c].map, X->nv);
+        double dC = 0;
+        for (int i = 0; r[c].kc == ref[c].kc && i < r[c].kc * r[c].kc; i++) dC = fmax(dC, fabs(r[c].C[i] - ref[c].C[i]));
+        CHECK_MSG(d == 0, "%s match x%g / x%g: %d of %d images differ from x1 / x1", name[c], ex[q][0], ex[q][1], d, X->nv);
+        CHECK_MSG(r[c].pairs.n == ref[c].pairs.n && r[c].kc == ref[c].kc && r[c].refine_choice == ref[c].refine_choice &&
+                      dC <= 1e-9,
+                  "%s match x%g / x%g: %d pairs (%d), choice %d (%d), C off by %g", name[c], ex[q][0], ex[q][1],
+                  r[c].pairs.n, ref[c].pairs.n, r[c].refine_choice, ref[c].refine_choice, dC);
+        printf("%s match x%g / x%g: %d images differ, C within %.1e\n", name[c], ex[q][0], ex[q][1], d, dC);
+      }
+    free_all(r);
+  }
+  /* decimal factors (the issue's X x1e-3, Y x1e3): the rounding of the scaled coordinates is a 1-ulp
+   * perturbation, which moves a few segment boundaries (test_segment) and so the segment probes a
+   * little: the segment-aided map agrees but for a few images, each next to its unscaled image (the
+   * descriptors alone, STD, gave the same map there). Through ss_match, as a user calls it. */
+  ss_match_options o[NOPT];
+  match_options(o);
+  ss_mesh a = {0}, b = {0};
+  scaled(X, 1e-3, &a);
+  scaled(Y, 1e3, &b);
+  for (int c = 0; c < 1; c++) {
+    ss_match_result rr;
+    ss_status st = ss_match(&a, &b, 5, lm, lm, &o[c], &rr, &e);
+    CHECK_MSG(st == SS_OK, "%s match x1e-3 / x1e3: %s", name[c], e.msg);
+    if (st) continue;
+    int d = differ(rr.map, ref[c].map, X->nv);
+    double moved = INFINITY; /* mean geodesic distance of an image from its unscaled image, / sqrt(area(Y)) */
+    CHECK(ss_map_geodesic_error(Y, X->nv, rr.map, ref[c].map, NULL, NULL, &moved, &e) == SS_OK);
+    CHECK_MSG(d <= X->nv / 20 && moved <= 0.005, "%s match x1e-3 / x1e3: %d of %d images differ, mean move %.4f sqrt(area)",
+              name[c], d, X->nv, moved);
+    printf("%s match x1e-3 / x1e3: %d images differ from x1 / x1 (mean move %.5f sqrt(area))\n", name[c], d, moved);
+    ss_match_result_free(&rr);
+  }
+  ss_mesh_free(&a), ss_mesh_free(&b);
+  free_all(ref);
+}
+
 int main(void) {
   ss_error e;
   ss_mesh X = {0}, Y = {0};
@@ -270,6 +380,8 @@ int main(void) {
   test_segment(&X, "humanoid");
   printf("-- %.1f s CPU\n", (double)clock() / CLOCKS_PER_SEC - t);
   test_fmap_raw(&X, &Y, lm);
+  printf("-- %.1f s CPU\n", (double)clock() / CLOCKS_PER_SEC - t);
+  test_match(&X, &Y, lm);
   printf("-- %.1f s CPU\n", (double)clock() / CLOCKS_PER_SEC - t);
   const char *dir = tl_data_dir();
   if (dir) {

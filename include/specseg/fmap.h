@@ -315,8 +315,9 @@ SS_API ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shap
  * functions on Y to functions on X (the pull-back of map).
  * Scale: both shapes scaled by one factor give the same map (tests/test_scale.c). Shapes of different
  * sizes are compared at their own sizes (C's constant column √(area_X / area_Y), the eigenvalues of the
- * Laplacian term as given), which suits shapes of about equal area; give both at unit area for a map
- * that depends on neither size. */
+ * Laplacian term as given), which suits shapes of about equal area; give both at unit area
+ * (ss_shape_prep_unit_area, as ss_shape_prep holds them and ss_match uses them) for a map that depends
+ * on neither size. */
 SS_API ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
                                int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
                                const ss_fmap_match_options *opts, int *map, double *C, ss_error *err);
