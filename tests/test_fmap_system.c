@@ -115,15 +115,16 @@ static void test_probes_split(void) {
   int nb = (ne * (1 + nl) + step - 1) / step, nw = 0;
   for (int c = nb * step; c < nall; c += step) nw++;
   CHECK(base.p == nb && wave.p == nw && raw.p == nx && base.nd == nb && wave.nd == nw && raw.nd == 0);
-  double *a = malloc(sizeof(double) * k), dmax = 0, pmax = 0;
+  double *a = malloc(sizeof(double) * k), dmax = 0, pmax = 0, area = 0;
   double *P = malloc(sizeof(double) * (size_t)k * (k + 1) / 2);
+  for (int i = 0; i < n; i++) area += M[i]; /* the probes' operators are those at unit area: x sqrt(area) */
   for (int c = 0, col = 0; c < nall && base.p == nb && wave.p == nw; c += step, col++) {
     const ss_fmap_probes *pr = col < nb ? &base : &wave;
     int j = col < nb ? col : col - nb;
     CHECK(ss_fmap_project(n, k, phi, M, 1, L + (size_t)n * c, a, NULL) == SS_OK);
     CHECK(ss_fmap_mult_operators_packed(n, k, phi, M, 1, L + (size_t)n * c, P, NULL) == SS_OK);
     for (int i = 0; i < k; i++) dmax = fmax(dmax, fabs(a[i] - pr->A[i + (size_t)k * j]));
-    for (int i = 0; i < k * (k + 1) / 2; i++) pmax = fmax(pmax, fabs(P[i] - pr->P[i + (size_t)k * (k + 1) / 2 * j]));
+    for (int i = 0; i < k * (k + 1) / 2; i++) pmax = fmax(pmax, fabs(P[i] * sqrt(area) - pr->P[i + (size_t)k * (k + 1) / 2 * j]));
   }
   CHECK_MSG(dmax < 1e-10 && pmax < 1e-10, "split probes differ from the virtual list: %g, %g", dmax, pmax);
   /* raw extras: normalised indicator coefficients */

@@ -302,14 +302,19 @@ SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);
  * (n_energies columns per item; without the WKS item when opts->no_wks) sub-sampled by descr_step,
  * then the shape's own s->ndescr descriptors (not sub-sampled), each column normalised in L²(M);
  * their coefficients in the first opts->k eigenfunctions and, with with_operators, their packed
- * multiplication operators. No WKS, no landmark and no descriptor is an error. They depend on the shape and its landmarks only, so an evaluation can
- * build them once per shape and landmark set. opts NULL: defaults. */
+ * multiplication operators, those of the shape scaled to unit area (ss_fmap_mult_operators_packed
+ * times √area, area = Σ M): the coefficients of unit-L²(M) functions do not depend on the shape's
+ * scale, the raw operators go as 1/scale, so without that factor the commutativity term of Eq. (1)
+ * would weigh scale⁻² against the data term. No WKS, no landmark and no descriptor is an error. They
+ * depend on the shape and its landmarks only, so an evaluation can build them once per shape and
+ * landmark set. opts NULL: defaults. */
 SS_API ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, const ss_fmap_match_options *opts,
                                      int with_operators, ss_fmap_probes *out, ss_error *err);
 
 /* Extra probes (nextra functions, extra n x nextra), as they follow the base probes of nl
  * landmarks: SS_PROBE_WAVE continues the virtual column list (every function filtered by the WKS
- * energies, the same sub-sampling), SS_PROBE_RAW keeps them as they are; normalised in L²(M). */
+ * energies, the same sub-sampling), SS_PROBE_RAW keeps them as they are; normalised in L²(M); their
+ * operators at unit area as above. */
 SS_API ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const double *extra, ss_probe_filter filter,
                                       const ss_fmap_match_options *opts, int with_operators, ss_fmap_probes *out,
                                       ss_error *err);
@@ -334,7 +339,12 @@ SS_API ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shap
  * WKS and landmark probes enter the commutativity term, those of the extras only with
  * opts->extra_dcomm; the extras' data term is weighted by opts->w_extra. Output: map[nX], map[i] = vertex of Y that is the image of vertex i
  * of X. C (may be NULL; k x k, or zoomout_kmax² with ZoomOut) receives the functional map from
- * functions on Y to functions on X (the pull-back of map). */
+ * functions on Y to functions on X (the pull-back of map).
+ * Scale: both shapes scaled by one factor give the same map (tests/test_scale.c). Shapes of different
+ * sizes are compared at their own sizes (C's constant column √(area_X / area_Y), the eigenvalues of the
+ * Laplacian term as given), which suits shapes of about equal area; give both at unit area
+ * (ss_shape_prep_unit_area, as ss_shape_prep holds them and ss_match uses them) for a map that depends
+ * on neither size. */
 SS_API ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
                                int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
                                const ss_fmap_match_options *opts, int *map, double *C, ss_error *err);

@@ -89,20 +89,29 @@ typedef struct ss_shape_prep {
   const ss_mesh *mesh;  /* the input mesh (borrowed: must outlive the prep) */
   ss_segmentation seg;  /* ss_segment of the input */
   int kev;              /* eigenpairs computed on the input */
-  double *evals;        /* kev */
-  double *evecs;        /* nv x kev, column-major, M-orthonormal */
-  double *M;            /* nv barycentric lumped masses */
-  double area;
+  /* The spectral data of the input scaled to unit area (ss_shape_prep_unit_area), as functional maps
+   * compare shapes (pyFM's and ZoomOut's area normalisation): the eigenvalues times `area`, the
+   * eigenvectors times √area, the masses divided by `area`. So neither shape's scale reaches the map:
+   * a pair at sizes s_X and s_Y gives the map it gives at 1 and 1 (tests/test_scale.c). */
+  double *evals;        /* kev: λ·area */
+  double *evecs;        /* nv x kev, column-major, M-orthonormal (M the unit-area masses below) */
+  double *M;            /* nv barycentric lumped masses / area (they sum to 1) */
+  double area;          /* the input's area (sum of its barycentric masses) */
   double t_segment, t_eigs; /* seconds */
 } ss_shape_prep;
 
-/* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs. The
- * result depends only on the shape, so it can be computed once and reused across pairs. Fails with
- * SS_ERR_INVALID on a mesh the sanitizer would change (non-manifold or degenerate input): repair it
- * first (its vertex indices are what landmarks and maps refer to). */
+/* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs (then
+ * scaled to unit area, above). The result depends only on the shape, so it can be computed once and
+ * reused across pairs. Fails with SS_ERR_INVALID on a mesh the sanitizer would change (non-manifold or
+ * degenerate input): repair it first (its vertex indices are what landmarks and maps refer to). */
 SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                        ss_error *err);
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
+/* In place: eigenpairs (kev, eigenvectors nv x kev) and masses (nv) of a shape of the given area become
+ * those of the shape scaled to unit area (λ·area, φ·√area, M/area); any pointer may be NULL. What
+ * ss_shape_prep_compute applies, for callers that fill an ss_shape_prep themselves (more eigenpairs of
+ * the same shape: scale them with the prep's `area`). */
+SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals, double *evecs, double *M);
 
 /* ---- Landmark-free pairing of the segments (autopair.c) ---------------------------------------- *
  * Pairs the segment centres of two shapes without landmarks, from what each shape carries alone
@@ -265,7 +274,8 @@ typedef struct ss_match_result {
   int nX;           /* vertices of X */
   int *map;         /* nX: map[i] = vertex of Y, image of vertex i of X */
   int kc;           /* C is kc x kc (k, or zoomout_kmax with ZoomOut) */
-  double *C;        /* functional map from functions on Y to functions on X (pull-back of map) */
+  double *C;        /* functional map from functions on Y to functions on X (pull-back of map), in the
+                       shapes' unit-area bases (ss_shape_prep: C[0] = ±1, whatever the two sizes) */
   ss_segment_pairs pairs;
   int *centerX, *centerY; /* pairs.n: input vertices at the centres of the paired segments */
   /* seconds per stage */

@@ -93,6 +93,8 @@ ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
     free(ev), free(ph);
     return st;
   }
+  /* at unit area, as the prep's own eigenpairs (and with its masses) */
+  ss_shape_prep_unit_area(s->prep.area, nv, kr, ev, ph, NULL);
   s->rprep = s->prep;
   s->rprep.mesh = &s->mesh;
   s->rprep.kev = kr, s->rprep.evals = ev, s->rprep.evecs = ph;
@@ -108,8 +110,9 @@ ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
  *           basis size and the BEST / GT landmarks;
  *   line 2: "payload BYTES fnv1a64 HASH": the payload's length and the FNV-1a checksum of the key
  *           line followed by the payload;
- *   then the payload: raw native arrays (sizes, eigenpairs, masses, labels, centres, Ψ, distances to
- *           the centres, FPS landmarks, landmark fields, timings).
+ *   then the payload: raw native arrays (sizes, eigenpairs and masses at unit area as the prep holds
+ *           them, labels, centres, Ψ, distances to the centres, FPS landmarks, landmark fields,
+ *           the shape's area, timings).
  * An entry is used only when its key equals the current one, its length is exact and its checksum
  * matches (then its contents are range-checked once more); anything else — bytes flipped, a file
  * cut short, columns swapped, written by another version or for another mesh — is reported and
@@ -118,7 +121,7 @@ ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
  * the eigenvectors and their seconds): an entry written without them is completed (rewritten) by a
  * run that needs them, and a run that does not skips them. */
 
-#define CACHE_TAG "specseg-eval-v4"
+#define CACHE_TAG "specseg-eval-v5"
 
 /* The shape's identity in the key: "faust NNN" for FAUST (the key of earlier versions, so their
  * entries stay valid), "file" for any other mesh, which the mesh hash and the landmarks identify
@@ -180,8 +183,8 @@ static int cache_load(const char *path, const char *key, const ev_context *ctx, 
          s->lmd[0] && s->lmd[1] && s->lmd[2];
     ok = ok && GET(p->evals, kev) && GET(p->evecs, (size_t)nv * kev) && GET(p->M, nv) && GET(p->seg.labels, nv) &&
          GET(p->seg.centers, m) && GET(p->seg.psi, nv) && GET(p->seg.work_dist, wn) && GET(s->fps, EV_NL) &&
-         GET(s->lmd[0], m * EV_NL) && GET(s->lmd[1], m * EV_NL) && GET(s->lmd[2], m * EV_NL) && GET(&s->t_prep, 1) &&
-         GET(&p->t_segment, 1) && GET(&p->t_eigs, 1);
+         GET(s->lmd[0], m * EV_NL) && GET(s->lmd[1], m * EV_NL) && GET(s->lmd[2], m * EV_NL) && GET(&p->area, 1) && p->area > 0 &&
+         isfinite(p->area) && GET(&s->t_prep, 1) && GET(&p->t_segment, 1) && GET(&p->t_eigs, 1);
     for (int i = 0; ok && i < nv; i++) ok = p->seg.labels[i] >= 0 && p->seg.labels[i] < m && p->seg.psi[i] >= 0 &&
                                             p->seg.psi[i] < wn;
     for (int i = 0; ok && i < m; i++) ok = p->seg.centers[i] >= 0 && p->seg.centers[i] < nv;
@@ -211,8 +214,6 @@ static int cache_load(const char *path, const char *key, const ev_context *ctx, 
   p->kev = kev;
   p->seg.nv = nv;
   p->seg.m = m;
-  p->area = 0;
-  for (int i = 0; i < nv; i++) p->area += p->M[i];
   s->from_cache = 1;
   if (rev) {
     s->rprep = s->prep;
@@ -231,7 +232,7 @@ static void cache_store(const char *path, const char *key, const ev_shape *s) {
   PUT(p->evals, p->kev), PUT(p->evecs, (size_t)nv * p->kev), PUT(p->M, nv), PUT(p->seg.labels, nv);
   PUT(p->seg.centers, m), PUT(p->seg.psi, nv), PUT(p->seg.work_dist, wn), PUT(s->fps, EV_NL);
   PUT(s->lmd[0], m * EV_NL), PUT(s->lmd[1], m * EV_NL), PUT(s->lmd[2], m * EV_NL);
-  PUT(&s->t_prep, 1), PUT(&p->t_segment, 1), PUT(&p->t_eigs, 1);
+  PUT(&p->area, 1), PUT(&s->t_prep, 1), PUT(&p->t_segment, 1), PUT(&p->t_eigs, 1);
   const ss_shape_prep *r = &s->rprep;
   int kr = r->evecs ? r->kev : 0;
   PUT(&kr, 1);

@@ -64,9 +64,18 @@ done:
   return st;
 }
 
-/* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked). */
+/* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked).
+ * Scale: with the shape scaled by s, Φ goes as 1/s, M as s² and a unit-L²(M) function as 1/s, so the
+ * coefficients A = Φᵀ M f are scale-free but D = Φᵀ M diag(f) Φ goes as 1/s: the commutativity term of
+ * Eq. (1) would weigh 1/s² against the data term (x1e4 made it vanish, x1e-4 swamp the descriptors).
+ * The operators are therefore those of the shape scaled to unit area, D·√area (f·√area is the
+ * function normalised at unit area; Φ and M scale back); A is the same at any scale. */
 static ss_status finish(int n, int k, const double *evecs, const double *M, double *F, int p, int with_operators,
                         ss_fmap_probes *out, ss_error *err) {
+  double area = 0;
+  for (int x = 0; x < n; x++) area += M[x];
+  if (with_operators && !(area > 0 && isfinite(area)))
+    return ss_fail(err, SS_ERR_INVALID, "probes: the shape's masses sum to %g (need a positive finite area)", area);
   for (int c = 0; c < p; c++) {
     double *f = F + (size_t)n * c, s = 0;
     for (int x = 0; x < n; x++) s += M[x] * f[x] * f[x];
@@ -80,6 +89,7 @@ static ss_status finish(int n, int k, const double *evecs, const double *M, doub
   if (!out->A || (with_operators && !out->P)) st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
   if (!st) st = ss_fmap_project(n, k, evecs, M, p, F, out->A, err);
   if (!st && with_operators) st = ss_fmap_mult_operators_packed(n, k, evecs, M, p, F, out->P, err);
+  if (!st && with_operators) cblas_dscal((int)((size_t)k * (k + 1) / 2 * p), sqrt(area), out->P, 1);
   if (st) ss_fmap_probes_free(out);
   return st;
 }

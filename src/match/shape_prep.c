@@ -5,6 +5,7 @@
 #include "specseg/mesh.h"
 #include "specseg/spectrum.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -59,6 +60,17 @@ static ss_status check_clean(const ss_mesh *m, ss_error *err) {
   return SS_OK;
 }
 
+void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals, double *evecs, double *M) {
+  /* the shape scaled by 1/√area: λ·area, φ·√area (M-orthonormal again), M/area */
+  const double r = sqrt(area);
+  if (evals)
+    for (int i = 0; i < kev; i++) evals[i] *= area;
+  if (evecs)
+    for (size_t i = 0; i < (size_t)nv * kev; i++) evecs[i] *= r;
+  if (M)
+    for (int i = 0; i < nv; i++) M[i] /= area;
+}
+
 ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                 ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
@@ -93,6 +105,7 @@ ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_
   if ((st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, out->M, err))) goto fail;
   out->area = 0;
   for (int i = 0; i < m->nv; i++) out->area += out->M[i];
+  ss_shape_prep_unit_area(out->area, m->nv, kev, out->evals, out->evecs, out->M);
   out->t_segment = t1 - t0;
   out->t_eigs = ss_time() - t1;
   return SS_OK;
