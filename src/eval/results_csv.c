@@ -171,13 +171,21 @@ ss_status ss_eval_rows_canonical(ss_eval_row *rows, int *n, ss_error *err) {
   return SS_OK;
 }
 
+/* A canonical copy of rows (sorted, duplicates dropped: ss_eval_rows_canonical) for the
+ * aggregations; *r is malloc'd (free it) whenever the rows were valid. */
+static ss_status canonical_copy(const ss_eval_row *rows, int *n, ss_eval_row **r, ss_error *err) {
+  *r = NULL;
+  if (*n < 0 || (*n > 0 && !rows)) return ss_fail(err, SS_ERR_INVALID, "table: bad rows");
+  *r = malloc(sizeof **r * (size_t)(*n > 0 ? *n : 1));
+  if (!*r) return ss_fail(err, SS_ERR_NOMEM, "table: out of memory");
+  if (*n > 0) memcpy(*r, rows, sizeof **r * (size_t)*n);
+  return ss_eval_rows_canonical(*r, n, err);
+}
+
 ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_error *err) {
   memset(t, 0, sizeof *t);
-  if (n < 0 || (n > 0 && !rows)) return ss_fail(err, SS_ERR_INVALID, "table: bad rows");
-  ss_eval_row *r = malloc(sizeof *r * (size_t)(n > 0 ? n : 1));
-  if (!r) return ss_fail(err, SS_ERR_NOMEM, "table: out of memory");
-  if (n > 0) memcpy(r, rows, sizeof *r * (size_t)n);
-  ss_status st = ss_eval_rows_canonical(r, &n, err);
+  ss_eval_row *r;
+  ss_status st = canonical_copy(rows, &n, &r, err);
   if (!st) {
     double sum[12][SS_EVAL_NMETHODS] = {{0}};
     for (int i = 0; i < n; i++) {
@@ -199,11 +207,8 @@ ss_status ss_table1_aggregate(const ss_eval_row *rows, int n, ss_table1 *t, ss_e
 
 ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_none *t, ss_error *err) {
   memset(t, 0, sizeof *t);
-  if (n < 0 || (n > 0 && !rows)) return ss_fail(err, SS_ERR_INVALID, "table: bad rows");
-  ss_eval_row *r = malloc(sizeof *r * (size_t)(n > 0 ? n : 1));
-  if (!r) return ss_fail(err, SS_ERR_NOMEM, "table: out of memory");
-  if (n > 0) memcpy(r, rows, sizeof *r * (size_t)n);
-  ss_status st = ss_eval_rows_canonical(r, &n, err);
+  ss_eval_row *r;
+  ss_status st = canonical_copy(rows, &n, &r, err);
   if (!st) {
     double sum[4][SS_EVAL_NMETHODS] = {{0}};
     int all[3] = {0}, mir[3] = {0}, tot[3] = {0};
