@@ -98,6 +98,11 @@ typedef struct ss_shape_prep {
   double *M;            /* nv barycentric lumped masses / area (they sum to 1) */
   double area;          /* the input's area (sum of its barycentric masses) */
   double t_segment, t_eigs; /* seconds */
+  /* Optional (NULL: not computed; ss_shape_prep_crit_fields fills it): the exact geodesic fields on
+   * the work mesh seg.work from each of the seg.m critical points, unscaled (seg.work.nv x seg.m,
+   * column-major). With them the segment pairing reads every landmark-to-centre distance instead of
+   * propagating a field from each landmark at every match (distances are symmetric). */
+  double *crit_fields;
 } ss_shape_prep;
 
 /* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs (then
@@ -107,6 +112,16 @@ typedef struct ss_shape_prep {
 SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                        ss_error *err);
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
+/* Fills p->crit_fields (above) when it is NULL: seg.m exact single-source fields on seg.work
+ * (ss_geodesic_fields, in parallel). Worth it for a shape matched more than once (specseg prepare,
+ * Python Shape); a match computes nl fields per shape otherwise. */
+SS_API ss_status ss_shape_prep_crit_fields(ss_shape_prep *p, ss_error *err);
+/* ss_pair_segments_conf of two prepared shapes: the landmark-to-centre distances are read from a
+ * shape's crit_fields when it has them (the same distances, up to rounding: d(l, c) = d(c, l)) and
+ * propagated from its landmarks otherwise. */
+SS_API ss_status ss_pair_segments_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                           const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
+                                           ss_error *err);
 /* In place: eigenpairs (kev, eigenvectors nv x kev) and masses (nv) of a shape of the given area become
  * those of the shape scaled to unit area (λ·area, φ·√area, M/area); any pointer may be NULL. What
  * ss_shape_prep_compute applies, for callers that fill an ss_shape_prep themselves (more eigenpairs of
@@ -346,7 +361,8 @@ SS_API void ss_match_result_free(ss_match_result *r);
 /* ---- Prepared shapes and their files (shape_file.c) -------------------------------------------- *
  * What a match needs from one shape, computed once (specseg prepare) and matched many times: the
  * input mesh, its ss_shape_prep (the segmentation with its streamlined work mesh, Ψ, critical
- * points, iVd labels and centre distances; K eigenpairs and masses of the input), the options they
+ * points, iVd labels and centre distances; K eigenpairs and masses of the input; the critical
+ * points' geodesic fields, so no geodesic is propagated at match time), the options they
  * were computed with and, for one-component meshes, the landmark-free pairing's centre signature.
  *
  * File format (version SS_PREPARED_SHAPE_VERSION), the design of the eval cache (util/blob.h):
@@ -354,11 +370,12 @@ SS_API void ss_match_result_free(ss_match_result *r);
  *            seg FACES NOSTREAM CLEANUP NEIGS CMCF_STEPS CMCF_DT SANITIZE sig 0|1 [AUTOPAIR OPTIONS]"
  *            (HASH: FNV-1a 64 of the mesh's nv, nf, V, F; doubles printed exactly, %.17g);
  *   line 2: "payload BYTES fnv1a64 CHECKSUM" (of line 1 followed by the payload);
- *   then the raw native arrays: mesh, eigenpairs, masses, segmentation, signature.
+ *   then the raw native arrays: mesh, eigenpairs, masses, segmentation, the critical points'
+ *   geodesic fields (ss_shape_prep.crit_fields; version 2), signature.
  * A file of another format version, byte order or type sizes, cut short, longer, with any byte
  * changed (checksum) or with contents out of range is refused with SS_ERR_PARSE and the reason; it is
  * never used partly. */
-#define SS_PREPARED_SHAPE_VERSION 1
+#define SS_PREPARED_SHAPE_VERSION 2
 
 typedef struct ss_prepared_shape {
   ss_mesh mesh;                 /* the input mesh (owned) */

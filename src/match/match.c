@@ -204,7 +204,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   double t0 = ss_time();
   if (pairs_in) {
     if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
-  } else if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  } else if ((st = ss_pair_segments_prepared(X, Y, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));

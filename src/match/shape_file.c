@@ -35,6 +35,7 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
   else ss_segment_default_options(&out->seg);
   ss_status st = ss_mesh_copy(m, &out->mesh, err);
   if (!st) st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
+  if (!st) st = ss_shape_prep_crit_fields(&out->prep, err); /* the landmark pairing's distances, once */
   if (!st && autopair) {
     int *comp = malloc(sizeof(int) * (size_t)out->mesh.nv);
     int nc = comp ? ssi_mesh_components(&out->mesh, comp) : -1;
@@ -120,6 +121,7 @@ ss_status ss_prepared_shape_write(const char *path, const ss_prepared_shape *s, 
   put_arr(&b, g->work_labels, wn, sizeof(int)), put_arr(&b, g->work_dist, wn, sizeof(double));
   const double t[8] = {g->t_read, g->t_smooth, g->t_remesh, g->t_psi, g->t_spectrum, g->t_critical, g->t_ivd, g->t_total};
   SSI_PUT(&b, t, 8);
+  put_arr(&b, p->crit_fields, wn * gm, sizeof(double));
   if (s->has_signature) {
     const ss_centre_signature *c = &s->sig;
     SSI_PUT(&b, &c->m, 1), SSI_PUT(&b, &c->nd, 1);
@@ -199,7 +201,8 @@ static int parse_payload(ssi_blob *b, const char *key, ss_prepared_shape *s, cha
        get_arr(b, &g->crit_type, gm, 1, 1) && get_arr(b, &g->work_labels, wn, sizeof(int), 1) &&
        get_arr(b, &g->work_dist, wn, sizeof(double), 1);
   double t[8];
-  ok = ok && SSI_GET(b, t, 8);
+  ok = ok && SSI_GET(b, t, 8) && get_arr(b, &p->crit_fields, wn * gm, sizeof(double), 1);
+  for (size_t i = 0; ok && p->crit_fields && i < wn * gm; i++) ok = p->crit_fields[i] >= 0; /* INFINITY: unreachable */
   if (ok) {
     g->t_read = t[0], g->t_smooth = t[1], g->t_remesh = t[2], g->t_psi = t[3], g->t_spectrum = t[4];
     g->t_critical = t[5], g->t_ivd = t[6], g->t_total = t[7];
