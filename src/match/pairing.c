@@ -155,7 +155,8 @@ static ss_status landmark_fields(const ss_segmentation *s, const double *crit_fi
     goto done;
   }
   if ((st = ss_geodesic_mesh_build(w, &gm, err))) goto done;
-  if ((st = ss_geodesic_fields(gm, src, nl, 0.0, field, err))) goto done;
+  /* the fields are needed at the critical points only: each stops once they are settled */
+  if ((st = ss_geodesic_fields_targets(gm, src, nl, s->crit, s->m, field, err))) goto done;
   for (int i = 0; i < nl; i++)
     for (int c = 0; c < s->m; c++) d[c + (size_t)s->m * i] = field[s->crit[c] + (size_t)w->nv * i] * scale;
 done:
