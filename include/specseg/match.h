@@ -370,8 +370,9 @@ SS_API void ss_match_result_free(ss_match_result *r);
  *            seg FACES NOSTREAM CLEANUP NEIGS CMCF_STEPS CMCF_DT SANITIZE sig 0|1 [AUTOPAIR OPTIONS]"
  *            (HASH: FNV-1a 64 of the mesh's nv, nf, V, F; doubles printed exactly, %.17g);
  *   line 2: "payload BYTES fnv1a64 CHECKSUM" (of line 1 followed by the payload);
- *   then the raw native arrays: mesh, eigenpairs, masses, segmentation, the critical points'
- *   geodesic fields (ss_shape_prep.crit_fields; version 2), signature.
+ *   then the raw native arrays: mesh, proxy flag, prep (eigenpairs, masses, segmentation, the
+ *   critical points' geodesic fields), [proxy mesh, to_proxy, proxy_src, proxy prep], signature
+ *   (version 2; version 1 had neither fields nor proxies).
  * A file of another format version, byte order or type sizes, cut short, longer, with any byte
  * changed (checksum) or with contents out of range is refused with SS_ERR_PARSE and the reason; it is
  * never used partly. */
@@ -383,8 +384,21 @@ typedef struct ss_prepared_shape {
   ss_segment_options seg;       /* the options prep.seg was computed with */
   int has_signature;            /* 1: sig holds the centre signature, computed with `autopair` */
   ss_autopair_options autopair;
-  ss_centre_signature sig;      /* sig.prep points to `prep` */
+  ss_centre_signature sig;      /* sig.prep points to the matched prep (ss_prepared_shape_matched) */
+  /* A mesh above 100,000 vertices (closed, manifold, consistently oriented) is matched through a
+   * coarse proxy of about 40,000 faces, as ss_match_warn matches it from the mesh: then has_proxy is
+   * 1, `prep` holds the input's own segmentation only (what `segment` reports; kev 0, no spectrum)
+   * and the match uses proxy_prep, computed on `proxy`; maps and centres are lifted back through
+   * to_proxy / proxy_src. */
+  int has_proxy;
+  ss_mesh proxy;                /* the coarse mesh (owned); proxy_prep.mesh points to it */
+  int *to_proxy;                /* mesh.nv: input vertex -> proxy vertex */
+  int *proxy_src;               /* proxy.nv: proxy vertex -> the input vertex it was */
+  ss_shape_prep proxy_prep;
 } ss_prepared_shape;
+
+/* The ss_shape_prep a match of s uses: &s->proxy_prep with a proxy, else &s->prep. */
+SS_API const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s);
 
 /* Prepares one shape.
  *  m: the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face or
@@ -394,7 +408,10 @@ typedef struct ss_prepared_shape {
  *  autopair: options of the landmark-free pairing's centre signature (NULL: none computed); it is
  *     computed only for a mesh of one component (the landmark-free match of several keeps the
  *     largest one and prepares that).
- * out: filled (ss_prepared_shape_free); zeroed on failure. */
+ * out: filled (ss_prepared_shape_free); zeroed on failure. Every shape also gets its critical
+ * points' geodesic fields (ss_shape_prep_crit_fields); a very large one its proxy (above).
+ * Cost: ss_shape_prep_compute's plus m (8 on FAUST) geodesic fields; with a proxy, ss_segment of the
+ * input plus ss_shape_prep_compute of the proxy. */
 SS_API ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev,
                                            const ss_autopair_options *autopair, ss_prepared_shape *out, ss_error *err);
 /* Writes s to path (the format above; through a temporary file renamed into place). */

@@ -167,7 +167,9 @@ class ss_centre_signature(C.Structure):
 
 class ss_prepared_shape(C.Structure):
     _fields_ = [("mesh", ss_mesh), ("prep", ss_shape_prep), ("seg", ss_segment_options), ("has_signature", C.c_int),
-                ("autopair", ss_autopair_options), ("sig", ss_centre_signature)]
+                ("autopair", ss_autopair_options), ("sig", ss_centre_signature), ("has_proxy", C.c_int),
+                ("proxy", ss_mesh), ("to_proxy", C.POINTER(C.c_int)), ("proxy_src", C.POINTER(C.c_int)),
+                ("proxy_prep", ss_shape_prep)]
 
 
 class ss_render_options(C.Structure):
