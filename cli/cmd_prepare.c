@@ -13,7 +13,9 @@ static const char USAGE[] =
     "distances to their centres), K Laplace-Beltrami eigenpairs and the masses, and (one component)\n"
     "the landmark-free pairing's centre signature. 'specseg match' and 'specseg segment' take the file\n"
     "wherever they take a mesh and give the same output as from the mesh, faster. The file is\n"
-    "versioned and checksummed: a damaged file or one of another format version is refused.\n"
+    "versioned and checksummed: a damaged file or one of another format version is refused. It also\n"
+    "holds the critical points' geodesic fields (no geodesic is computed when matching it with\n"
+    "landmarks) and, for a mesh above 100,000 vertices, the coarse proxy 'match' matches it through.\n"
     "\n"
     "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
     "  -o, --output FILE   the prepared shape (required; a file, not standard output)\n"
@@ -79,7 +81,10 @@ int cmd_prepare(int argc, char **argv) {
   }
   struct stat sb;
   long long bytes = stat(outp, &sb) == 0 ? (long long)sb.st_size : -1;
-  printf("%d vertices, %d segments, %d eigenpairs%s -> %s (%lld bytes)\n", ps.mesh.nv, ps.prep.seg.m, ps.prep.kev,
+  char proxy[96] = "";
+  if (ps.has_proxy) snprintf(proxy, sizeof proxy, " (matched through a %d-vertex proxy, as match does)", ps.proxy.nv);
+  printf("%d vertices, %d segments, %d eigenpairs%s%s -> %s (%lld bytes)\n", ps.mesh.nv, ps.prep.seg.m,
+         ss_prepared_shape_matched(&ps)->kev, proxy,
          ps.has_signature ? ", pairing signature" : no_sig ? "" : ", no pairing signature (several components)", outp,
          bytes);
 done:

@@ -6,12 +6,16 @@
 #include "testlib.h"
 #include "specseg/io.h"
 #include "specseg/mesh.h"
+#include "specseg/match.h"
 #include "specseg/segment.h"
 #include "streamline/decimate.h"
 #include "streamline/remesh_mesh.h"
 #include "mesh/mesh_topology.h"
 
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
 
 /* Closed, manifold and oriented, as the remesher's own check says; χ = V − E + F with E = 3F/2. */
 static int closed_manifold(const ss_mesh *m) {
@@ -173,6 +177,43 @@ int main(void) {
       CHECK_MSG(s.m == 8, "%d segments on FAUST x2 (8 on FAUST)", s.m);
       for (int c = 0; c < s.m; c++) CHECK(s.centers[c] >= 0 && s.centers[c] < s2.nv && s.labels[s.centers[c]] == c);
       printf("FAUST x2: %d segments, work mesh %d v / %d f\n", s.m, s.work.nv, s.work.nf);
+    }
+    /* prepared (small spectrum, for speed): matched through its proxy, as ss_match_warn matches the
+     * mesh; the input's own segmentation kept for `segment`; the file round trip keeps both */
+    {
+      ss_match_options o;
+      ss_match_default_options(&o);
+      o.fmap.k = 20, o.fmap.zoomout_kmax = 30, o.fmap.descr_k = 30, o.seg_descr_k = 0;
+      const int lm[5] = {412, 5891, 6593, 3323, 2119}, kev = ss_match_eigenpairs(&o, 5);
+      ss_prepared_shape P = {0}, R = {0};
+      CHECK_MSG(ss_prepared_shape_compute(&s2, NULL, kev, NULL, &P, &e) == SS_OK, "%s", e.msg);
+      CHECK(P.has_proxy && P.proxy.nv < s2.nv / 2 && P.prep.kev == 0 && !P.prep.evecs && P.proxy_prep.kev == kev &&
+            ss_prepared_shape_matched(&P) == &P.proxy_prep && P.proxy_prep.crit_fields);
+      CHECK(s.labels && P.prep.seg.nv == s2.nv && !memcmp(P.prep.seg.labels, s.labels, sizeof(int) * (size_t)s2.nv));
+      int bad = 0;
+      for (int i = 0; i < s2.nv; i++) bad += P.to_proxy[i] < 0 || P.to_proxy[i] >= P.proxy.nv;
+      for (int i = 0; i < P.proxy.nv; i++) bad += P.proxy_src[i] < 0 || P.proxy_src[i] >= s2.nv;
+      CHECK(bad == 0);
+      char path[] = "/tmp/test_decimate_XXXXXX";
+      int fd = mkstemp(path);
+      CHECK(fd >= 0);
+      if (fd >= 0) close(fd);
+      CHECK(ss_prepared_shape_write(path, &P, &e) == SS_OK);
+      CHECK_MSG(ss_prepared_shape_read(path, &R, &e) == SS_OK, "%s", e.msg);
+      remove(path);
+      CHECK(R.has_proxy && R.proxy.nv == P.proxy.nv && R.proxy_prep.kev == kev &&
+            !memcmp(R.to_proxy, P.to_proxy, sizeof(int) * (size_t)s2.nv) &&
+            !memcmp(R.proxy_prep.evecs, P.proxy_prep.evecs, sizeof(double) * (size_t)kev * P.proxy.nv) &&
+            !memcmp(R.prep.seg.labels, P.prep.seg.labels, sizeof(int) * (size_t)s2.nv));
+      ss_match_result a = {0}, b = {0};
+      CHECK_MSG(ss_match_warn(&s2, &s2, 5, lm, lm, &o, &a, NULL, 0, &e) == SS_OK, "%s", e.msg);
+      CHECK_MSG(ss_match_prepared_shapes(&R, &R, 5, lm, lm, &o, &b, NULL, 0, &e) == SS_OK, "%s", e.msg);
+      CHECK(a.map && b.map && a.nX == s2.nv && b.nX == s2.nv &&
+            !memcmp(a.map, b.map, sizeof(int) * (size_t)s2.nv) && a.pairs.n == b.pairs.n);
+      for (int q = 0; q < a.pairs.n && q < b.pairs.n; q++)
+        CHECK(a.centerX[q] == b.centerX[q] && a.centerY[q] == b.centerY[q] && b.centerX[q] < s2.nv);
+      ss_match_result_free(&a), ss_match_result_free(&b);
+      ss_prepared_shape_free(&P), ss_prepared_shape_free(&R);
     }
     ss_segmentation_free(&s);
     ss_mesh_free(&s1), ss_mesh_free(&s2);

@@ -311,7 +311,7 @@ static void test_invariants(void) {
   }
   CHECK(ok && inside > 10 && inside < n);
   /* early stop on targets */
-  int tg[3] = {sb, sc, 5};
+  int tg[3] = {sb, sc, 5}, bad_target = n;
   double *dt = malloc(sizeof(double) * n);
   CHECK(ss_vtp_distances_targets(gm, &sa, 1, tg, 3, dt, NULL) == SS_OK);
   CHECK(dt[sb] == da[sb] && dt[sc] == da[sc] && dt[5] == da[5]);
@@ -319,6 +319,15 @@ static void test_invariants(void) {
   double *bf = malloc(sizeof(double) * n * 3);
   CHECK(ss_geodesic_fields(gm, three, 3, 0, bf, NULL) == SS_OK);
   CHECK(rel_err(bf, da, n) == 0 && rel_err(bf + n, db, n) == 0 && rel_err(bf + 2 * n, dc, n) == 0);
+  /* a batch stopping at targets: the full fields' values there, bit for bit */
+  double *bt = malloc(sizeof(double) * n * 3);
+  CHECK(ss_geodesic_fields_targets(gm, three, 3, tg, 3, bt, NULL) == SS_OK);
+  ok = 1;
+  for (int j = 0; j < 3; j++)
+    for (int t = 0; t < 3; t++) ok &= bt[tg[t] + (size_t)n * j] == bf[tg[t] + (size_t)n * j];
+  CHECK(ok);
+  CHECK(ss_geodesic_fields_targets(gm, three, 3, &bad_target, 1, bt, NULL) == SS_ERR_INVALID);
+  free(bt);
   int ps[6] = {sa, sb, sa, sc, sa, sb}, pt[6] = {sb, 3, 700, 0, sa, 779};
   double po[6];
   CHECK(ss_geodesic_pairs(gm, NULL, ps, pt, 6, po, NULL) == SS_OK);

@@ -40,7 +40,8 @@ static int same_shape(const ss_prepared_shape *a, const ss_prepared_shape *b) {
        same_bytes(g->work.F, h->work.F, 12 * (size_t)g->work.nf) && same_bytes(g->psi, h->psi, 4 * nv) &&
        same_bytes(g->phi, h->phi, 8 * wn) && same_bytes(g->crit, h->crit, 4 * m) &&
        same_bytes(g->crit_type, h->crit_type, m) && same_bytes(g->work_labels, h->work_labels, 4 * wn) &&
-       same_bytes(g->work_dist, h->work_dist, 8 * wn);
+       same_bytes(g->work_dist, h->work_dist, 8 * wn) && !a->prep.crit_fields == !b->prep.crit_fields &&
+       (!a->prep.crit_fields || same_bytes(a->prep.crit_fields, b->prep.crit_fields, 8 * wn * m));
   if (ok && a->has_signature) {
     const ss_centre_signature *s = &a->sig, *t = &b->sig;
     ok = s->m == t->m && s->nd == t->nd && s->volume_ratio == t->volume_ratio && s->orient_sign == t->orient_sign &&
@@ -118,9 +119,10 @@ static void damage_tests(const char *good, const char *dir) {
   free(longer);
   CHECK(read_bytes(path, b, n / 2, &e) == SS_ERR_PARSE); /* and never partly filled: checked by ASan (no leak) */
   /* another format version, another machine, not a prepared shape at all */
-  b[14] = '2';
-  CHECK(read_bytes(path, b, n, &e) == SS_ERR_PARSE && strstr(e.msg, "format version 2") && strstr(e.msg, "version 1"));
-  b[14] = '1';
+  CHECK(b[14] == '0' + SS_PREPARED_SHAPE_VERSION);
+  b[14] = '1'; /* version 1: before the critical points' fields */
+  CHECK(read_bytes(path, b, n, &e) == SS_ERR_PARSE && strstr(e.msg, "format version 1") && strstr(e.msg, "version 2"));
+  b[14] = '0' + SS_PREPARED_SHAPE_VERSION;
   unsigned char *c = memchr(b, 'l', key_end); /* "le" -> "be" */
   if (c && c[1] == 'e') {
     *c = 'b';
@@ -191,6 +193,33 @@ int main(void) {
   CHECK(ss_prepared_shape_read(px, &RX, &e) == SS_OK);
   CHECK_MSG(ss_prepared_shape_read(py, &RY, &e) == SS_OK, "%s", e.msg);
   CHECK(same_shape(&PX, &RX) && same_shape(&PY, &RY));
+
+  /* the critical points' fields: exact distances, so symmetric between two critical points; the
+   * pairing read from them is the one propagated from the landmarks (d(l, c) = d(c, l)) */
+  {
+    const ss_segmentation *g = &PX.prep.seg;
+    CHECK(PX.prep.crit_fields && PY.prep.crit_fields);
+    double worst = 0;
+    for (int a = 0; a < g->m; a++)
+      for (int b = 0; b < g->m; b++) {
+        double dab = PX.prep.crit_fields[g->crit[b] + (size_t)g->work.nv * a];
+        double dba = PX.prep.crit_fields[g->crit[a] + (size_t)g->work.nv * b];
+        if (a == b) CHECK(dab == 0);
+        else worst = fmax(worst, fabs(dab - dba) / dab);
+      }
+    CHECK_MSG(worst < 1e-12, "crit fields: d(a, b) and d(b, a) differ by %g relative", worst);
+    ss_shape_prep qX = PX.prep, qY = PY.prep; /* shallow copies without the fields */
+    qX.crit_fields = qY.crit_fields = NULL;
+    ss_segment_pairs f = {0}, l = {0};
+    CHECK(ss_pair_segments_prepared(&PX.prep, &PY.prep, 5, lm, lm, &o.pairing, &f, &e) == SS_OK);
+    CHECK(ss_pair_segments_prepared(&qX, &qY, 5, lm, lm, &o.pairing, &l, &e) == SS_OK);
+    CHECK(f.n == l.n && f.n >= 4 && same_bytes(f.sx, l.sx, 4 * (size_t)f.n) && same_bytes(f.sy, l.sy, 4 * (size_t)f.n));
+    for (int p = 0; p < f.n && p < l.n; p++) CHECK(fabs(f.energy[p] - l.energy[p]) <= 1e-12 * fmax(1, l.energy[p]));
+    ss_segment_pairs_free(&f), ss_segment_pairs_free(&l);
+    int bad[5] = {lm[0], lm[1], lm[2], lm[3], X.nv};
+    CHECK(ss_pair_segments_prepared(&PX.prep, &PY.prep, 5, bad, lm, &o.pairing, &f, &e) == SS_ERR_INVALID &&
+          strstr(e.msg, "out of range"));
+  }
 
   /* matching the read shapes gives what the meshes give: with landmarks and landmark-free */
   for (int nl = 5; nl >= 0; nl -= 5) {

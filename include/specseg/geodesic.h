@@ -61,6 +61,12 @@ SS_API ss_status ss_vtp_distances_targets(const ss_geodesic_mesh *gm, const int 
  * column-major) is the field of sources[j]. max_dist as in ss_vtp_distances. */
 SS_API ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
                                     double *dist, ss_error *err);
+/* The same, each field stopping as soon as every vertex of `targets` is settled (as
+ * ss_vtp_distances_targets): column j is exact at the targets (the values of the full field) and at
+ * every vertex not farther than its largest target distance; other entries are upper bounds or
+ * INFINITY. For distances from a few sources to a few targets. */
+SS_API ss_status ss_geodesic_fields_targets(const ss_geodesic_mesh *gm, const int *sources, int nsources,
+                                            const int *targets, int ntargets, double *dist, ss_error *err);
 /* ---- Landmark accelerator for target queries --------------------------------------------------
  * Exact distance fields from `nlandmarks` farthest-spread landmarks of gm. Target queries given one
  * also use the lower bound |d_L(p) - d_L(t)|, which makes a far query explore a corridor instead of

@@ -98,6 +98,11 @@ typedef struct ss_shape_prep {
   double *M;            /* nv barycentric lumped masses / area (they sum to 1) */
   double area;          /* the input's area (sum of its barycentric masses) */
   double t_segment, t_eigs; /* seconds */
+  /* Optional (NULL: not computed; ss_shape_prep_crit_fields fills it): the exact geodesic fields on
+   * the work mesh seg.work from each of the seg.m critical points, unscaled (seg.work.nv x seg.m,
+   * column-major). With them the segment pairing reads every landmark-to-centre distance instead of
+   * propagating a field from each landmark at every match (distances are symmetric). */
+  double *crit_fields;
 } ss_shape_prep;
 
 /* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs (then
@@ -107,6 +112,16 @@ typedef struct ss_shape_prep {
 SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                        ss_error *err);
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
+/* Fills p->crit_fields (above) when it is NULL: seg.m exact single-source fields on seg.work
+ * (ss_geodesic_fields, in parallel). Worth it for a shape matched more than once (specseg prepare,
+ * Python Shape); a match computes nl fields per shape otherwise. */
+SS_API ss_status ss_shape_prep_crit_fields(ss_shape_prep *p, ss_error *err);
+/* ss_pair_segments_conf of two prepared shapes: the landmark-to-centre distances are read from a
+ * shape's crit_fields when it has them (the same distances, up to rounding: d(l, c) = d(c, l)) and
+ * propagated from its landmarks otherwise. */
+SS_API ss_status ss_pair_segments_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                           const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
+                                           ss_error *err);
 /* In place: eigenpairs (kev, eigenvectors nv x kev) and masses (nv) of a shape of the given area become
  * those of the shape scaled to unit area (λ·area, φ·√area, M/area); any pointer may be NULL. What
  * ss_shape_prep_compute applies, for callers that fill an ss_shape_prep themselves (more eigenpairs of
@@ -346,7 +361,8 @@ SS_API void ss_match_result_free(ss_match_result *r);
 /* ---- Prepared shapes and their files (shape_file.c) -------------------------------------------- *
  * What a match needs from one shape, computed once (specseg prepare) and matched many times: the
  * input mesh, its ss_shape_prep (the segmentation with its streamlined work mesh, Ψ, critical
- * points, iVd labels and centre distances; K eigenpairs and masses of the input), the options they
+ * points, iVd labels and centre distances; K eigenpairs and masses of the input; the critical
+ * points' geodesic fields, so no geodesic is propagated at match time), the options they
  * were computed with and, for one-component meshes, the landmark-free pairing's centre signature.
  *
  * File format (version SS_PREPARED_SHAPE_VERSION), the design of the eval cache (util/blob.h):
@@ -354,11 +370,13 @@ SS_API void ss_match_result_free(ss_match_result *r);
  *            seg FACES NOSTREAM CLEANUP NEIGS CMCF_STEPS CMCF_DT SANITIZE sig 0|1 [AUTOPAIR OPTIONS]"
  *            (HASH: FNV-1a 64 of the mesh's nv, nf, V, F; doubles printed exactly, %.17g);
  *   line 2: "payload BYTES fnv1a64 CHECKSUM" (of line 1 followed by the payload);
- *   then the raw native arrays: mesh, eigenpairs, masses, segmentation, signature.
+ *   then the raw native arrays: mesh, proxy flag, prep (eigenpairs, masses, segmentation, the
+ *   critical points' geodesic fields), [proxy mesh, to_proxy, proxy_src, proxy prep], signature
+ *   (version 2; version 1 had neither fields nor proxies).
  * A file of another format version, byte order or type sizes, cut short, longer, with any byte
  * changed (checksum) or with contents out of range is refused with SS_ERR_PARSE and the reason; it is
  * never used partly. */
-#define SS_PREPARED_SHAPE_VERSION 1
+#define SS_PREPARED_SHAPE_VERSION 2
 
 typedef struct ss_prepared_shape {
   ss_mesh mesh;                 /* the input mesh (owned) */
@@ -366,8 +384,21 @@ typedef struct ss_prepared_shape {
   ss_segment_options seg;       /* the options prep.seg was computed with */
   int has_signature;            /* 1: sig holds the centre signature, computed with `autopair` */
   ss_autopair_options autopair;
-  ss_centre_signature sig;      /* sig.prep points to `prep` */
+  ss_centre_signature sig;      /* sig.prep points to the matched prep (ss_prepared_shape_matched) */
+  /* A mesh above 100,000 vertices (closed, manifold, consistently oriented) is matched through a
+   * coarse proxy of about 40,000 faces, as ss_match_warn matches it from the mesh: then has_proxy is
+   * 1, `prep` holds the input's own segmentation only (what `segment` reports; kev 0, no spectrum)
+   * and the match uses proxy_prep, computed on `proxy`; maps and centres are lifted back through
+   * to_proxy / proxy_src. */
+  int has_proxy;
+  ss_mesh proxy;                /* the coarse mesh (owned); proxy_prep.mesh points to it */
+  int *to_proxy;                /* mesh.nv: input vertex -> proxy vertex */
+  int *proxy_src;               /* proxy.nv: proxy vertex -> the input vertex it was */
+  ss_shape_prep proxy_prep;
 } ss_prepared_shape;
+
+/* The ss_shape_prep a match of s uses: &s->proxy_prep with a proxy, else &s->prep. */
+SS_API const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s);
 
 /* Prepares one shape.
  *  m: the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face or
@@ -377,7 +408,10 @@ typedef struct ss_prepared_shape {
  *  autopair: options of the landmark-free pairing's centre signature (NULL: none computed); it is
  *     computed only for a mesh of one component (the landmark-free match of several keeps the
  *     largest one and prepares that).
- * out: filled (ss_prepared_shape_free); zeroed on failure. */
+ * out: filled (ss_prepared_shape_free); zeroed on failure. Every shape also gets its critical
+ * points' geodesic fields (ss_shape_prep_crit_fields); a very large one its proxy (above).
+ * Cost: ss_shape_prep_compute's plus m (8 on FAUST) geodesic fields; with a proxy, ss_segment of the
+ * input plus ss_shape_prep_compute of the proxy. */
 SS_API ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev,
                                            const ss_autopair_options *autopair, ss_prepared_shape *out, ss_error *err);
 /* Writes s to path (the format above; through a temporary file renamed into place). */

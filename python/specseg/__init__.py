@@ -769,10 +769,13 @@ class Shape:
         self._check()
         return self._s.mesh.nv
 
+    def _matched(self):  # the spectrum a match uses: the proxy's for a very large mesh
+        return self._s.proxy_prep if self._s.has_proxy else self._s.prep
+
     @property
     def k(self):
         self._check()
-        return self._s.prep.kev
+        return self._matched().kev
 
     @property
     def V(self):
@@ -797,12 +800,20 @@ class Shape:
     @property
     def eigenvalues(self):
         self._check()
-        return _clib.copy_array(self._s.prep.evals, self._s.prep.kev, np.float64)
+        p = self._matched()  # of the proxy, for a mesh matched through one (has_proxy)
+        return _clib.copy_array(p.evals, p.kev, np.float64)
 
     @property
     def has_signature(self):
         self._check()
         return bool(self._s.has_signature)
+
+    @property
+    def has_proxy(self):
+        """True for a very large mesh (above 100,000 vertices) matched through a coarse proxy, as
+        `match` matches its mesh; `labels` / `centers` stay the mesh's own segmentation."""
+        self._check()
+        return bool(self._s.has_proxy)
 
     def __repr__(self):
         if not self._live:

@@ -154,7 +154,8 @@ class ss_match_result(C.Structure):
 class ss_shape_prep(C.Structure):
     _fields_ = [("mesh", C.POINTER(ss_mesh)), ("seg", ss_segmentation), ("kev", C.c_int),
                 ("evals", C.POINTER(C.c_double)), ("evecs", C.POINTER(C.c_double)), ("M", C.POINTER(C.c_double)),
-                ("area", C.c_double), ("t_segment", C.c_double), ("t_eigs", C.c_double)]
+                ("area", C.c_double), ("t_segment", C.c_double), ("t_eigs", C.c_double),
+                ("crit_fields", C.POINTER(C.c_double))]
 
 
 class ss_centre_signature(C.Structure):
@@ -166,7 +167,9 @@ class ss_centre_signature(C.Structure):
 
 class ss_prepared_shape(C.Structure):
     _fields_ = [("mesh", ss_mesh), ("prep", ss_shape_prep), ("seg", ss_segment_options), ("has_signature", C.c_int),
-                ("autopair", ss_autopair_options), ("sig", ss_centre_signature)]
+                ("autopair", ss_autopair_options), ("sig", ss_centre_signature), ("has_proxy", C.c_int),
+                ("proxy", ss_mesh), ("to_proxy", C.POINTER(C.c_int)), ("proxy_src", C.POINTER(C.c_int)),
+                ("proxy_prep", ss_shape_prep)]
 
 
 class ss_render_options(C.Structure):

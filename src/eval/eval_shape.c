@@ -67,7 +67,7 @@ static ss_status landmark_fields(ev_shape *s, const ev_context *ctx, ss_error *e
   ss_geodesic_mesh *gm = NULL;
   ss_status st = F ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "eval: out of memory");
   if (!st) st = ss_geodesic_mesh_build(w, &gm, err);
-  if (!st) st = ss_geodesic_fields(gm, src, 3 * EV_NL, 0, F, err);
+  if (!st) st = ss_geodesic_fields_targets(gm, src, 3 * EV_NL, seg->crit, seg->m, F, err); /* needed there only */
   if (!st) {
     double scale = 1.0 / sqrt(ss_mesh_area(w));
     for (int set = 0; set < 3 && !st; set++) {

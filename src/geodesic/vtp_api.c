@@ -27,13 +27,16 @@ ss_status ss_vtp_distances_targets(const ss_geodesic_mesh *gm, const int *source
   return st;
 }
 
-ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
-                             double *dist, ss_error *err) {
-  if (!gm || nsources < 0 || (nsources > 0 && (!sources || !dist)))
+static ss_status fields(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
+                        const int *targets, int ntargets, double *dist, ss_error *err) {
+  if (!gm || nsources < 0 || (nsources > 0 && (!sources || !dist)) || ntargets < 0 || (ntargets > 0 && !targets))
     return ss_fail(err, SS_ERR_INVALID, "invalid arguments to ss_geodesic_fields");
   for (int i = 0; i < nsources; i++)
     if (sources[i] < 0 || sources[i] >= gm->nv)
       return ss_fail(err, SS_ERR_INVALID, "source vertex %d outside [0,%d)", sources[i], gm->nv);
+  for (int i = 0; i < ntargets; i++)
+    if (targets[i] < 0 || targets[i] >= gm->nv)
+      return ss_fail(err, SS_ERR_INVALID, "target vertex %d outside [0,%d)", targets[i], gm->nv);
   int failed = 0;
 #pragma omp parallel
   {
@@ -45,7 +48,7 @@ ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int
 #pragma omp for schedule(dynamic, 1)
     for (int j = 0; j < nsources; j++) {
       if (!ws) continue;
-      if (ssi_vtp_run(gm, ws, sources + j, 1, max_dist, NULL, 0, dist + (size_t)j * gm->nv, NULL, NULL)) {
+      if (ssi_vtp_run(gm, ws, sources + j, 1, max_dist, targets, ntargets, dist + (size_t)j * gm->nv, NULL, NULL)) {
 #pragma omp atomic write
         failed = 1;
       }
@@ -54,6 +57,16 @@ ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int
   }
   if (failed) return ss_fail(err, SS_ERR_NOMEM, "out of memory computing geodesic fields");
   return SS_OK;
+}
+
+ss_status ss_geodesic_fields(const ss_geodesic_mesh *gm, const int *sources, int nsources, double max_dist,
+                             double *dist, ss_error *err) {
+  return fields(gm, sources, nsources, max_dist, NULL, 0, dist, err);
+}
+
+ss_status ss_geodesic_fields_targets(const ss_geodesic_mesh *gm, const int *sources, int nsources, const int *targets,
+                                     int ntargets, double *dist, ss_error *err) {
+  return fields(gm, sources, nsources, 0, targets, ntargets, dist, err);
 }
 
 ss_status ss_geodesic_distances(const ss_mesh *m, ss_geodesic_method method, const int *sources, int nsources,

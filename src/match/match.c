@@ -6,7 +6,7 @@
 #include "mesh/mesh_topology.h"
 #include "specseg/streamline.h"
 #include "fmap/fmap_options.h"
-#include "streamline/decimate.h"
+#include "match/proxy.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -204,7 +204,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   double t0 = ss_time();
   if (pairs_in) {
     if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
-  } else if ((st = ss_pair_segments_conf(&X->seg, &Y->seg, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  } else if ((st = ss_pair_segments_prepared(X, Y, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -550,67 +550,6 @@ ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, c
   return ss_match_warn(X, Y, nl, lmX, lmY, opts_in, out, NULL, 0, err);
 }
 
-/* ---- coarse proxies of very large meshes ------------------------------------------------------
- * A mesh above SSI_COARSEN_ABOVE_NV vertices is decimated to SSI_MATCH_PROXY_FACES faces (closed, manifold,
- * oriented meshes only; others are matched as they are) and the whole match (segmentation, spectrum,
- * functional map, refinement) runs on the proxies: vertex i of X maps through its coarse vertex to a
- * coarse vertex of Y, i.e. the input vertex of Y it was. Landmarks move to their coarse vertices. */
-typedef struct {
-  int active;
-  ss_mesh coarse;
-  int *to_coarse; /* input vertex -> coarse vertex */
-  int *src;       /* coarse vertex -> input vertex */
-} proxy;
-
-static void proxy_free(proxy *p) {
-  ss_mesh_free(&p->coarse);
-  free(p->to_coarse);
-  free(p->src);
-  memset(p, 0, sizeof *p);
-}
-
-static ss_status proxy_make(const ss_mesh *m, int nl, int *lm, proxy *p, ss_error *err) {
-  memset(p, 0, sizeof *p);
-  if (m->nv <= SSI_COARSEN_ABOVE_NV || m->nf <= SSI_MATCH_PROXY_FACES) return SS_OK;
-  p->to_coarse = malloc(sizeof(int) * (size_t)m->nv);
-  if (!p->to_coarse) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-  ss_error e2 = {0};
-  ss_status st = ssi_decimate(m, SSI_MATCH_PROXY_FACES, &p->coarse, p->to_coarse, &p->src, &e2);
-  if (st == SS_ERR_NOMEM) {
-    proxy_free(p);
-    return ss_fail(err, st, "%s", e2.msg);
-  }
-  int ok = st == SS_OK;
-  for (int i = 0; ok && i < m->nv; i++) ok = p->to_coarse[i] >= 0;
-  if (!ok) { /* open, non-manifold or with loose vertices: matched as it is */
-    proxy_free(p);
-    return SS_OK;
-  }
-  for (int i = 0; i < nl; i++) lm[i] = p->to_coarse[lm[i]];
-  p->active = 1;
-  return SS_OK;
-}
-
-/* out (on the proxies) -> on the meshes the proxies stand for (X has nX vertices). */
-static ss_status proxy_lift(const proxy *cx, const proxy *cy, const ss_mesh *X, ss_match_result *out, ss_error *err) {
-  if (!cx->active && !cy->active) return SS_OK;
-  if (cx->active) {
-    int *map = malloc(sizeof(int) * (size_t)X->nv);
-    if (!map) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-    for (int i = 0; i < X->nv; i++) map[i] = out->map[cx->to_coarse[i]];
-    free(out->map);
-    out->map = map;
-    out->nX = X->nv;
-  }
-  if (cy->active)
-    for (int i = 0; i < out->nX; i++) out->map[i] = cy->src[out->map[i]];
-  for (int q = 0; q < out->pairs.n; q++) {
-    if (cx->active) out->centerX[q] = cx->src[out->centerX[q]];
-    if (cy->active) out->centerY[q] = cy->src[out->centerY[q]];
-  }
-  return SS_OK;
-}
-
 ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                         const ss_match_options *opts_in, ss_match_result *out, char *warnings, size_t warnings_size,
                         ss_error *err) {
@@ -640,7 +579,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   int *lx = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1)), *ly = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1));
   double *dX = NULL, *dY = NULL; /* the caller's descriptors on the kept vertices */
   ss_shape_prep pX = {0}, pY = {0};
-  proxy cx = {0}, cy = {0};
+  ssi_proxy cx = {0}, cy = {0};
   int have_x = 0, have_y = 0;
   if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   if (o.ndescr > 0 && o.descrX && o.descrY) {
@@ -663,7 +602,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   const ss_mesh *FX = PX, *FY = PY;
   /* (not with the caller's descriptors: their rows are the mesh's vertices, not the proxy's) */
   if (!(o.ndescr > 0 && o.descrX && o.descrY) &&
-      ((st = proxy_make(PX, nl, lx, &cx, err)) || (st = proxy_make(PY, nl, ly, &cy, err))))
+      ((st = ssi_proxy_make(PX, nl, lx, &cx, err)) || (st = ssi_proxy_make(PY, nl, ly, &cy, err))))
     goto done;
   if (cx.active) PX = &cx.coarse;
   if (cy.active) PY = &cy.coarse;
@@ -683,7 +622,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
     }
   }
   if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
-  if ((st = proxy_lift(&cx, &cy, FX, out, err))) goto done;
+  if ((st = ssi_proxy_lift(&cx, &cy, FX->nv, out, err))) goto done;
   PX = FX, PY = FY;
   if (kx.active || ky.active) { /* back to the input meshes' vertices */
     int *map = malloc(sizeof(int) * (size_t)X->nv);
@@ -727,8 +666,8 @@ done:
   free(dY);
   kept_free(&kx);
   kept_free(&ky);
-  proxy_free(&cx);
-  proxy_free(&cy);
+  ssi_proxy_free(&cx);
+  ssi_proxy_free(&cy);
   return st;
 }
 

@@ -2,6 +2,7 @@
  * meshes: what ss_match_warn does before ss_match_prepared (landmark checks, the components it keeps,
  * the eigenpairs it computes) is checked here against what the shapes carry. See match.h. */
 #include "specseg/match.h"
+#include "match/proxy.h"
 #include "mesh/mesh_topology.h"
 
 #include <stdio.h>
@@ -52,7 +53,9 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
   else ss_match_default_options(&o);
   const ss_prepared_shape *S[2] = {X, Y};
   for (int s = 0; s < 2; s++)
-    if (!S[s] || !S[s]->mesh.V || !S[s]->prep.evecs || !S[s]->prep.seg.centers || S[s]->prep.seg.nv != S[s]->mesh.nv)
+    if (!S[s] || !S[s]->mesh.V || !ss_prepared_shape_matched(S[s])->evecs || !S[s]->prep.seg.centers ||
+        S[s]->prep.seg.nv != S[s]->mesh.nv || (S[s]->has_proxy && (!S[s]->to_proxy || !S[s]->proxy_src ||
+                                                                   S[s]->proxy_prep.seg.nv != S[s]->proxy.nv)))
       return ss_fail(err, SS_ERR_INVALID, "match: %s: not a prepared shape", NAME[s]);
   if (nl < 0 || (nl > 0 && (!lmX || !lmY))) return ss_fail(err, SS_ERR_INVALID, "match: bad landmarks");
   for (int i = 0; i < nl; i++) {
@@ -65,49 +68,74 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
   for (int s = 0; s < 2; s++)
     if ((whole[s] = keeps_whole(&S[s]->mesh, nl, s ? lmY : lmX)) < 0)
       return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-  if (!whole[0] || !whole[1]) {
-    /* ss_match_warn matches a part of the mesh (the components with landmarks; landmark-free the
-     * largest): that part is prepared again, as from the meshes */
+  /* ss_match_warn matches a part of the mesh (the components with landmarks; landmark-free the
+   * largest), or a proxied mesh at full size with the caller's descriptors (their rows are the
+   * mesh's): then that is done from the meshes, as ss_match_warn does it */
+  const int descr = o.ndescr > 0 && o.descrX && o.descrY;
+  if (!whole[0] || !whole[1] || (descr && (X->has_proxy || Y->has_proxy))) {
     if (!same_seg(&X->seg, &Y->seg))
       return ss_fail(err, SS_ERR_INVALID,
-                     "match: the shapes were prepared with different segmentation options, and %s has components "
-                     "the match drops (it prepares the kept ones again): prepare both with the same options",
-                     NAME[whole[0] ? 1 : 0]);
+                     "match: the shapes were prepared with different segmentation options, and %s is matched from "
+                     "its mesh here (%s): prepare both with the same options",
+                     NAME[!whole[0] || (descr && X->has_proxy) ? 0 : 1],
+                     !whole[0] || !whole[1] ? "the match drops components" : "the descriptors are the mesh's");
     o.seg = X->seg;
     ss_status st = ss_match_warn(&X->mesh, &Y->mesh, nl, lmX, lmY, &o, out, warnings, warnings_size, err);
     if (!st && warnings && warnings_size) {
+      const int fx = !whole[0] || (descr && X->has_proxy), fy = !whole[1] || (descr && Y->has_proxy);
       size_t n = strlen(warnings);
-      snprintf(warnings + n, warnings_size - n, "%s%s%s%s: prepared data not used (the kept components were prepared "
-               "again)", n ? "; " : "", !whole[0] ? "X" : "", !whole[0] && !whole[1] ? " and " : "", !whole[1] ? "Y" : "");
+      snprintf(warnings + n, warnings_size - n, "%s%s%s%s: prepared data not used (%s)", n ? "; " : "",
+               fx ? "X" : "", fx && fy ? " and " : "", fy ? "Y" : "",
+               !whole[0] || !whole[1] ? "the kept components were prepared again" : "matched at full size with the "
+                                                                                     "descriptors");
     }
     return st;
   }
+  const ss_shape_prep *P[2] = {ss_prepared_shape_matched(X), ss_prepared_shape_matched(Y)};
   const int need = ss_match_eigenpairs(&o, nl);
   for (int s = 0; s < 2; s++)
-    if (S[s]->prep.kev < need)
+    if (P[s]->kev < need)
       return ss_fail(err, SS_ERR_INVALID,
                      "match: %s was prepared with %d eigenpairs but this match needs %d (k %d, ZoomOut %d, "
                      "descriptors %d%s): prepare it with at least %d",
-                     NAME[s], S[s]->prep.kev, need, o.fmap.k, o.refine != SS_REFINE_NONE ? o.fmap.zoomout_kmax : 0,
+                     NAME[s], P[s]->kev, need, o.fmap.k, o.refine != SS_REFINE_NONE ? o.fmap.zoomout_kmax : 0,
                      o.fmap.descr_k, nl == 0 ? ", landmark-free pairing" : "", need);
+  /* landmarks on the matched meshes (the proxies' vertices where there are proxies) */
+  int *lm = malloc(sizeof(int) * (size_t)(2 * nl > 0 ? 2 * nl : 1));
+  if (!lm) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  for (int i = 0; i < nl; i++) {
+    lm[i] = X->has_proxy ? X->to_proxy[lmX[i]] : lmX[i];
+    lm[nl + i] = Y->has_proxy ? Y->to_proxy[lmY[i]] : lmY[i];
+  }
   for (int i = 0; i < 2 * nl; i++) { /* a landmark on a crumb has no place on the segmentation */
-    const ss_prepared_shape *p = i < nl ? X : Y;
-    int v = i < nl ? lmX[i] : lmY[i - nl];
-    if (p->prep.seg.psi && p->prep.seg.psi[v] < 0)
+    const ss_shape_prep *p = P[i < nl ? 0 : 1];
+    if (p->seg.psi && p->seg.psi[lm[i]] < 0) {
+      free(lm);
       return ss_fail(err, SS_ERR_INVALID,
                      "match: %s: landmark %d (vertex %d) is on no segmented part of the shape (a component under 1%% "
                      "of the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
-                     i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, v);
+                     i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, i < nl ? lmX[i] : lmY[i - nl]);
+    }
   }
   /* the shapes as ss_match_prepared takes them, pointing into X and Y (which may have been copied);
    * no segmentation or eigensolve happens in this call */
-  ss_shape_prep px = X->prep, py = Y->prep;
-  px.mesh = &X->mesh, py.mesh = &Y->mesh;
+  ss_shape_prep px = *P[0], py = *P[1];
+  px.mesh = X->has_proxy ? &X->proxy : &X->mesh, py.mesh = Y->has_proxy ? &Y->proxy : &Y->mesh;
   px.t_segment = px.t_eigs = py.t_segment = py.t_eigs = 0;
-  if (nl > 0) return ss_match_prepared(&px, &py, nl, lmX, lmY, &o, out, err);
-  ss_centre_signature sx = X->sig, sy = Y->sig;
-  sx.prep = &px, sy.prep = &py;
-  const int use_x = X->has_signature && same_autopair(&X->autopair, &o.autopair);
-  const int use_y = Y->has_signature && same_autopair(&Y->autopair, &o.autopair);
-  return ss_match_prepared_auto(&px, &py, use_x ? &sx : NULL, use_y ? &sy : NULL, &o, out, err);
+  ss_status st;
+  if (nl > 0) st = ss_match_prepared(&px, &py, nl, lm, lm + nl, &o, out, err);
+  else {
+    ss_centre_signature sx = X->sig, sy = Y->sig;
+    sx.prep = &px, sy.prep = &py;
+    const int use_x = X->has_signature && same_autopair(&X->autopair, &o.autopair);
+    const int use_y = Y->has_signature && same_autopair(&Y->autopair, &o.autopair);
+    st = ss_match_prepared_auto(&px, &py, use_x ? &sx : NULL, use_y ? &sy : NULL, &o, out, err);
+  }
+  free(lm);
+  /* back to the input meshes' vertices (views of the stored proxies, not owned) */
+  const ssi_proxy vx = {X->has_proxy, X->proxy, X->to_proxy, X->proxy_src},
+                  vy = {Y->has_proxy, Y->proxy, Y->to_proxy, Y->proxy_src};
+  if (!st) st = ssi_proxy_lift(&vx, &vy, X->mesh.nv, out, err);
+  if (st) ss_match_result_free(out);
+  return st;
 }

@@ -121,14 +121,16 @@ ss_status ss_pair_critical_points_conf(int mx, int my, int nl, const double *dX,
 }
 
 /* Scaled distances from the nl landmarks (work vertices) to the m critical points of one shape:
- * d (m x nl). One full exact field per landmark, the landmarks in parallel. */
-static ss_status landmark_fields(const ss_segmentation *s, int nl, const int *lm_input, double *d, ss_error *err) {
+ * d (m x nl). Read from crit_fields (the critical points' own fields, work nv x m) when given;
+ * otherwise one full exact field per landmark, the landmarks in parallel. */
+static ss_status landmark_fields(const ss_segmentation *s, const double *crit_fields, int nl, const int *lm_input,
+                                 double *d, ss_error *err) {
   const ss_mesh *w = &s->work;
   int *src = malloc(sizeof(int) * (size_t)nl);
-  double *field = malloc(sizeof(double) * (size_t)w->nv * nl);
+  double *field = crit_fields ? NULL : malloc(sizeof(double) * (size_t)w->nv * nl);
   ss_geodesic_mesh *gm = NULL;
   ss_status st = SS_OK;
-  if (!src || !field) {
+  if (!src || (!crit_fields && !field)) {
     st = ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
     goto done;
   }
@@ -146,9 +148,15 @@ static ss_status landmark_fields(const ss_segmentation *s, int nl, const int *lm
       goto done;
     }
   }
-  if ((st = ss_geodesic_mesh_build(w, &gm, err))) goto done;
-  if ((st = ss_geodesic_fields(gm, src, nl, 0.0, field, err))) goto done;
   double scale = 1.0 / sqrt(ss_mesh_area(w));
+  if (crit_fields) {
+    for (int i = 0; i < nl; i++)
+      for (int c = 0; c < s->m; c++) d[c + (size_t)s->m * i] = crit_fields[src[i] + (size_t)w->nv * c] * scale;
+    goto done;
+  }
+  if ((st = ss_geodesic_mesh_build(w, &gm, err))) goto done;
+  /* the fields are needed at the critical points only: each stops once they are settled */
+  if ((st = ss_geodesic_fields_targets(gm, src, nl, s->crit, s->m, field, err))) goto done;
   for (int i = 0; i < nl; i++)
     for (int c = 0; c < s->m; c++) d[c + (size_t)s->m * i] = field[s->crit[c] + (size_t)w->nv * i] * scale;
 done:
@@ -163,8 +171,9 @@ ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, i
   return ss_pair_segments_conf(X, Y, nl, lmX, lmY, NULL, out, err);
 }
 
-ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
-                                const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err) {
+static ss_status pair_segments_fields(const ss_segmentation *X, const double *fX, const ss_segmentation *Y,
+                                     const double *fY, int nl, const int *lmX, const int *lmY,
+                                     const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "pairing: NULL output");
   memset(out, 0, sizeof *out);
   if (!X || !Y || !X->psi || !Y->psi || !X->crit || !Y->crit || X->m < 1 || Y->m < 1)
@@ -173,10 +182,25 @@ ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmentation 
   double *dX = malloc(sizeof(double) * (size_t)X->m * nl), *dY = malloc(sizeof(double) * (size_t)Y->m * nl);
   ss_status st = SS_OK;
   if (!dX || !dY) st = ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
-  if (!st) st = landmark_fields(X, nl, lmX, dX, err);
-  if (!st) st = landmark_fields(Y, nl, lmY, dY, err);
+  if (!st) st = landmark_fields(X, fX, nl, lmX, dX, err);
+  if (!st) st = landmark_fields(Y, fY, nl, lmY, dY, err);
   if (!st) st = ss_pair_critical_points_conf(X->m, Y->m, nl, dX, dY, po, out, err);
   free(dX);
   free(dY);
   return st;
+}
+
+ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
+                                const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err) {
+  return pair_segments_fields(X, NULL, Y, NULL, nl, lmX, lmY, po, out, err);
+}
+
+ss_status ss_pair_segments_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                    const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
+                                    ss_error *err) {
+  if (!X || !Y) {
+    if (out) memset(out, 0, sizeof *out);
+    return ss_fail(err, SS_ERR_INVALID, "pairing: NULL shape");
+  }
+  return pair_segments_fields(&X->seg, X->crit_fields, &Y->seg, Y->crit_fields, nl, lmX, lmY, po, out, err);
 }

@@ -3,6 +3,7 @@
  * (util/blob.h: the eval cache's format). See match.h. */
 #include "specseg/match.h"
 #include "mesh/mesh_topology.h"
+#include "match/proxy.h"
 #include "util/blob.h"
 
 #include <errno.h>
@@ -18,6 +19,10 @@ void ss_prepared_shape_free(ss_prepared_shape *s) {
   if (!s) return;
   ss_centre_signature_free(&s->sig);
   ss_shape_prep_free(&s->prep);
+  ss_shape_prep_free(&s->proxy_prep);
+  ss_mesh_free(&s->proxy);
+  free(s->to_proxy);
+  free(s->proxy_src);
   ss_mesh_free(&s->mesh);
   memset(s, 0, sizeof *s);
 }
@@ -34,7 +39,27 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
   if (seg_opts) out->seg = *seg_opts;
   else ss_segment_default_options(&out->seg);
   ss_status st = ss_mesh_copy(m, &out->mesh, err);
-  if (!st) st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
+  ssi_proxy px = {0};
+  if (!st) st = ssi_proxy_make(&out->mesh, 0, NULL, &px, err);
+  if (!st && px.active) {
+    /* matched through its proxy, as ss_match_warn matches it; the input keeps its own segmentation */
+    out->has_proxy = 1;
+    out->proxy = px.coarse, out->to_proxy = px.to_coarse, out->proxy_src = px.src;
+    memset(&px, 0, sizeof px);
+    st = ss_shape_prep_compute(&out->proxy, &out->seg, kev, &out->proxy_prep, err);
+    if (!st) {
+      double t0 = ss_time();
+      out->prep.mesh = &out->mesh;
+      out->prep.area = ss_mesh_area(&out->mesh);
+      st = ss_segment(&out->mesh, &out->seg, &out->prep.seg, err);
+      out->prep.t_segment = ss_time() - t0;
+    }
+  } else if (!st) {
+    st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
+  }
+  ssi_proxy_free(&px);
+  ss_shape_prep *mp = out->has_proxy ? &out->proxy_prep : &out->prep; /* what a match uses */
+  if (!st) st = ss_shape_prep_crit_fields(mp, err); /* the landmark pairing's distances, once */
   if (!st && autopair) {
     int *comp = malloc(sizeof(int) * (size_t)out->mesh.nv);
     int nc = comp ? ssi_mesh_components(&out->mesh, comp) : -1;
@@ -42,7 +67,7 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
     if (nc < 0) st = ss_fail(err, SS_ERR_NOMEM, "prepare: out of memory");
     else if (nc == 1) {
       out->autopair = *autopair;
-      if (!(st = ss_centre_signature_compute(&out->prep, autopair, &out->sig, err))) out->has_signature = 1;
+      if (!(st = ss_centre_signature_compute(mp, autopair, &out->sig, err))) out->has_signature = 1;
     }
   }
   if (st) {
@@ -50,6 +75,10 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
     return st;
   }
   return SS_OK;
+}
+
+const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s) {
+  return s ? (s->has_proxy ? &s->proxy_prep : &s->prep) : NULL;
 }
 
 /* ---- the file ---------------------------------------------------------------------------------- */
@@ -61,7 +90,7 @@ static void make_key(const ss_prepared_shape *s, char *key, size_t n) {
                      TAG " %d %s int%d double%d lib %d.%d.%d mesh %d %d %016llx kev %d seg %d %d %d %d %d %.17g %d sig %d",
                      SS_PREPARED_SHAPE_VERSION, ssi_byte_order(), (int)sizeof(int), (int)sizeof(double),
                      SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, s->mesh.nv, s->mesh.nf,
-                     (unsigned long long)ssi_mesh_hash(&s->mesh), s->prep.kev, o->target_faces, o->no_streamline,
+                     (unsigned long long)ssi_mesh_hash(&s->mesh), ss_prepared_shape_matched(s)->kev, o->target_faces, o->no_streamline,
                      o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt, o->sanitize, s->has_signature ? 1 : 0);
   if (s->has_signature && len > 0 && (size_t)len < n)
     len += snprintf(key + len, n - (size_t)len, " autopair %d %d %.17g %.17g %.17g %.17g %d %d %d %.17g %.17g",
@@ -92,40 +121,61 @@ static int get_arr(ssi_blob *b, void *pp, size_t count, size_t size, int may_nul
   return 1;
 }
 
+/* one ss_shape_prep (its mesh apart): spectrum (absent when kev is 0), masses, segmentation,
+ * critical points' fields */
+static void put_prep(ssi_blob *b, const ss_shape_prep *p, size_t nv) {
+  const ss_segmentation *g = &p->seg;
+  const size_t kev = (size_t)p->kev, gm = (size_t)g->m, wn = (size_t)g->work.nv;
+  SSI_PUT(b, &p->kev, 1);
+  put_arr(b, p->evals, kev, sizeof(double)), put_arr(b, p->evecs, nv * kev, sizeof(double));
+  put_arr(b, p->M, nv, sizeof(double));
+  SSI_PUT(b, &p->area, 1), SSI_PUT(b, &p->t_segment, 1), SSI_PUT(b, &p->t_eigs, 1);
+  SSI_PUT(b, &g->nv, 1), SSI_PUT(b, &g->m, 1), SSI_PUT(b, &g->empty_segments, 1), SSI_PUT(b, &g->ncrit_raw, 1);
+  SSI_PUT(b, &g->lambda2, 1);
+  put_arr(b, g->labels, nv, sizeof(int)), put_arr(b, g->centers, gm, sizeof(int));
+  SSI_PUT(b, &g->work.nv, 1), SSI_PUT(b, &g->work.nf, 1);
+  put_arr(b, g->work.V, 3 * wn, sizeof(double)), put_arr(b, g->work.F, 3 * (size_t)g->work.nf, sizeof(int));
+  put_arr(b, g->psi, nv, sizeof(int)), put_arr(b, g->phi, wn, sizeof(double));
+  put_arr(b, g->crit, gm, sizeof(int)), put_arr(b, g->crit_type, gm, 1);
+  put_arr(b, g->work_labels, wn, sizeof(int)), put_arr(b, g->work_dist, wn, sizeof(double));
+  const double t[8] = {g->t_read, g->t_smooth, g->t_remesh, g->t_psi, g->t_spectrum, g->t_critical, g->t_ivd, g->t_total};
+  SSI_PUT(b, t, 8);
+  put_arr(b, p->crit_fields, wn * gm, sizeof(double));
+}
+
+static void put_mesh(ssi_blob *b, const ss_mesh *m) {
+  SSI_PUT(b, &m->nv, 1), SSI_PUT(b, &m->nf, 1);
+  put_arr(b, m->V, 3 * (size_t)m->nv, sizeof(double)), put_arr(b, m->F, 3 * (size_t)m->nf, sizeof(int));
+}
+
 ss_status ss_prepared_shape_write(const char *path, const ss_prepared_shape *s, ss_error *err) {
   if (!path || !s) return ss_fail(err, SS_ERR_INVALID, "prepare: NULL argument");
   const ss_mesh *m = &s->mesh;
-  const ss_shape_prep *p = &s->prep;
+  const ss_shape_prep *p = &s->prep, *mp = ss_prepared_shape_matched(s);
   const ss_segmentation *g = &p->seg;
-  if (!m->V || !m->F || m->nv < 1 || !p->evals || !p->evecs || !p->M || p->kev < 1 || !g->labels || !g->centers ||
-      g->nv != m->nv || g->m < 1)
+  if (!m->V || !m->F || m->nv < 1 || !mp->evals || !mp->evecs || !mp->M || mp->kev < 1 || !g->labels || !g->centers ||
+      g->nv != m->nv || g->m < 1 || (s->has_proxy && (!s->proxy.V || !s->to_proxy || !s->proxy_src || !mp->seg.labels ||
+                                                      mp->seg.nv != s->proxy.nv)))
     return ss_fail(err, SS_ERR_INVALID, "prepare: %s: the shape is not prepared", path);
-  const size_t nv = (size_t)m->nv, kev = (size_t)p->kev, gm = (size_t)g->m, wn = (size_t)g->work.nv;
+  const size_t nv = (size_t)m->nv;
   char key[SSI_BLOB_MAX_KEY];
   make_key(s, key, sizeof key);
   ssi_blob b = {0};
-  SSI_PUT(&b, &m->nv, 1), SSI_PUT(&b, &m->nf, 1);
-  put_arr(&b, m->V, 3 * nv, sizeof(double)), put_arr(&b, m->F, 3 * (size_t)m->nf, sizeof(int));
-  SSI_PUT(&b, &p->kev, 1);
-  put_arr(&b, p->evals, kev, sizeof(double)), put_arr(&b, p->evecs, nv * kev, sizeof(double));
-  put_arr(&b, p->M, nv, sizeof(double));
-  SSI_PUT(&b, &p->area, 1), SSI_PUT(&b, &p->t_segment, 1), SSI_PUT(&b, &p->t_eigs, 1);
-  SSI_PUT(&b, &g->nv, 1), SSI_PUT(&b, &g->m, 1), SSI_PUT(&b, &g->empty_segments, 1), SSI_PUT(&b, &g->ncrit_raw, 1);
-  SSI_PUT(&b, &g->lambda2, 1);
-  put_arr(&b, g->labels, nv, sizeof(int)), put_arr(&b, g->centers, gm, sizeof(int));
-  SSI_PUT(&b, &g->work.nv, 1), SSI_PUT(&b, &g->work.nf, 1);
-  put_arr(&b, g->work.V, 3 * wn, sizeof(double)), put_arr(&b, g->work.F, 3 * (size_t)g->work.nf, sizeof(int));
-  put_arr(&b, g->psi, nv, sizeof(int)), put_arr(&b, g->phi, wn, sizeof(double));
-  put_arr(&b, g->crit, gm, sizeof(int)), put_arr(&b, g->crit_type, gm, 1);
-  put_arr(&b, g->work_labels, wn, sizeof(int)), put_arr(&b, g->work_dist, wn, sizeof(double));
-  const double t[8] = {g->t_read, g->t_smooth, g->t_remesh, g->t_psi, g->t_spectrum, g->t_critical, g->t_ivd, g->t_total};
-  SSI_PUT(&b, t, 8);
+  put_mesh(&b, m);
+  SSI_PUT(&b, &s->has_proxy, 1);
+  put_prep(&b, p, nv);
+  if (s->has_proxy) {
+    put_mesh(&b, &s->proxy);
+    put_arr(&b, s->to_proxy, nv, sizeof(int)), put_arr(&b, s->proxy_src, (size_t)s->proxy.nv, sizeof(int));
+    put_prep(&b, &s->proxy_prep, (size_t)s->proxy.nv);
+  }
   if (s->has_signature) {
     const ss_centre_signature *c = &s->sig;
+    const size_t mv = (size_t)mp->seg.nv;
     SSI_PUT(&b, &c->m, 1), SSI_PUT(&b, &c->nd, 1);
     SSI_PUT(&b, &c->volume_ratio, 1), SSI_PUT(&b, &c->orient_sign, 1), SSI_PUT(&b, &c->sigma_score, 1);
     put_arr(&b, c->centers, (size_t)c->m, sizeof(int)), put_arr(&b, c->descr, (size_t)c->m * c->nd, sizeof(double));
-    put_arr(&b, c->D, (size_t)c->m * c->m, sizeof(double)), put_arr(&b, c->normals, 3 * nv, sizeof(double));
+    put_arr(&b, c->D, (size_t)c->m * c->m, sizeof(double)), put_arr(&b, c->normals, 3 * mv, sizeof(double));
     put_arr(&b, c->sigma, (size_t)c->m, sizeof(int));
   }
   if (b.bad) {
@@ -158,11 +208,55 @@ static int check_head(const char *line, char *why, size_t n) {
   return 0;
 }
 
+/* a mesh of at least 4 vertices and one face, indices in range; 1: read */
+static int get_mesh(ssi_blob *b, ss_mesh *m) {
+  int ok = SSI_GET(b, &m->nv, 1) && SSI_GET(b, &m->nf, 1) && m->nv >= 4 && m->nf >= 1;
+  ok = ok && get_arr(b, &m->V, 3 * (size_t)m->nv, sizeof(double), 0) && get_arr(b, &m->F, 3 * (size_t)m->nf, sizeof(int), 0);
+  for (size_t i = 0; ok && i < 3 * (size_t)m->nf; i++) ok = m->F[i] >= 0 && m->F[i] < m->nv;
+  return ok;
+}
+
+/* put_prep's record for a mesh of nv vertices, range-checked; with_spectrum: kev eigenpairs
+ * (3 <= kev < nv) and masses, else none (a proxied input). 1: read */
+static int get_prep(ssi_blob *b, ss_shape_prep *p, int nv_i, int with_spectrum) {
+  ss_segmentation *g = &p->seg;
+  const size_t nv = (size_t)nv_i;
+  int ok = SSI_GET(b, &p->kev, 1) && (with_spectrum ? p->kev >= 3 && p->kev < nv_i : p->kev == 0);
+  const size_t kev = ok ? (size_t)p->kev : 0;
+  ok = ok && get_arr(b, &p->evals, kev, sizeof(double), !with_spectrum) &&
+       get_arr(b, &p->evecs, nv * kev, sizeof(double), !with_spectrum) && get_arr(b, &p->M, nv, sizeof(double), !with_spectrum) &&
+       SSI_GET(b, &p->area, 1) && SSI_GET(b, &p->t_segment, 1) && SSI_GET(b, &p->t_eigs, 1);
+  ok = ok && SSI_GET(b, &g->nv, 1) && SSI_GET(b, &g->m, 1) && SSI_GET(b, &g->empty_segments, 1) &&
+       SSI_GET(b, &g->ncrit_raw, 1) && SSI_GET(b, &g->lambda2, 1) && g->nv == nv_i && g->m >= 1 && g->m <= nv_i;
+  const size_t gm = ok ? (size_t)g->m : 0;
+  ok = ok && get_arr(b, &g->labels, nv, sizeof(int), 0) && get_arr(b, &g->centers, gm, sizeof(int), 0) &&
+       SSI_GET(b, &g->work.nv, 1) && SSI_GET(b, &g->work.nf, 1) && g->work.nv >= 1 && g->work.nf >= 1;
+  const size_t wn = ok ? (size_t)g->work.nv : 0;
+  ok = ok && get_arr(b, &g->work.V, 3 * wn, sizeof(double), 0) &&
+       get_arr(b, &g->work.F, 3 * (size_t)g->work.nf, sizeof(int), 0) && get_arr(b, &g->psi, nv, sizeof(int), 1) &&
+       get_arr(b, &g->phi, wn, sizeof(double), 1) && get_arr(b, &g->crit, gm, sizeof(int), 0) &&
+       get_arr(b, &g->crit_type, gm, 1, 1) && get_arr(b, &g->work_labels, wn, sizeof(int), 1) &&
+       get_arr(b, &g->work_dist, wn, sizeof(double), 1);
+  double t[8];
+  ok = ok && SSI_GET(b, t, 8) && get_arr(b, &p->crit_fields, wn * gm, sizeof(double), 1);
+  if (ok) {
+    g->t_read = t[0], g->t_smooth = t[1], g->t_remesh = t[2], g->t_psi = t[3], g->t_spectrum = t[4];
+    g->t_critical = t[5], g->t_ivd = t[6], g->t_total = t[7];
+  }
+  for (size_t i = 0; ok && p->crit_fields && i < wn * gm; i++) ok = p->crit_fields[i] >= 0; /* INFINITY: unreachable */
+  for (size_t i = 0; ok && i < nv; i++) ok = g->labels[i] >= 0 && g->labels[i] < g->m && (!g->psi || (g->psi[i] >= -1 && g->psi[i] < g->work.nv));
+  for (size_t i = 0; ok && i < gm; i++)
+    ok = g->centers[i] >= 0 && g->centers[i] < nv_i && g->crit[i] >= 0 && g->crit[i] < g->work.nv &&
+         (!g->crit_type || (g->crit_type[i] >= SS_CRIT_REGULAR && g->crit_type[i] <= SS_CRIT_SADDLE));
+  for (size_t i = 0; ok && i < 3 * (size_t)g->work.nf; i++) ok = g->work.F[i] >= 0 && g->work.F[i] < g->work.nv;
+  for (size_t i = 0; ok && g->work_labels && i < wn; i++) ok = g->work_labels[i] >= -1 && g->work_labels[i] < g->m;
+  for (size_t i = 0; ok && i < kev; i++) ok = isfinite(p->evals[i]);
+  return ok;
+}
+
 /* the contents, range-checked; 0: fine */
 static int parse_payload(ssi_blob *b, const char *key, ss_prepared_shape *s, char *why, size_t n) {
   ss_mesh *m = &s->mesh;
-  ss_shape_prep *p = &s->prep;
-  ss_segmentation *g = &p->seg;
   ss_segment_options *o = &s->seg;
   ss_autopair_options *a = &s->autopair;
   int knv, knf, kkev, sig, pos = 0;
@@ -177,54 +271,35 @@ static int parse_payload(ssi_blob *b, const char *key, ss_prepared_shape *s, cha
                     &a->sigma_factor, &a->descr_radius, &a->w_descr, &a->w_geo, &a->exact_max, &a->orient_k,
                     &a->orient_descr_k, &a->min_gap, &a->min_mirror) != 11)
     return snprintf(why, n, "key line: no pairing options"), 1;
-  int ok = SSI_GET(b, &m->nv, 1) && SSI_GET(b, &m->nf, 1) && m->nv == knv && m->nf == knf && m->nv >= 4 && m->nf >= 1;
-  const size_t nv = ok ? (size_t)m->nv : 0;
-  ok = ok && get_arr(b, &m->V, 3 * nv, sizeof(double), 0) && get_arr(b, &m->F, 3 * (size_t)m->nf, sizeof(int), 0);
-  for (size_t i = 0; ok && i < 3 * (size_t)m->nf; i++) ok = m->F[i] >= 0 && m->F[i] < m->nv;
+  int ok = get_mesh(b, m) && m->nv == knv && m->nf == knf;
   if (ok && ssi_mesh_hash(m) != khash) return snprintf(why, n, "the mesh does not have the hash of the key line"), 1;
-  ok = ok && SSI_GET(b, &p->kev, 1) && p->kev == kkev && p->kev >= 3 && p->kev < m->nv;
-  const size_t kev = ok ? (size_t)p->kev : 0;
-  ok = ok && get_arr(b, &p->evals, kev, sizeof(double), 0) && get_arr(b, &p->evecs, nv * kev, sizeof(double), 0) &&
-       get_arr(b, &p->M, nv, sizeof(double), 0) && SSI_GET(b, &p->area, 1) && SSI_GET(b, &p->t_segment, 1) &&
-       SSI_GET(b, &p->t_eigs, 1);
-  ok = ok && SSI_GET(b, &g->nv, 1) && SSI_GET(b, &g->m, 1) && SSI_GET(b, &g->empty_segments, 1) &&
-       SSI_GET(b, &g->ncrit_raw, 1) && SSI_GET(b, &g->lambda2, 1) && g->nv == m->nv && g->m >= 1 && g->m <= m->nv;
-  const size_t gm = ok ? (size_t)g->m : 0;
-  ok = ok && get_arr(b, &g->labels, nv, sizeof(int), 0) && get_arr(b, &g->centers, gm, sizeof(int), 0) &&
-       SSI_GET(b, &g->work.nv, 1) && SSI_GET(b, &g->work.nf, 1) && g->work.nv >= 1 && g->work.nf >= 1;
-  const size_t wn = ok ? (size_t)g->work.nv : 0;
-  ok = ok && get_arr(b, &g->work.V, 3 * wn, sizeof(double), 0) &&
-       get_arr(b, &g->work.F, 3 * (size_t)g->work.nf, sizeof(int), 0) && get_arr(b, &g->psi, nv, sizeof(int), 1) &&
-       get_arr(b, &g->phi, wn, sizeof(double), 1) && get_arr(b, &g->crit, gm, sizeof(int), 0) &&
-       get_arr(b, &g->crit_type, gm, 1, 1) && get_arr(b, &g->work_labels, wn, sizeof(int), 1) &&
-       get_arr(b, &g->work_dist, wn, sizeof(double), 1);
-  double t[8];
-  ok = ok && SSI_GET(b, t, 8);
-  if (ok) {
-    g->t_read = t[0], g->t_smooth = t[1], g->t_remesh = t[2], g->t_psi = t[3], g->t_spectrum = t[4];
-    g->t_critical = t[5], g->t_ivd = t[6], g->t_total = t[7];
+  ok = ok && SSI_GET(b, &s->has_proxy, 1) && (s->has_proxy == 0 || s->has_proxy == 1);
+  ok = ok && get_prep(b, &s->prep, m->nv, !s->has_proxy);
+  if (ok && s->has_proxy) {
+    ok = get_mesh(b, &s->proxy) && s->proxy.nv < m->nv && get_arr(b, &s->to_proxy, (size_t)m->nv, sizeof(int), 0) &&
+         get_arr(b, &s->proxy_src, (size_t)s->proxy.nv, sizeof(int), 0) &&
+         get_prep(b, &s->proxy_prep, s->proxy.nv, 1);
+    for (int i = 0; ok && i < m->nv; i++) ok = s->to_proxy[i] >= 0 && s->to_proxy[i] < s->proxy.nv;
+    for (int i = 0; ok && i < s->proxy.nv; i++) ok = s->proxy_src[i] >= 0 && s->proxy_src[i] < m->nv;
   }
-  for (size_t i = 0; ok && i < nv; i++) ok = g->labels[i] >= 0 && g->labels[i] < g->m && (!g->psi || (g->psi[i] >= -1 && g->psi[i] < g->work.nv));
-  for (size_t i = 0; ok && i < gm; i++)
-    ok = g->centers[i] >= 0 && g->centers[i] < m->nv && g->crit[i] >= 0 && g->crit[i] < g->work.nv &&
-         (!g->crit_type || (g->crit_type[i] >= SS_CRIT_REGULAR && g->crit_type[i] <= SS_CRIT_SADDLE));
-  for (size_t i = 0; ok && i < 3 * (size_t)g->work.nf; i++) ok = g->work.F[i] >= 0 && g->work.F[i] < g->work.nv;
-  for (size_t i = 0; ok && g->work_labels && i < wn; i++) ok = g->work_labels[i] >= -1 && g->work_labels[i] < g->m;
-  for (size_t i = 0; ok && i < kev; i++) ok = isfinite(p->evals[i]);
+  ss_shape_prep *mp = s->has_proxy ? &s->proxy_prep : &s->prep;
+  ok = ok && mp->kev == kkev;
   if (ok && sig) {
     ss_centre_signature *c = &s->sig;
-    ok = SSI_GET(b, &c->m, 1) && SSI_GET(b, &c->nd, 1) && c->m == g->m && c->nd >= 1 && c->nd <= 1000000 &&
+    const size_t gm = (size_t)mp->seg.m, mv = (size_t)mp->seg.nv;
+    ok = SSI_GET(b, &c->m, 1) && SSI_GET(b, &c->nd, 1) && c->m == mp->seg.m && c->nd >= 1 && c->nd <= 1000000 &&
          SSI_GET(b, &c->volume_ratio, 1) && SSI_GET(b, &c->orient_sign, 1) && SSI_GET(b, &c->sigma_score, 1);
     ok = ok && get_arr(b, &c->centers, gm, sizeof(int), 0) && get_arr(b, &c->descr, gm * c->nd, sizeof(double), 0) &&
-         get_arr(b, &c->D, gm * gm, sizeof(double), 0) && get_arr(b, &c->normals, 3 * nv, sizeof(double), 0) &&
+         get_arr(b, &c->D, gm * gm, sizeof(double), 0) && get_arr(b, &c->normals, 3 * mv, sizeof(double), 0) &&
          get_arr(b, &c->sigma, gm, sizeof(int), 0);
-    for (size_t i = 0; ok && i < gm; i++) ok = c->centers[i] == g->centers[i] && c->sigma[i] >= 0 && c->sigma[i] < c->m;
+    for (size_t i = 0; ok && i < gm; i++) ok = c->centers[i] == mp->seg.centers[i] && c->sigma[i] >= 0 && c->sigma[i] < c->m;
     s->has_signature = ok;
   }
   ok = ok && !b->bad && b->pos == b->n;
   if (!ok) return snprintf(why, n, "checksum right but contents out of range or of the wrong size"), 1;
-  p->mesh = m;
-  s->sig.prep = s->has_signature ? p : NULL;
+  s->prep.mesh = m;
+  if (s->has_proxy) s->proxy_prep.mesh = &s->proxy;
+  s->sig.prep = s->has_signature ? mp : NULL;
   return 0;
 }
 

@@ -1,6 +1,7 @@
 /* Per-shape preparation for matching: the segmentation and the Laplace–Beltrami eigenpairs of one
  * shape, computed once and shared by every pair the shape takes part in. */
 #include "specseg/match.h"
+#include "specseg/geodesic.h"
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
 #include "specseg/spectrum.h"
@@ -16,7 +17,24 @@ void ss_shape_prep_free(ss_shape_prep *p) {
   free(p->evals);
   free(p->evecs);
   free(p->M);
+  free(p->crit_fields);
   memset(p, 0, sizeof *p);
+}
+
+ss_status ss_shape_prep_crit_fields(ss_shape_prep *p, ss_error *err) {
+  if (!p) return ss_fail(err, SS_ERR_INVALID, "crit fields: NULL shape");
+  if (p->crit_fields) return SS_OK;
+  const ss_segmentation *s = &p->seg;
+  if (!s->crit || s->m < 1 || s->work.nv < 1) return ss_fail(err, SS_ERR_INVALID, "crit fields: incomplete segmentation");
+  double *f = malloc(sizeof(double) * (size_t)s->work.nv * s->m);
+  if (!f) return ss_fail(err, SS_ERR_NOMEM, "crit fields: out of memory");
+  ss_geodesic_mesh *gm = NULL;
+  ss_status st = ss_geodesic_mesh_build(&s->work, &gm, err);
+  if (!st) st = ss_geodesic_fields(gm, s->crit, s->m, 0.0, f, err);
+  ss_geodesic_mesh_free(gm);
+  if (st) free(f);
+  else p->crit_fields = f;
+  return st;
 }
 
 /* The mesh must be usable as it is (its vertex indices are what landmarks and maps refer to, and the
