@@ -41,7 +41,7 @@ static const char USAGE[] =
     "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 120)\n"
     "  --no-refine         the unrefined map of --probes at size K (the paper's variants)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
-    "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 2000; 0 or at least\n"
+    "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
     "  --descr-k K         eigenpairs the descriptors are computed from (default 100; = K for the\n"
     "                      paper's construction)\n"

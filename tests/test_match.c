@@ -249,6 +249,7 @@ int main(void) {
     ss_match_default_options(&od);
     od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
     od.refine_w_descr = 0; /* the energy recomputed below is ss_p2p_energy alone */
+    od.refine_single = 0;  /* every start refined: the reference of the single refinement below */
     ss_match_result rd;
     CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &rd, &e) == SS_OK);
     int c = rd.refine_choice;
@@ -267,6 +268,27 @@ int main(void) {
              rd.refine_energy[1], rd.refine_energy[2], rd.refine_energy[3]);
       CHECK(ed < 0.1);
       CHECK(rd.notes[0] == 0);
+      /* refine_single (the default): the starts' energies are the reference's, only the start of
+       * lower energy is refined (to the reference's refinement), and whenever the reference's choice
+       * is among the candidates computed it is the same choice and the same map */
+      ss_match_result r1;
+      od.refine_single = 1;
+      CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &r1, &e) == SS_OK);
+      if (r1.map) {
+        CHECK(r1.refine_energy[0] == rd.refine_energy[0] && r1.refine_energy[2] == rd.refine_energy[2]);
+        const int lo = rd.refine_energy[2] < rd.refine_energy[0] ? 2 : 0, hi = 2 - lo;
+        CHECK(r1.refine_energy[lo + 1] == rd.refine_energy[lo + 1] && isnan(r1.refine_energy[hi + 1]));
+        CHECK(r1.refine_choice >= 0 && r1.refine_choice != hi + 1);
+        CHECK(r1.refine_energy[r1.refine_choice] <= r1.refine_energy[r1.refine_choice & ~1]);
+        for (int i = 0; i < 4; i++) CHECK(isnan(r1.refine_energy[i]) || r1.refine_energy[r1.refine_choice] <= r1.refine_energy[i]);
+        if (c != hi + 1) {
+          CHECK(r1.refine_choice == c);
+          int same = 1;
+          for (int x = 0; same && x < X.nv; x++) same = r1.map[x] == rd.map[x];
+          CHECK(same);
+        }
+      }
+      ss_match_result_free(&r1);
     }
     ss_match_result_free(&rd);
     /* with the default selection energy (descriptor residual included): the same invariants */

@@ -243,9 +243,10 @@ typedef enum ss_refine_mode {
                             STD / ASA / DIFF maps) */
   SS_REFINE_ZOOMOUT = 1, /* ZoomOut of that map up to fmap.zoomout_kmax */
   SS_REFINE_BEST = 2     /* default: the starts STD and, with ASA / DIFF probes and segments paired,
-                            the segment-aided map; each refined by ZoomOut up to fmap.zoomout_kmax
-                            (default 120, step fmap.zoomout_step 5, on fmap.zoomout_samples 2,000
-                            samples of X then once on every vertex: docs/tuning.md); of
+                            the segment-aided map; the one of lower selection energy (both with
+                            refine_single 0) refined by ZoomOut up to fmap.zoomout_kmax (default
+                            120, step fmap.zoomout_step 5, on fmap.zoomout_samples 1,000 samples of
+                            X then once on every vertex: docs/tuning.md); of
                             the starts and their refinements the map with the lowest selection energy
                             ss_p2p_energy (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap =
                             refine_w_lap) + refine_w_descr · ss_p2p_descr_residual (the base probes,
@@ -267,8 +268,8 @@ typedef struct ss_match_options {
   /* fmap.descr_k of the segment-aided (ASA / DIFF) map; fmap.descr_k is the STD map's. Default 0
    * (= k, the paper's probes): with descriptors from 100 eigenpairs DIFF got worse (docs/tuning.md). */
   int seg_descr_k;
-  /* SS_REFINE_BEST: refine only the start with the lower selection energy (the other start stays a
-   * candidate unrefined); 0: refine every start */
+  /* SS_REFINE_BEST: 1 (default) refines only the start with the lower selection energy (the other
+   * start stays a candidate unrefined); 0: refine every start */
   int refine_single;
   /* the landmark-free pairing (used when ss_match_prepared gets no landmarks) */
   ss_autopair_options autopair;

@@ -18,7 +18,8 @@
 #define SS_DEFAULT_REFINE_KMAX 120
 #define SS_DEFAULT_REFINE_W_DESCR 1.0
 #define SS_DEFAULT_REFINE_STEP 5
-#define SS_DEFAULT_REFINE_SAMPLES 2000
+#define SS_DEFAULT_REFINE_SAMPLES 1000
+#define SS_DEFAULT_REFINE_SINGLE 1
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);
@@ -34,6 +35,7 @@ void ss_match_default_options(ss_match_options *o) {
   o->refine = SS_REFINE_BEST;
   o->refine_w_lap = 0.0;
   o->refine_w_descr = SS_DEFAULT_REFINE_W_DESCR;
+  o->refine_single = SS_DEFAULT_REFINE_SINGLE;
   ss_autopair_default_options(&o->autopair);
 }
 
