@@ -380,8 +380,8 @@ static void run_search(search *S, int exact, int ntop, int self, int *status) {
 /* The orientation test of a pairing p (A index -> B index): score of the map A -> B of a small
  * functional map (k eigenfunctions, descriptors from descr_k eigenpairs, ZoomOut up to zk when
  * zk > k, on ns samples of A) with the paired centres as landmarks. */
-static ss_status orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k, int descr_k,
-                              int zk, int ns, double keep, double *score, ss_error *err) {
+static ss_status orient_score_T(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k,
+                                int descr_k, int zk, int ns, double keep, double *score, int *Tout, ss_error *err) {
   const ss_shape_prep *pA = A->prep, *pB = B->prep;
   const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
   ss_fmap_match_options fo;
@@ -430,20 +430,238 @@ static ss_status orient_score(const ss_centre_signature *A, const ss_centre_sign
                   sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
     st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
   }
-  if (!st) *score = ssi_map_orientation(A, B, T);
+  if (!st && score) *score = ssi_map_orientation(A, B, T);
+  if (!st && Tout) memcpy(Tout, T, sizeof(int) * (size_t)pA->mesh->nv);
   free(lA), free(lB), free(T), free(ord), free(ecc);
+  return st;
+}
+
+static ss_status orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k, int descr_k,
+                              int zk, int ns, double keep, double *score, ss_error *err) {
+  return orient_score_T(A, B, p, k, descr_k, zk, ns, keep, score, NULL, err);
+}
+
+ss_status ssi_autopair_orient_map(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+                                  const ss_autopair_options *o, int k, double *score, int *T, ss_error *err) {
+  return orient_score_T(A, B, p, k, o->orient_descr_k, 0, 0, o->orient_keep, score, T, err);
+}
+
+ss_status ssi_centre_gradients(const ss_centre_signature *sg, double **G_out, ss_error *err) {
+  const ss_mesh *mesh = sg->prep->mesh;
+  const int n = mesh->nv, m = sg->m;
+  ss_geodesic_mesh *gm = NULL;
+  double *F = malloc(sizeof(double) * (size_t)n * m), *G = calloc((size_t)n * m * 3, sizeof(double));
+  ss_status st = SS_OK;
+  if (!F || !G) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
+  if ((st = ss_geodesic_mesh_build(mesh, &gm, err))) goto done;
+  if ((st = ss_geodesic_fields(gm, sg->centers, m, 0.0, F, err))) goto done;
+  ssi_field_gradients(mesh, sg->normals, n, m, F, G);
+done:
+  ss_geodesic_mesh_free(gm);
+  free(F);
+  if (st) free(G), G = NULL;
+  *G_out = G;
+  return st;
+}
+
+void ssi_field_gradients(const ss_mesh *mesh, const double *normals, int n, int m, const double *F, double *G) {
+  memset(G, 0, sizeof(double) * (size_t)n * m * 3);
+  for (int f = 0; f < mesh->nf; f++) {
+    const int *t = mesh->F + 3 * (size_t)f;
+    double gp[3][3], ar;
+    {
+      const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
+      double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+      double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+      ar = 0.5 * sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+    }
+    if (!(ar > 0)) continue;
+    for (int k = 0; k < 3; k++) { /* gradient of vertex k's hat: towards k, orthogonal to the opposite edge */
+      const double *pk = mesh->V + 3 * (size_t)t[k], *pa = mesh->V + 3 * (size_t)t[(k + 1) % 3],
+                   *pb = mesh->V + 3 * (size_t)t[(k + 2) % 3];
+      double e[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]}, w[3] = {pk[0] - pa[0], pk[1] - pa[1], pk[2] - pa[2]};
+      double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2], we = w[0] * e[0] + w[1] * e[1] + w[2] * e[2];
+      double u[3] = {w[0] - we / ee * e[0], w[1] - we / ee * e[1], w[2] - we / ee * e[2]};
+      double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+      for (int d = 0; d < 3; d++) gp[k][d] = u[d] / uu;
+    }
+    for (int a = 0; a < m; a++) {
+      const double *fa = F + (size_t)n * a;
+      double g[3];
+      for (int d = 0; d < 3; d++) g[d] = ar * (fa[t[0]] * gp[0][d] + fa[t[1]] * gp[1][d] + fa[t[2]] * gp[2][d]);
+      for (int c = 0; c < 3; c++)
+        for (int d = 0; d < 3; d++) G[((size_t)t[c] * m + a) * 3 + d] += g[d];
+    }
+  }
+  for (int v = 0; v < n; v++) {
+    const double *nr = normals + 3 * (size_t)v;
+    double nn = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
+    double nu[3] = {0, 0, 0};
+    if (nn > 0) nu[0] = nr[0] / nn, nu[1] = nr[1] / nn, nu[2] = nr[2] / nn;
+    for (int a = 0; a < m; a++) {
+      double *g = G + ((size_t)v * m + a) * 3, gn = g[0] * nu[0] + g[1] * nu[1] + g[2] * nu[2];
+      for (int d = 0; d < 3; d++) g[d] -= gn * nu[d];
+      double l = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      for (int d = 0; d < 3; d++) g[d] = l > 0 ? g[d] / l : 0.0;
+    }
+  }
+}
+
+/* h_ij(v) = n(v) · (g_i(v) × g_j(v)) */
+static double pseudo(const double *G, const double *normals, int m, int v, int i, int j) {
+  const double *gi = G + ((size_t)v * m + i) * 3, *gj = G + ((size_t)v * m + j) * 3, *nr = normals + 3 * (size_t)v;
+  double c[3] = {gi[1] * gj[2] - gi[2] * gj[1], gi[2] * gj[0] - gi[0] * gj[2], gi[0] * gj[1] - gi[1] * gj[0]};
+  double nn = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
+  return nn > 0 ? (nr[0] * c[0] + nr[1] * c[1] + nr[2] * c[2]) / nn : 0.0;
+}
+
+/* kept[a] = 1 for the round(keep · m) (at least 3) centres farthest on average from the others */
+static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
+  const int m = A->m;
+  int na = m;
+  if (keep > 0 && keep < 1 && m > 3) {
+    na = (int)floor(keep * m + 0.5);
+    if (na < 3) na = 3;
+    if (na > m) na = m;
+  }
+  for (int a = 0; a < m; a++) {
+    double ea = 0;
+    for (int c = 0; c < m; c++) ea += A->D[a + (size_t)m * c];
+    int rank = 0;
+    for (int b = 0; b < m; b++) {
+      double eb = 0;
+      for (int c = 0; c < m; c++) eb += A->D[b + (size_t)m * c];
+      rank += eb > ea || (eb == ea && b < a);
+    }
+    kept[a] = rank < na;
+  }
+}
+
+double ssi_pseudo_score(const ss_centre_signature *A, const double *GA, const ss_centre_signature *B, const double *GB,
+                        const int *p, const int *T, double keep) {
+  const int n = A->prep->mesh->nv, ma = A->m, mb = B->m;
+  const double *M = A->prep->M;
+  double num = 0, den = 0;
+  int kept[256];
+  if (ma > 256) return 0;
+  kept_centres(A, keep, kept);
+  for (int v = 0; v < n; v++) {
+    const int w = T ? T[v] : v;
+    for (int i = 0; i < ma; i++)
+      for (int j = i + 1; j < ma; j++) {
+        if (!kept[i] || !kept[j]) continue;
+        double ha = pseudo(GA, A->normals, ma, v, i, j), hb = pseudo(GB, B->normals, mb, w, p[i], p[j]);
+        num += M[v] * ha * hb, den += M[v] * fabs(ha * hb);
+      }
+  }
+  return den > 0 ? num / den : 0.0;
+}
+
+double ssi_pseudo_centres(const ss_centre_signature *A, const double *GA, const ss_centre_signature *B, const double *GB,
+                          const int *p) {
+  const int ma = A->m, mb = B->m;
+  double num = 0, den = 0;
+  for (int c = 0; c < ma; c++) {
+    const int v = A->centers[c], w = B->centers[p[c]];
+    for (int i = 0; i < ma; i++)
+      for (int j = i + 1; j < ma; j++) {
+        if (i == c || j == c) continue;
+        double ha = pseudo(GA, A->normals, ma, v, i, j), hb = pseudo(GB, B->normals, mb, w, p[i], p[j]);
+        num += ha * hb, den += fabs(ha * hb);
+      }
+  }
+  return den > 0 ? num / den : 0.0;
+}
+
+/* ---- the orientation test with probes shared by the candidates ------------------------------- *
+ * Every candidate's functional map has the same probes on A (WKS + the kept centres of A, in A's
+ * order) and, on B, the WKS and the wave-kernel maps of B's centres in the candidate's order: B's
+ * probes are built once for all of its centres and each candidate takes its columns (the probe list
+ * keeps every descr_step-th of n_energies columns per item, the same columns in every item when
+ * descr_step divides n_energies). What ss_fmap_match would compute, for a fraction of the cost. */
+typedef struct orient_ctx {
+  const ss_centre_signature *A, *B;
+  ss_fmap_match_options fo;
+  ss_fmap_shape sA, sB;
+  ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B */
+  ss_fmap_weights w;
+  int na, nb, per;        /* kept centres of A, centres of B, probe columns per item */
+  int *kept;              /* na indices of A's kept centres, ascending */
+  double *Abuf, *Pbuf;    /* a candidate's B probes */
+  int *T;
+} orient_ctx;
+
+static void orient_ctx_free(orient_ctx *c) {
+  ss_fmap_probes_free(&c->pA), ss_fmap_probes_free(&c->pB);
+  free(c->kept), free(c->Abuf), free(c->Pbuf), free(c->T);
+  memset(c, 0, sizeof *c);
+}
+
+static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
+                                orient_ctx *c, ss_error *err) {
+  memset(c, 0, sizeof *c);
+  const ss_shape_prep *pA = A->prep, *pB = B->prep;
+  const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
+  c->A = A, c->B = B;
+  ss_fmap_match_default_options(&c->fo);
+  c->fo.k = k < kmin ? k : kmin;
+  c->fo.descr_k = descr_k < kmin ? descr_k : kmin;
+  if (c->fo.descr_k < c->fo.k) c->fo.descr_k = c->fo.k;
+  c->fo.zoomout_kmax = 0;
+  if (c->fo.n_energies % c->fo.descr_step) return ss_fail(err, SS_ERR_INVALID, "autopair: descr_step must divide n_energies");
+  c->per = c->fo.n_energies / c->fo.descr_step;
+  c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0};
+  c->sB = (ss_fmap_shape){pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
+  int *mask = malloc(sizeof(int) * (size_t)m), *lA = malloc(sizeof(int) * (size_t)m);
+  c->kept = malloc(sizeof(int) * (size_t)m);
+  c->T = malloc(sizeof(int) * (size_t)pA->mesh->nv);
+  ss_status st = SS_OK;
+  if (!mask || !lA || !c->kept || !c->T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  if (!st) {
+    kept_centres(A, keep, mask);
+    for (int a = 0; a < m; a++)
+      if (mask[a]) lA[c->na] = A->centers[a], c->kept[c->na++] = a;
+    c->nb = B->m;
+    const int kk = c->fo.k, kp = kk * (kk + 1) / 2, p = c->per * (1 + c->na);
+    c->Abuf = malloc(sizeof(double) * (size_t)kk * p);
+    c->Pbuf = malloc(sizeof(double) * (size_t)kp * p);
+    if (!c->Abuf || !c->Pbuf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  }
+  if (!st) st = ss_fmap_base_probes(&c->sA, c->na, lA, &c->fo, 1, &c->pA, err);
+  if (!st) st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err);
+  if (!st) st = ss_fmap_pair_weights(&c->sA, &c->sB, &c->fo, &c->w, err);
+  if (!st && (c->pA.p != c->per * (1 + c->na) || c->pB.p != c->per * (1 + B->m)))
+    st = ss_fail(err, SS_ERR_INVALID, "autopair: unexpected probe layout");
+  free(mask), free(lA);
+  if (st) orient_ctx_free(c);
+  return st;
+}
+
+/* the point map A -> B of candidate p (A index -> B index) into c->T, and its orientation score */
+static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, ss_error *err) {
+  const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per, np = per * (1 + c->na);
+  for (int i = 0; i <= c->na; i++) { /* item 0: the WKS; item i: centre p[kept[i-1]] of B */
+    const int src = i == 0 ? 0 : 1 + p[c->kept[i - 1]];
+    memcpy(c->Abuf + (size_t)kk * per * i, c->pB.A + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
+    memcpy(c->Pbuf + (size_t)kp * per * i, c->pB.P + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+  }
+  ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf};
+  ss_fmap_system *sys = NULL;
+  double *Ck = malloc(sizeof(double) * (size_t)kk * kk);
+  ss_status st = Ck ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  /* source B, target A: C maps functions on B to functions on A, its point map is A -> B */
+  if (!st) st = ss_fmap_system_new(kk, kk, c->sB.evals, c->sA.evals, &pb, &c->pA, &c->w, &sys, err);
+  if (!st) st = ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, Ck, err);
+  if (!st) st = ss_fmap_match_finish(&c->sA, &c->sB, &c->fo, Ck, c->T, NULL, err);
+  if (!st && score) *score = ssi_map_orientation(c->A, c->B, c->T);
+  ss_fmap_system_free(sys);
+  free(Ck);
   return st;
 }
 
 ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
                                     const ss_autopair_options *o, double *score, ss_error *err) {
   return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, 1.0, score, err);
-}
-
-/* the left / right test of a candidate pairing (orient_keep applies) */
-static ss_status candidate_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                                 const ss_autopair_options *o, double *score, ss_error *err) {
-  return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, o->orient_keep, score, err);
 }
 
 ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
@@ -511,13 +729,17 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     run_search(&S, exact, SELF_CANDIDATES + 1 < TOPK ? SELF_CANDIDATES + 1 : TOPK, 1, &status);
     if (status) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   }
+  orient_ctx oc = {0};
+  int have_ctx = 0;
   for (int k = 0; !st && k < S.ntop; k++) {
     if (!isfinite(S.top_e[k])) break;
     int id = 1;
     for (int a = 0; a < m && id; a++) id = S.top_p[k][a] == a;
     if (id) continue;
     double sc;
-    if ((st = ssi_autopair_orient_score(sg, sg, S.top_p[k], o, &sc, err))) break;
+    if (!have_ctx && (st = orient_ctx_new(sg, sg, o->orient_k, o->orient_descr_k, 1.0, &oc, err))) break;
+    have_ctx = 1;
+    if ((st = orient_ctx_score(&oc, S.top_p[k], &sc, err))) break;
     sc_k[k] = sc;
     moved[k] = 0;
     for (int a = 0; a < m; a++) moved[k] += S.top_p[k][a] != a;
@@ -532,6 +754,7 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     if (pick < 0 || moved[k] > moved[pick] || (moved[k] == moved[pick] && sc_k[k] < sc_k[pick])) pick = k;
   }
   if (pick >= 0) sg->sigma_score = sc_k[pick], memcpy(sg->sigma, S.top_p[pick], sizeof(int) * (size_t)m);
+  orient_ctx_free(&oc);
   free(U), free(minU), free(cur), free(used), free(buf);
   return st;
 }
@@ -570,6 +793,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     goto done;
   }
   search S;
+  orient_ctx oc = {0};
   init_search(&S, A, &o, U, minU, cur, used, buf);
   int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
   const int *sigma = A->sigma;
@@ -588,12 +812,13 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     }
   /* left / right: the candidate whose map preserves orientation */
   double r1 = 0, r2 = 0;
-  if ((st = candidate_score(A, B, pi1, &o, &r1, err))) goto done;
+  if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
+  if ((st = orient_ctx_score(&oc, pi1, &r1, err))) goto done;
   if (same(pi1, pi2, na)) { /* no symmetry found: the runner-up is the other candidate */
     if (isfinite(e3)) memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
   }
   if (same(pi1, pi2, na)) r2 = r1;
-  else if ((st = candidate_score(A, B, pi2, &o, &r2, err))) goto done;
+  else if ((st = orient_ctx_score(&oc, pi2, &r2, err))) goto done;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
   if (!same(pi1, pi2, na) && fabs(r1 - r2) / 2 < o.recheck_margin) { /* a close call: the second test decides */
@@ -645,6 +870,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     info->cpu = cpu_now() - c0;
   }
 done:
+  orient_ctx_free(&oc);
   free(U), free(minU), free(share), free(cur), free(used), free(buf);
   return st;
 }
