@@ -9,6 +9,8 @@
  *                  centres farthest from the others)
  *                  [--match N] [--verbose] [--dump DIR]
  *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
+ *                  [--variant K KEEP] (repeatable) the test with basis K and orient_keep KEEP on the
+ *                  ground-truth pairing and its mirror: right by the whole-shape scores / the median rule
  *                  [--self]   the orientation test of the first 5 shapes with themselves
  *   bench_autopair --tosca [--tosca-class NAME] [--verbose]
  *                  each TOSCA class: its first shape against the others with the same vertex count
@@ -49,7 +51,6 @@ typedef struct shape {
   ss_centre_signature sig;
   int loaded;
   double t_sig;
-  double *G; /* --pseudo: the centres' distance-field gradients */
 } shape;
 
 #define RD(p, c) (fread((p), sizeof *(p), (size_t)(c), f) == (size_t)(c))
@@ -124,7 +125,8 @@ static void next_pair(unsigned *r, int lo, int n, int *a, int *b) {
 int main(int argc, char **argv) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   const char *tosca_class = NULL, *data = SS_DATA_DIR_DEFAULT, *cache = "/tmp/specseg_autopair_cache", *split = "tune", *dump = NULL;
-  int pseudo_k[4] = {0}, npk = 0, cmp_n = 0, cmp_ok[16] = {0};
+  int fv_k[8], nfv = 0, fv_ok[8] = {0}, fv_okm[8] = {0}, fv_n = 0;
+  double fv_keep[8], fv_cpu[8] = {0};
   int tosca = 0, selftest = 0, npairs = 20, allpairs = 0, verbose = 0, nmatch = 0, gtrho = 0, n_gt = 0, n_gtok = 0;
   double gt_margin = 0;
   unsigned seed = 1;
@@ -141,7 +143,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--wd") && v) ao.w_descr = atof(v), i++;
     else if (!strcmp(a, "--wg") && v) ao.w_geo = atof(v), i++;
     else if (!strcmp(a, "--gtrho")) gtrho = 1;
-    else if (!strcmp(a, "--pseudo") && v && npk < 4) pseudo_k[npk++] = atoi(v), i++;
+    else if (!strcmp(a, "--variant") && v && i + 2 < argc && nfv < 8) fv_k[nfv] = atoi(v), fv_keep[nfv++] = atof(argv[i + 2]), i += 2;
     else if (!strcmp(a, "--self")) selftest = 1;
     else if (!strcmp(a, "--tosca")) tosca = 1;
     else if (!strcmp(a, "--tosca-class") && v) tosca = 1, tosca_class = v, i++;
@@ -286,33 +288,22 @@ int main(int argc, char **argv) {
       if (verbose) printf("   GT score %.3f  GT-mirror score %.3f\n", rg, rm);
       n_gt++, n_gtok += rg > rm, gt_margin += (rg - rm) / 2;
     }
-    if (npk && S[a].sig.m == S[b].sig.m) { /* candidate tests on the ground truth and its mirror */
+    if (nfv && S[a].sig.m == S[b].sig.m) { /* variants of the test on the ground truth and its mirror */
       int g[64], gm[64], mm = S[a].sig.m;
       for (int c = 0; c < mm && c < 64; c++) {
         g[c] = S[b].prep.seg.labels[S[a].prep.seg.centers[c]];
         gm[c] = S[b].prep.seg.labels[sym[S[a].prep.seg.centers[c]]];
       }
-      if (!S[a].G && ssi_centre_gradients(&S[a].sig, &S[a].G, &e)) return 1;
-      if (!S[b].G && ssi_centre_gradients(&S[b].sig, &S[b].G, &e)) return 1;
-      int *T1 = malloc(sizeof(int) * S[a].m.nv), *T2 = malloc(sizeof(int) * S[a].m.nv), nt = 0;
-      double sc[16][2];
-      sc[nt][0] = ssi_pseudo_centres(&S[a].sig, S[a].G, &S[b].sig, S[b].G, g);
-      sc[nt++][1] = ssi_pseudo_centres(&S[a].sig, S[a].G, &S[b].sig, S[b].G, gm);
-      for (int t = 0; t < npk; t++) {
-        double f1 = 0, f2 = 0, c0 = cpu_now();
-        ssi_autopair_orient_map(&S[a].sig, &S[b].sig, g, &ao, pseudo_k[t], &f1, T1, &e);
-        ssi_autopair_orient_map(&S[a].sig, &S[b].sig, gm, &ao, pseudo_k[t], &f2, T2, &e);
-        double c1 = cpu_now();
-        sc[nt][0] = f1, sc[nt++][1] = f2;
-        sc[nt][0] = ssi_pseudo_score(&S[a].sig, S[a].G, &S[b].sig, S[b].G, g, T1, ao.orient_keep);
-        sc[nt++][1] = ssi_pseudo_score(&S[a].sig, S[a].G, &S[b].sig, S[b].G, gm, T2, ao.orient_keep);
-        if (verbose) printf("   k %d maps %.3f s, pseudo %.3f s\n", pseudo_k[t], c1 - c0, cpu_now() - c1);
+      printf("   fv %d->%d:", a, b);
+      for (int t = 0; t < nfv; t++) {
+        double r1 = 0, r2 = 0, med = 0, c0 = cpu_now();
+        if (ssi_orient_pair(&S[a].sig, &S[b].sig, g, gm, fv_k[t], ao.orient_descr_k, fv_keep[t], &r1, &r2, &med, &e)) { fprintf(stderr, "%s\n", e.msg); return 1; }
+        fv_cpu[t] += cpu_now() - c0;
+        fv_ok[t] += r1 > r2, fv_okm[t] += med > 0;
+        printf(" [%.3f %.3f %.3f]", r1, r2, med);
       }
-      cmp_n++;
-      printf("   cmp %d->%d:", a, b);
-      for (int t = 0; t < nt; t++) cmp_ok[t] += sc[t][0] > sc[t][1], printf(" [%.3f %.3f]", sc[t][0], sc[t][1]);
       printf("\n");
-      free(T1), free(T2);
+      fv_n++;
     }
     n_right += all;
     n_mirror += all || allm;
@@ -337,9 +328,9 @@ int main(int argc, char **argv) {
     }
     if (verbose)
       printf("%3d -> %3d  m %d/%d  right %d/%d mirror-right %d  E %.4g mirror %.4g other %.4g  gap %.3f rho %.3f "
-             "rho_m %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d\n",
+             "rho_m %.3f margin %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d\n",
              a, b, S[a].sig.m, S[b].sig.m, right, pr.n, mright, info.energy, info.energy_mirror, info.energy_other, info.gap,
-             info.mirror, info.mirror_other, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr,
+             info.mirror, info.mirror_other, info.mirror_margin, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr,
              info.mirror_first, info.mirror_other_first, info.rechecked);
     ss_segment_pairs_free(&pr);
   }
@@ -364,10 +355,9 @@ int main(int argc, char **argv) {
          nsig ? sig_sum / nsig : 0);
   if (ao.recheck_margin > 0) printf("; second test (margin < %g, k %d, ZoomOut %d on %d samples) on %d pairs", ao.recheck_margin, ao.recheck_k, ao.recheck_zoomout, ao.recheck_samples, n_rechecked);
   if (n_gt) printf("; orientation test on the ground-truth pairing right on %d of %d (mean margin %.3f)", n_gtok, n_gt, gt_margin / n_gt);
-  if (cmp_n) {
-    printf("; tests on the ground truth vs its mirror (%d pairs): centres-pseudo %d", cmp_n, cmp_ok[0]);
-    for (int t = 0; t < npk; t++) printf(", k %d face %d pseudo %d", pseudo_k[t], cmp_ok[1 + 2 * t], cmp_ok[2 + 2 * t]);
-  }
+  for (int t = 0; t < nfv; t++)
+    printf("; variant k %d keep %g on the ground truth vs its mirror: right by the whole-shape scores on %d, by the "
+           "median rule on %d, of %d (CPU %.3f s)", fv_k[t], fv_keep[t], fv_ok[t], fv_okm[t], fv_n, fv_cpu[t] / fv_n);
   if (nerr) printf("; landmark-free map error mean %.4f over %d pairs", err_sum / nerr, nerr);
   printf("\n");
   if (dump) {

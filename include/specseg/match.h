@@ -186,6 +186,12 @@ typedef struct ss_centre_signature {
   const ss_shape_prep *prep; /* borrowed: the shape it was computed from (must outlive it) */
   int *sigma;          /* m: the centres' left-right symmetry (identity where none was found) */
   double sigma_score;  /* the orientation score of σ's map (< 0: a mirror; 1: none found) */
+  /* the orientation test's probes of this shape, built once (ss_fmap_base_probes with every centre
+   * as a landmark, in its first probe_k eigenfunctions from probe_descr_k eigenpairs: coefficients
+   * probe_A, k x probe_p, and packed operators probe_P); NULL (e.g. a signature read from a
+   * prepared-shape file): the pairing builds them itself, to the same effect */
+  int probe_k, probe_descr_k, probe_p;
+  double *probe_A, *probe_P;
 } ss_centre_signature;
 
 SS_API ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_options *o,
@@ -205,6 +211,10 @@ typedef struct ss_autopair_info {
   double cpu;           /* CPU seconds of the search and the orientation test (signatures excluded) */
   int rechecked;        /* 1: the second orientation test decided (mirror / mirror_other are its scores) */
   double mirror_first, mirror_other_first; /* the first test's scores */
+  /* the left / right decision's margin: half the median over the segments of the smaller-count
+   * shape of (segment's score under the answer − under its mirror) (rechecked: (mirror −
+   * mirror_other) / 2); the confidence rule compares it with min_mirror */
+  double mirror_margin;
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:

@@ -40,10 +40,13 @@ void ss_centre_signature_free(ss_centre_signature *s) {
   free(s->D);
   free(s->normals);
   free(s->sigma);
+  free(s->probe_A);
+  free(s->probe_P);
   memset(s, 0, sizeof *s);
 }
 
 static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err);
+static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo);
 
 static double cpu_now(void) {
   struct timespec t;
@@ -135,7 +138,16 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
     out->orient_sign = vol < 0 ? -1.0 : 1.0;
     for (size_t i = 0; i < (size_t)n * 3; i++) out->normals[i] *= out->orient_sign;
   }
-  /* 4. the centres' own left-right symmetry */
+  /* 4. the orientation test's probes (WKS + every centre's wave kernels), once per shape */
+  {
+    ss_fmap_match_options fo;
+    orient_fmap_options(o.orient_k, o.orient_descr_k, p->kev, &fo);
+    ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0};
+    ss_fmap_probes pr;
+    if ((st = ss_fmap_base_probes(&fs, m, out->centers, &fo, 1, &pr, err))) goto done;
+    out->probe_k = fo.k, out->probe_descr_k = fo.descr_k, out->probe_p = pr.p, out->probe_A = pr.A, out->probe_P = pr.P;
+  }
+  /* 5. the centres' own left-right symmetry */
   st = self_symmetry(out, &o, err);
 done:
   ss_geodesic_mesh_free(gm);
@@ -144,20 +156,52 @@ done:
   return st;
 }
 
-double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
+/* The orientation score of T over A's faces (those of segments in segmask, NULL: all) and, in seg (A->m,
+ * may be NULL), that of each segment's faces (a face belongs to its first vertex's segment; NAN for a
+ * segment without a counted face). */
+static double map_orientation_seg(const ss_centre_signature *A, const ss_centre_signature *B, const int *T,
+                                  const int *segmask, double *seg) {
   const ss_mesh *mA = A->prep->mesh, *mB = B->prep->mesh;
+  const int *lab = A->prep->seg.labels, m = A->m;
   double pos = 0, tot = 0;
+  if (seg)
+    for (int a = 0; a < 2 * m; a++) seg[a] = 0; /* scratch: m counts then m positives, see below */
+  double *cnt = seg, *cpos = seg ? seg + m : NULL;
   for (int f = 0; f < mA->nf; f++) {
     const int *t = mA->F + 3 * (size_t)f;
+    if (segmask && !(segmask[lab[t[0]]] && segmask[lab[t[1]]] && segmask[lab[t[2]]])) continue;
     const double *q0 = mB->V + 3 * (size_t)T[t[0]], *q1 = mB->V + 3 * (size_t)T[t[1]], *q2 = mB->V + 3 * (size_t)T[t[2]];
     const double *nr = B->normals + 3 * (size_t)T[t[0]];
     double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
     double x = nr[0] * (u[1] * w[2] - u[2] * w[1]) + nr[1] * (u[2] * w[0] - u[0] * w[2]) + nr[2] * (u[0] * w[1] - u[1] * w[0]);
     x *= A->orient_sign;
-    if (x != 0) tot += 1, pos += x > 0;
+    if (x == 0) continue;
+    tot += 1, pos += x > 0;
+    if (seg) cnt[lab[t[0]]] += 1, cpos[lab[t[0]]] += x > 0;
   }
+  if (seg)
+    for (int a = 0; a < m; a++) seg[a] = cnt[a] > 0 ? (2 * cpos[a] - cnt[a]) / cnt[a] : NAN;
   return tot > 0 ? (2 * pos - tot) / tot : 0.0;
 }
+
+double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
+  return map_orientation_seg(A, B, T, NULL, NULL);
+}
+
+/* The median over A's segments of s1 − s2 (segments scored in both), 0 when none */
+static double median_margin(int m, const double *s1, const double *s2, double *tmp) {
+  int q = 0;
+  for (int a = 0; a < m; a++)
+    if (isfinite(s1[a]) && isfinite(s2[a])) {
+      double d = s1[a] - s2[a];
+      int j = q++;
+      for (; j > 0 && tmp[j - 1] > d; j--) tmp[j] = tmp[j - 1];
+      tmp[j] = d;
+    }
+  if (q == 0) return 0.0;
+  return q % 2 ? tmp[q / 2] : 0.5 * (tmp[q / 2 - 1] + tmp[q / 2]);
+}
+
 
 /* ---- the search ----------------------------------------------------------------------------- */
 
@@ -441,80 +485,6 @@ static ss_status orient_score(const ss_centre_signature *A, const ss_centre_sign
   return orient_score_T(A, B, p, k, descr_k, zk, ns, keep, score, NULL, err);
 }
 
-ss_status ssi_autopair_orient_map(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                                  const ss_autopair_options *o, int k, double *score, int *T, ss_error *err) {
-  return orient_score_T(A, B, p, k, o->orient_descr_k, 0, 0, o->orient_keep, score, T, err);
-}
-
-ss_status ssi_centre_gradients(const ss_centre_signature *sg, double **G_out, ss_error *err) {
-  const ss_mesh *mesh = sg->prep->mesh;
-  const int n = mesh->nv, m = sg->m;
-  ss_geodesic_mesh *gm = NULL;
-  double *F = malloc(sizeof(double) * (size_t)n * m), *G = calloc((size_t)n * m * 3, sizeof(double));
-  ss_status st = SS_OK;
-  if (!F || !G) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
-  if ((st = ss_geodesic_mesh_build(mesh, &gm, err))) goto done;
-  if ((st = ss_geodesic_fields(gm, sg->centers, m, 0.0, F, err))) goto done;
-  ssi_field_gradients(mesh, sg->normals, n, m, F, G);
-done:
-  ss_geodesic_mesh_free(gm);
-  free(F);
-  if (st) free(G), G = NULL;
-  *G_out = G;
-  return st;
-}
-
-void ssi_field_gradients(const ss_mesh *mesh, const double *normals, int n, int m, const double *F, double *G) {
-  memset(G, 0, sizeof(double) * (size_t)n * m * 3);
-  for (int f = 0; f < mesh->nf; f++) {
-    const int *t = mesh->F + 3 * (size_t)f;
-    double gp[3][3], ar;
-    {
-      const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
-      double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-      double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      ar = 0.5 * sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
-    }
-    if (!(ar > 0)) continue;
-    for (int k = 0; k < 3; k++) { /* gradient of vertex k's hat: towards k, orthogonal to the opposite edge */
-      const double *pk = mesh->V + 3 * (size_t)t[k], *pa = mesh->V + 3 * (size_t)t[(k + 1) % 3],
-                   *pb = mesh->V + 3 * (size_t)t[(k + 2) % 3];
-      double e[3] = {pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]}, w[3] = {pk[0] - pa[0], pk[1] - pa[1], pk[2] - pa[2]};
-      double ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2], we = w[0] * e[0] + w[1] * e[1] + w[2] * e[2];
-      double u[3] = {w[0] - we / ee * e[0], w[1] - we / ee * e[1], w[2] - we / ee * e[2]};
-      double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-      for (int d = 0; d < 3; d++) gp[k][d] = u[d] / uu;
-    }
-    for (int a = 0; a < m; a++) {
-      const double *fa = F + (size_t)n * a;
-      double g[3];
-      for (int d = 0; d < 3; d++) g[d] = ar * (fa[t[0]] * gp[0][d] + fa[t[1]] * gp[1][d] + fa[t[2]] * gp[2][d]);
-      for (int c = 0; c < 3; c++)
-        for (int d = 0; d < 3; d++) G[((size_t)t[c] * m + a) * 3 + d] += g[d];
-    }
-  }
-  for (int v = 0; v < n; v++) {
-    const double *nr = normals + 3 * (size_t)v;
-    double nn = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
-    double nu[3] = {0, 0, 0};
-    if (nn > 0) nu[0] = nr[0] / nn, nu[1] = nr[1] / nn, nu[2] = nr[2] / nn;
-    for (int a = 0; a < m; a++) {
-      double *g = G + ((size_t)v * m + a) * 3, gn = g[0] * nu[0] + g[1] * nu[1] + g[2] * nu[2];
-      for (int d = 0; d < 3; d++) g[d] -= gn * nu[d];
-      double l = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-      for (int d = 0; d < 3; d++) g[d] = l > 0 ? g[d] / l : 0.0;
-    }
-  }
-}
-
-/* h_ij(v) = n(v) · (g_i(v) × g_j(v)) */
-static double pseudo(const double *G, const double *normals, int m, int v, int i, int j) {
-  const double *gi = G + ((size_t)v * m + i) * 3, *gj = G + ((size_t)v * m + j) * 3, *nr = normals + 3 * (size_t)v;
-  double c[3] = {gi[1] * gj[2] - gi[2] * gj[1], gi[2] * gj[0] - gi[0] * gj[2], gi[0] * gj[1] - gi[1] * gj[0]};
-  double nn = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
-  return nn > 0 ? (nr[0] * c[0] + nr[1] * c[1] + nr[2] * c[2]) / nn : 0.0;
-}
-
 /* kept[a] = 1 for the round(keep · m) (at least 3) centres farthest on average from the others */
 static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
   const int m = A->m;
@@ -537,42 +507,6 @@ static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
   }
 }
 
-double ssi_pseudo_score(const ss_centre_signature *A, const double *GA, const ss_centre_signature *B, const double *GB,
-                        const int *p, const int *T, double keep) {
-  const int n = A->prep->mesh->nv, ma = A->m, mb = B->m;
-  const double *M = A->prep->M;
-  double num = 0, den = 0;
-  int kept[256];
-  if (ma > 256) return 0;
-  kept_centres(A, keep, kept);
-  for (int v = 0; v < n; v++) {
-    const int w = T ? T[v] : v;
-    for (int i = 0; i < ma; i++)
-      for (int j = i + 1; j < ma; j++) {
-        if (!kept[i] || !kept[j]) continue;
-        double ha = pseudo(GA, A->normals, ma, v, i, j), hb = pseudo(GB, B->normals, mb, w, p[i], p[j]);
-        num += M[v] * ha * hb, den += M[v] * fabs(ha * hb);
-      }
-  }
-  return den > 0 ? num / den : 0.0;
-}
-
-double ssi_pseudo_centres(const ss_centre_signature *A, const double *GA, const ss_centre_signature *B, const double *GB,
-                          const int *p) {
-  const int ma = A->m, mb = B->m;
-  double num = 0, den = 0;
-  for (int c = 0; c < ma; c++) {
-    const int v = A->centers[c], w = B->centers[p[c]];
-    for (int i = 0; i < ma; i++)
-      for (int j = i + 1; j < ma; j++) {
-        if (i == c || j == c) continue;
-        double ha = pseudo(GA, A->normals, ma, v, i, j), hb = pseudo(GB, B->normals, mb, w, p[i], p[j]);
-        num += ha * hb, den += fabs(ha * hb);
-      }
-  }
-  return den > 0 ? num / den : 0.0;
-}
-
 /* ---- the orientation test with probes shared by the candidates ------------------------------- *
  * Every candidate's functional map has the same probes on A (WKS + the kept centres of A, in A's
  * order) and, on B, the WKS and the wave-kernel maps of B's centres in the candidate's order: B's
@@ -583,7 +517,8 @@ typedef struct orient_ctx {
   const ss_centre_signature *A, *B;
   ss_fmap_match_options fo;
   ss_fmap_shape sA, sB;
-  ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B */
+  ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B (when built here) */
+  const double *bA, *bP;  /* B's probes: pB's, or its signature's */
   ss_fmap_weights w;
   int na, nb, per;        /* kept centres of A, centres of B, probe columns per item */
   int *kept;              /* na indices of A's kept centres, ascending */
@@ -597,21 +532,32 @@ static void orient_ctx_free(orient_ctx *c) {
   memset(c, 0, sizeof *c);
 }
 
+/* the orientation test's functional-map options for shapes with kmin eigenpairs */
+static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo) {
+  ss_fmap_match_default_options(fo);
+  fo->k = k < kmin ? k : kmin;
+  fo->descr_k = descr_k < kmin ? descr_k : kmin;
+  if (fo->descr_k < fo->k) fo->descr_k = fo->k;
+  fo->zoomout_kmax = 0;
+}
+
+/* the signature's own probes when they were built with these options */
+static int have_probes(const ss_centre_signature *s, const ss_fmap_match_options *fo, int per) {
+  return s->probe_A && s->probe_P && s->probe_k == fo->k && s->probe_descr_k == fo->descr_k && s->probe_p == per * (1 + s->m);
+}
+
 static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
                                 orient_ctx *c, ss_error *err) {
   memset(c, 0, sizeof *c);
   const ss_shape_prep *pA = A->prep, *pB = B->prep;
   const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
   c->A = A, c->B = B;
-  ss_fmap_match_default_options(&c->fo);
-  c->fo.k = k < kmin ? k : kmin;
-  c->fo.descr_k = descr_k < kmin ? descr_k : kmin;
-  if (c->fo.descr_k < c->fo.k) c->fo.descr_k = c->fo.k;
-  c->fo.zoomout_kmax = 0;
+  orient_fmap_options(k, descr_k, kmin, &c->fo);
   if (c->fo.n_energies % c->fo.descr_step) return ss_fail(err, SS_ERR_INVALID, "autopair: descr_step must divide n_energies");
   c->per = c->fo.n_energies / c->fo.descr_step;
   c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0};
   c->sB = (ss_fmap_shape){pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
+  const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per;
   int *mask = malloc(sizeof(int) * (size_t)m), *lA = malloc(sizeof(int) * (size_t)m);
   c->kept = malloc(sizeof(int) * (size_t)m);
   c->T = malloc(sizeof(int) * (size_t)pA->mesh->nv);
@@ -622,15 +568,30 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
     for (int a = 0; a < m; a++)
       if (mask[a]) lA[c->na] = A->centers[a], c->kept[c->na++] = a;
     c->nb = B->m;
-    const int kk = c->fo.k, kp = kk * (kk + 1) / 2, p = c->per * (1 + c->na);
+    const int p = per * (1 + c->na);
     c->Abuf = malloc(sizeof(double) * (size_t)kk * p);
     c->Pbuf = malloc(sizeof(double) * (size_t)kp * p);
     if (!c->Abuf || !c->Pbuf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   }
-  if (!st) st = ss_fmap_base_probes(&c->sA, c->na, lA, &c->fo, 1, &c->pA, err);
-  if (!st) st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err);
+  /* B: its signature's probes, or built here */
+  if (!st && have_probes(B, &c->fo, per)) c->bA = B->probe_A, c->bP = B->probe_P;
+  else if (!st && !(st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err))) c->bA = c->pB.A, c->bP = c->pB.P;
+  /* A: the WKS and its kept centres, in A's order, from its signature's probes or built here */
+  if (!st && have_probes(A, &c->fo, per)) {
+    c->pA = (ss_fmap_probes){kk, per * (1 + c->na), per * (1 + c->na), NULL, NULL};
+    c->pA.A = malloc(sizeof(double) * (size_t)kk * c->pA.p);
+    c->pA.P = malloc(sizeof(double) * (size_t)kp * c->pA.p);
+    if (!c->pA.A || !c->pA.P) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+    for (int i = 0; !st && i <= c->na; i++) {
+      const int src = i == 0 ? 0 : 1 + c->kept[i - 1];
+      memcpy(c->pA.A + (size_t)kk * per * i, A->probe_A + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
+      memcpy(c->pA.P + (size_t)kp * per * i, A->probe_P + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+    }
+  } else if (!st) {
+    st = ss_fmap_base_probes(&c->sA, c->na, lA, &c->fo, 1, &c->pA, err);
+  }
   if (!st) st = ss_fmap_pair_weights(&c->sA, &c->sB, &c->fo, &c->w, err);
-  if (!st && (c->pA.p != c->per * (1 + c->na) || c->pB.p != c->per * (1 + B->m)))
+  if (!st && (c->pA.p != per * (1 + c->na) || (c->pB.A && c->pB.p != per * (1 + B->m))))
     st = ss_fail(err, SS_ERR_INVALID, "autopair: unexpected probe layout");
   free(mask), free(lA);
   if (st) orient_ctx_free(c);
@@ -638,12 +599,12 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
 }
 
 /* the point map A -> B of candidate p (A index -> B index) into c->T, and its orientation score */
-static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, ss_error *err) {
+static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, double *seg, ss_error *err) {
   const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per, np = per * (1 + c->na);
   for (int i = 0; i <= c->na; i++) { /* item 0: the WKS; item i: centre p[kept[i-1]] of B */
     const int src = i == 0 ? 0 : 1 + p[c->kept[i - 1]];
-    memcpy(c->Abuf + (size_t)kk * per * i, c->pB.A + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
-    memcpy(c->Pbuf + (size_t)kp * per * i, c->pB.P + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+    memcpy(c->Abuf + (size_t)kk * per * i, c->bA + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
+    memcpy(c->Pbuf + (size_t)kp * per * i, c->bP + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
   }
   ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf};
   ss_fmap_system *sys = NULL;
@@ -653,9 +614,24 @@ static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, ss
   if (!st) st = ss_fmap_system_new(kk, kk, c->sB.evals, c->sA.evals, &pb, &c->pA, &c->w, &sys, err);
   if (!st) st = ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, Ck, err);
   if (!st) st = ss_fmap_match_finish(&c->sA, &c->sB, &c->fo, Ck, c->T, NULL, err);
-  if (!st && score) *score = ssi_map_orientation(c->A, c->B, c->T);
+  if (!st && score) *score = map_orientation_seg(c->A, c->B, c->T, NULL, seg);
   ss_fmap_system_free(sys);
   free(Ck);
+  return st;
+}
+
+ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,
+                          int descr_k, double keep, double *r1, double *r2, double *med, ss_error *err) {
+  orient_ctx c;
+  ss_status st = orient_ctx_new(A, B, k, descr_k, keep, &c, err);
+  double *s1 = malloc(sizeof(double) * 2 * (size_t)A->m), *s2 = malloc(sizeof(double) * 2 * (size_t)A->m);
+  double *tmp = malloc(sizeof(double) * (size_t)A->m);
+  if (!st && (!s1 || !s2 || !tmp)) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  if (!st) st = orient_ctx_score(&c, p1, r1, s1, err);
+  if (!st) st = orient_ctx_score(&c, p2, r2, s2, err);
+  if (!st && med) *med = median_margin(A->m, s1, s2, tmp);
+  free(s1), free(s2), free(tmp);
+  orient_ctx_free(&c);
   return st;
 }
 
@@ -736,10 +712,10 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     int id = 1;
     for (int a = 0; a < m && id; a++) id = S.top_p[k][a] == a;
     if (id) continue;
-    double sc;
+    double sc = 0;
     if (!have_ctx && (st = orient_ctx_new(sg, sg, o->orient_k, o->orient_descr_k, 1.0, &oc, err))) break;
     have_ctx = 1;
-    if ((st = orient_ctx_score(&oc, S.top_p[k], &sc, err))) break;
+    if ((st = orient_ctx_score(&oc, S.top_p[k], &sc, NULL, err))) break;
     sc_k[k] = sc;
     moved[k] = 0;
     for (int a = 0; a < m; a++) moved[k] += S.top_p[k][a] != a;
@@ -785,15 +761,16 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   int status = 0;
   const int nbuf = TOPK + 4;
   double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
-  double *share = malloc(sizeof(double) * (size_t)na);
+  double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
+  double *seg2 = malloc(sizeof(double) * 2 * (size_t)na);
   int *cur = malloc(sizeof(int) * (size_t)nb), *used = malloc(sizeof(int) * (size_t)nb);
   int *buf = malloc(sizeof(int) * (size_t)na * nbuf);
-  if (!U || !minU || !share || !cur || !used || !buf) {
+  search S;
+  orient_ctx oc = {0};
+  if (!U || !minU || !share || !seg1 || !seg2 || !cur || !used || !buf) {
     st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
     goto done;
   }
-  search S;
-  orient_ctx oc = {0};
   init_search(&S, A, &o, U, minU, cur, used, buf);
   int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
   const int *sigma = A->sigma;
@@ -813,21 +790,28 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   /* left / right: the candidate whose map preserves orientation */
   double r1 = 0, r2 = 0;
   if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
-  if ((st = orient_ctx_score(&oc, pi1, &r1, err))) goto done;
+  if ((st = orient_ctx_score(&oc, pi1, &r1, seg1, err))) goto done;
   if (same(pi1, pi2, na)) { /* no symmetry found: the runner-up is the other candidate */
     if (isfinite(e3)) memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
   }
-  if (same(pi1, pi2, na)) r2 = r1;
-  else if ((st = orient_ctx_score(&oc, pi2, &r2, err))) goto done;
+  if (same(pi1, pi2, na)) r2 = r1, memcpy(seg2, seg1, sizeof(double) * (size_t)na);
+  else if ((st = orient_ctx_score(&oc, pi2, &r2, seg2, err))) goto done;
+  /* the decision: the median over A's segments of the two maps' score difference (the torso
+   * saddles' segments follow their centres front or back, the protrusions' are too small to map
+   * well: a few segments vote wrong, the median is robust to them); ties: the whole-shape scores */
+  double med = median_margin(na, seg1, seg2, share);
+  if (med == 0) med = r1 - r2;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
-  if (!same(pi1, pi2, na) && fabs(r1 - r2) / 2 < o.recheck_margin) { /* a close call: the second test decides */
+  if (!same(pi1, pi2, na) && fabs(med) / 2 < o.recheck_margin) { /* a close call: the second test decides */
     if ((st = ssi_autopair_recheck_score(A, B, pi1, &o, &r1, err))) goto done;
     if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
+    med = r1 - r2;
     rechecked = 1;
   }
   double f1 = r1_first, f2 = r2_first;
-  if (r2 > r1) {
+  if (med < 0) {
+    med = -med;
     f1 = r2_first, f2 = r1_first;
     int *t = pi1;
     pi1 = pi2, pi2 = t;
@@ -863,7 +847,8 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     info->gap = isfinite(e3) ? (e3 - emin) / (emin > 1e-300 ? emin : 1e-300) : INFINITY;
     info->mirror = r1;
     info->mirror_other = r2;
-    info->confident = info->gap >= o.min_gap && (r1 - r2) / 2 >= o.min_mirror;
+    info->mirror_margin = med / 2;
+    info->confident = info->gap >= o.min_gap && info->mirror_margin >= o.min_mirror;
     info->rechecked = rechecked;
     info->mirror_first = f1;
     info->mirror_other_first = f2;
@@ -871,6 +856,6 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   }
 done:
   orient_ctx_free(&oc);
-  free(U), free(minU), free(share), free(cur), free(used), free(buf);
+  free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf);
   return st;
 }

@@ -17,15 +17,8 @@ ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_cent
  * degenerate, (preserved − reversed) / count, against B's outward normals. */
 double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T);
 
-/* experimental: the point map of the candidate's small functional map (basis k) and its score */
-ss_status ssi_autopair_orient_map(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                                  const ss_autopair_options *o, int k, double *score, int *T, ss_error *err);
-/* per-vertex unit tangent gradients of the centres' exact distance fields, nv x m x 3 (malloc'd) */
-ss_status ssi_centre_gradients(const ss_centre_signature *sg, double **G, ss_error *err);
-void ssi_field_gradients(const ss_mesh *mesh, const double *normals, int n, int m, const double *F, double *G);
-/* pseudo-scalar agreement of the pairing p through the point map T (A -> B; NULL: identity) */
-double ssi_pseudo_score(const ss_centre_signature *A, const double *GA, const ss_centre_signature *B, const double *GB,
-                        const int *p, const int *T, double keep);
-double ssi_pseudo_centres(const ss_centre_signature *A, const double *GA, const ss_centre_signature *B, const double *GB,
-                          const int *p);
+/* Both candidates' orientation scores r1, r2 (orient_k = k, orient_descr_k = descr_k, orient_keep =
+ * keep) and the decision's median margin med (> 0: p1), as ss_pair_centres_auto computes them. */
+ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,
+                          int descr_k, double keep, double *r1, double *r2, double *med, ss_error *err);
 #endif
