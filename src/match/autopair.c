@@ -5,6 +5,7 @@
 #include "specseg/geodesic.h"
 #include "specseg/match.h"
 #include "match/autopair_internal.h"
+#include "mesh/mesh_topology.h"
 
 #include <cblas.h>
 #include <math.h>
@@ -121,11 +122,16 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
     nn = nn > 0 ? 1.0 / sqrt(nn) : 0.0;
     for (int j = 0; j < ne; j++) d[j] *= nn;
   }
-  /* 3. orientation: the signed volume's sign makes the normals outward */
+  /* 3. orientation: the signed volume's sign makes the normals outward; faces of a mesh that is not
+   * consistently oriented are taken as the consistent orientation of their component (majority)
+   * would have them, so the normals do not depend on the faces' own winding */
   {
+    int *Fo = NULL;
+    if ((st = ssi_mesh_orient_copy(mesh, &Fo, NULL, err))) goto done;
+    const int *FF = Fo ? Fo : mesh->F;
     double vol = 0;
     for (int f = 0; f < nf; f++) {
-      const int *t = mesh->F + 3 * (size_t)f;
+      const int *t = FF + 3 * (size_t)f;
       const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
       double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
       double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
@@ -133,6 +139,7 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
       for (int c = 0; c < 3; c++)
         for (int d = 0; d < 3; d++) out->normals[3 * (size_t)t[c] + d] += N[d];
     }
+    free(Fo);
     vol /= 6.0;
     out->volume_ratio = vol / (area * sqrt(area));
     out->orient_sign = vol < 0 ? -1.0 : 1.0;
@@ -174,7 +181,15 @@ static double map_orientation_seg(const ss_centre_signature *A, const ss_centre_
     const double *nr = B->normals + 3 * (size_t)T[t[0]];
     double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
     double x = nr[0] * (u[1] * w[2] - u[2] * w[1]) + nr[1] * (u[2] * w[0] - u[0] * w[2]) + nr[2] * (u[0] * w[1] - u[1] * w[0]);
-    x *= A->orient_sign;
+    { /* the face's own orientation against A's outward normals (not its winding: see the signature) */
+      const double *p0 = mA->V + 3 * (size_t)t[0], *p1 = mA->V + 3 * (size_t)t[1], *p2 = mA->V + 3 * (size_t)t[2];
+      const double *n0 = A->normals + 3 * (size_t)t[0], *n1 = A->normals + 3 * (size_t)t[1], *n2 = A->normals + 3 * (size_t)t[2];
+      double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+      double y = (n0[0] + n1[0] + n2[0]) * (a[1] * b[2] - a[2] * b[1]) + (n0[1] + n1[1] + n2[1]) * (a[2] * b[0] - a[0] * b[2]) +
+                 (n0[2] + n1[2] + n2[2]) * (a[0] * b[1] - a[1] * b[0]);
+      if (y < 0) x = -x;
+      else if (!(y > 0)) continue;
+    }
     if (x == 0) continue;
     tot += 1, pos += x > 0;
     if (seg) cnt[lab[t[0]]] += 1, cpos[lab[t[0]]] += x > 0;
