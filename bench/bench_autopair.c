@@ -4,8 +4,8 @@
  *   bench_autopair [--data DIR] [--cache DIR] [--split tune|held|all] [--pairs N] [--seed S]
  *                  [--all-pairs] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
  *                  [--ok K] [--odk K] (orientation test's basis / descriptor eigenpairs)
- *                  [--recheck M] [--rk K] [--rz K] [--rs N] (the second test: below margin M, basis K,
- *                  ZoomOut to K on N samples) [--keep F] (the test's landmarks: the fraction F of the
+ *                  [--recheck M] [--rk K] [--rz K] [--rs N] [--rkeep F] (the second test: below margin M,
+ *                  basis K, ZoomOut to K on N samples, or the fraction F of the centres as landmarks) [--keep F] (the test's landmarks: the fraction F of the
  *                  centres farthest from the others)
  *                  [--match N] [--verbose] [--dump DIR]
  *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
@@ -153,6 +153,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--odk") && v) ao.orient_descr_k = atoi(v), i++;
     else if (!strcmp(a, "--recheck") && v) ao.recheck_margin = atof(v), i++;
     else if (!strcmp(a, "--keep") && v) ao.orient_keep = atof(v), i++;
+    else if (!strcmp(a, "--rkeep") && v) ao.recheck_keep = atof(v), i++;
     else if (!strcmp(a, "--rk") && v) ao.recheck_k = atoi(v), i++;
     else if (!strcmp(a, "--rz") && v) ao.recheck_zoomout = atoi(v), i++;
     else if (!strcmp(a, "--rs") && v) ao.recheck_samples = atoi(v), i++;

@@ -193,6 +193,16 @@ static void test_permuted_and_mirrored(void) {
     CHECK(i1.rechecked == 1 && r1 == np1 && i1.mirror > i1.mirror_other);
     CHECK(i1.mirror_first == i0.mirror_first && i1.mirror_other_first == i0.mirror_other_first);
     CHECK(i1.mirror != i1.mirror_first); /* another map: ZoomOut to 40 from k 20 */
+    /* the default second test (the protrusions' landmarks, the mean of both medians), forced */
+    ss_autopair_options ad;
+    ss_autopair_default_options(&ad);
+    ad.recheck_margin = 2.0;
+    ss_autopair_info i4;
+    int np4, r4 = pair_sigs(&sX, &sR, sym, &ad, &i4, &np4);
+    printf("reflected, default second test forced: %d of %d right, margin %.3f (first test alone %.3f)\n", r4, np4,
+           i4.mirror_margin, i0.mirror_margin);
+    CHECK(i4.rechecked == 1 && r4 == np4 && i4.mirror_margin > 0 && i4.mirror_margin != i0.mirror_margin);
+    CHECK(i4.mirror_first == i0.mirror_first);
     /* only the 5 centres farthest from the others as the test's landmarks: another map, same answer */
     ss_autopair_options ak;
     ss_autopair_default_options(&ak);

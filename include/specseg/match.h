@@ -153,12 +153,14 @@ typedef struct ss_autopair_options {
   int orient_descr_k;  /* eigenpairs of its descriptors (default 100; min with what the shapes have) */
   double min_gap;      /* confidence thresholds: below either the result says so (notes) */
   double min_mirror;
-  /* Second orientation test, only when the first one's margin (score − mirror's score) / 2 is below
-   * recheck_margin (0: never): both candidates' maps again with recheck_k eigenfunctions,
-   * descriptors from orient_descr_k eigenpairs, ZoomOut up to recheck_zoomout (0: none; step 5 on
-   * recheck_samples samples of the smaller-count shape, then once on every vertex); that test
-   * decides and its margin is the one reported. Off by default (recheck_margin 0): neither k 50
-   * nor ZoomOut to 60 decided better on the tuning split (docs/tuning.md). */
+  /* Second orientation test, only when the first one's margin (mirror_margin below) is below
+   * recheck_margin (0: never; default 0.075): both candidates' maps again with recheck_k
+   * eigenfunctions (default 30) and only round(recheck_keep · m) centres as landmarks (default
+   * 0.625: the 5 protrusions of 8 on FAUST, whose maps do not follow the torso saddles front or back);
+   * the decision is then the mean of the two tests' median segment margins. With recheck_zoomout >
+   * recheck_k instead: ZoomOut-refined maps up to recheck_zoomout (step 5 on recheck_samples samples
+   * of the smaller-count shape, then once on every vertex), orient_keep's landmarks, and that test's
+   * whole-shape scores decide alone (no gain on the tuning split). docs/tuning.md. */
   double recheck_margin;
   int recheck_k;
   /* The left / right test (both tests) uses only round(orient_keep · m), at least 3, of the smaller
@@ -168,6 +170,7 @@ typedef struct ss_autopair_options {
   double orient_keep;
   int recheck_zoomout;
   int recheck_samples;
+  double recheck_keep;
 } ss_autopair_options;
 
 SS_API void ss_autopair_default_options(ss_autopair_options *o);

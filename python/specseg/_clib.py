@@ -120,7 +120,7 @@ class ss_autopair_options(C.Structure):
                 ("exact_max", C.c_int), ("orient_k", C.c_int), ("orient_descr_k", C.c_int),
                 ("min_gap", C.c_double), ("min_mirror", C.c_double),
                 ("recheck_margin", C.c_double), ("recheck_k", C.c_int), ("orient_keep", C.c_double),
-                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int)]
+                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int), ("recheck_keep", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):

@@ -28,10 +28,11 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->min_gap = 0.05;
   o->min_mirror = 0.3;
   o->orient_keep = 1.0;
-  o->recheck_margin = 0;
+  o->recheck_margin = 0.075;
   o->recheck_k = 30;
   o->recheck_zoomout = 0;
   o->recheck_samples = 1000;
+  o->recheck_keep = 0.625;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
@@ -766,8 +767,11 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     return ss_fail(err, SS_ERR_INVALID, "autopair: weights must be finite and non-negative");
   if (!(o.orient_keep > 0 && o.orient_keep <= 1))
     return ss_fail(err, SS_ERR_INVALID, "autopair: orient_keep must be in (0, 1]");
-  if (!(o.recheck_margin >= 0) || (o.recheck_margin > 0 && (o.recheck_k < 3 || o.recheck_zoomout < 0 || o.recheck_samples < 0)))
-    return ss_fail(err, SS_ERR_INVALID, "autopair: bad second-test options (recheck_margin >= 0, recheck_k >= 3)");
+  if (!(o.recheck_margin >= 0) ||
+      (o.recheck_margin > 0 && (o.recheck_k < 3 || o.recheck_zoomout < 0 || o.recheck_samples < 0 ||
+                                !(o.recheck_keep > 0 && o.recheck_keep <= 1))))
+    return ss_fail(err, SS_ERR_INVALID,
+                   "autopair: bad second-test options (recheck_margin >= 0, recheck_k >= 3, recheck_keep in (0, 1])");
   double c0 = cpu_now();
   const int swap = X->m > Y->m;
   const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
@@ -818,10 +822,18 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   if (med == 0) med = r1 - r2;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
-  if (!same(pi1, pi2, na) && fabs(med) / 2 < o.recheck_margin) { /* a close call: the second test decides */
-    if ((st = ssi_autopair_recheck_score(A, B, pi1, &o, &r1, err))) goto done;
-    if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
-    med = r1 - r2;
+  if (!same(pi1, pi2, na) && fabs(med) / 2 < o.recheck_margin) { /* a close call: a second test */
+    if (o.recheck_zoomout > o.recheck_k) { /* ZoomOut-refined maps, whose scores decide */
+      if ((st = ssi_autopair_recheck_score(A, B, pi1, &o, &r1, err))) goto done;
+      if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
+      med = r1 - r2;
+    } else { /* the protrusions' landmarks only: the mean of both tests' medians */
+      orient_ctx_free(&oc);
+      if ((st = orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc, err))) goto done;
+      if ((st = orient_ctx_score(&oc, pi1, &r1, seg1, err))) goto done;
+      if ((st = orient_ctx_score(&oc, pi2, &r2, seg2, err))) goto done;
+      med = 0.5 * (med + median_margin(na, seg1, seg2, share));
+    }
     rechecked = 1;
   }
   double f1 = r1_first, f2 = r2_first;
