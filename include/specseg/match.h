@@ -127,7 +127,8 @@ SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals,
  *    distance-profile costs (each centre's sorted distances to the others), then swaps / moves to
  *    free centres while E decreases (a local minimum, no guarantee). E cannot tell left from right
  *    (a mirror is an isometry).
- * 2. Left / right. The mirror candidate is π∘σ, σ the centres' own left-right symmetry (per shape:
+ * 2. Left / right. The mirror candidate is π∘σ_A or σ_B∘π, whichever has the lower E, σ the centres'
+ *    own left-right symmetry (per shape:
  *    of the 6 best non-identity pairings of the centres with themselves by E — relaxed: single
  *    swaps — the one whose map below is the most clearly orientation-reversing), falling back to
  *    the best other pairing when there is none. For both candidates a small functional map (ss_fmap_match:
@@ -136,12 +137,17 @@ SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals,
  *    image triangle keeps its orientation − faces whose image flips) / faces, measured against B's
  *    outward vertex normals: +1 for an orientation-preserving map, −1 for a mirror. A left–right
  *    swap of the landmarks makes the functional map a reflection (orientation-reversing), so the
- *    candidate with the larger score is the answer. This needs consistently oriented meshes:
- *    ss_mesh_sanitize orients each component consistently, and the sign of the signed volume then
- *    fixes outward normals on both shapes (an open surface of ~zero volume cannot tell:
- *    volume_ratio). The intrinsic energy alone cannot decide it: a mirror is an isometry.
+ *    candidate that keeps orientation is the answer, decided segment by segment: the median over
+ *    A's segments of (segment score under π − under its mirror) (the torso saddles' segments follow
+ *    their centres, which sit front or back inconsistently between shapes, and vote wrong); when
+ *    its half (mirror_margin) is below recheck_margin a second pair of maps with only the
+ *    protrusion centres as landmarks adds its median (options below). This needs consistently
+ *    oriented meshes: faces wound against their component's majority are taken reversed, and the
+ *    sign of the signed volume fixes outward normals on both shapes (an open surface of ~zero
+ *    volume cannot tell: volume_ratio). The intrinsic energy alone cannot decide it: a mirror is an
+ *    isometry.
  * Confidence: gap = (E₃ − E₁) / E₁ with E₃ the best intrinsic energy of a pairing other than the
- * answer and its mirror, and the orientation margin (score − score_mirror) / 2. */
+ * answer and its mirror, and the orientation margin mirror_margin. */
 typedef struct ss_autopair_options {
   int descr_k;         /* eigenpairs of the WKS (default 100; min with what the shapes have) */
   int n_energies;      /* WKS energies (default 100) */

@@ -799,6 +799,13 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
   for (int a = 0; a < na; a++) pi2[a] = pi1[sigma[a]];
+  { /* B's own symmetry gives another mirror candidate, σ_B∘π: a mirror is an isometry, so of the two
+     * the one of lower energy (a wrong σ, e.g. a swap of the hands only, costs energy) */
+    for (int a = 0; a < na; a++) third[a] = B->sigma[pi1[a]];
+    const int id2 = same(pi2, pi1, na), idb = same(third, pi1, na);
+    if (!idb && (id2 || full_energy(&S, third, NULL) < full_energy(&S, pi2, NULL)))
+      memcpy(pi2, third, sizeof(int) * (size_t)na);
+  }
   double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = INFINITY;
   for (int k = 0; k < TOPK; k++)
     if (isfinite(S.top_e[k]) && !same(S.top_p[k], pi1, na) && !same(S.top_p[k], pi2, na)) {
