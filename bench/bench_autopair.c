@@ -2,7 +2,7 @@
  * the ground truth (identity), up to the left-right mirror and with it, its confidence and CPU, and
  * optionally the landmark-free ss_match_prepared map error.
  *   bench_autopair [--data DIR] [--cache DIR] [--split tune|held|all] [--pairs N] [--seed S]
- *                  [--all-pairs] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
+ *                  [--all-pairs] [--list X,Y;X,Y;...] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
  *                  [--ok K] [--odk K] (orientation test's basis / descriptor eigenpairs)
  *                  [--recheck M] [--rk K] [--rz K] [--rs N] [--rkeep F] (the second test: below margin M,
  *                  basis K, ZoomOut to K on N samples, or the fraction F of the centres as landmarks) [--keep F] (the test's landmarks: the fraction F of the
@@ -127,6 +127,7 @@ int main(int argc, char **argv) {
   const char *tosca_class = NULL, *data = SS_DATA_DIR_DEFAULT, *cache = "/tmp/specseg_autopair_cache", *split = "tune", *dump = NULL;
   int fv_k[8], nfv = 0, fv_ok[8] = {0}, fv_okm[8] = {0}, fv_n = 0;
   double fv_keep[8], fv_cpu[8] = {0};
+  const char *list = NULL;
   int tosca = 0, selftest = 0, npairs = 20, allpairs = 0, verbose = 0, nmatch = 0, gtrho = 0, n_gt = 0, n_gtok = 0;
   double gt_margin = 0;
   unsigned seed = 1;
@@ -140,6 +141,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--pairs") && v) npairs = atoi(v), i++;
     else if (!strcmp(a, "--seed") && v) seed = (unsigned)atoi(v), i++;
     else if (!strcmp(a, "--all-pairs")) allpairs = 1;
+    else if (!strcmp(a, "--list") && v) list = v, i++;
     else if (!strcmp(a, "--wd") && v) ao.w_descr = atof(v), i++;
     else if (!strcmp(a, "--wg") && v) ao.w_geo = atof(v), i++;
     else if (!strcmp(a, "--gtrho")) gtrho = 1;
@@ -225,6 +227,19 @@ int main(int argc, char **argv) {
     for (int a = lo; a < lo + n; a++)
       for (int b = lo; b < lo + n; b++)
         if (a != b) px[q] = a, py[q++] = b;
+  } else if (list) { /* "x,y;x,y;..." */
+    np = 1;
+    for (const char *c = list; *c; c++) np += *c == ';';
+    px = malloc(sizeof(int) * np), py = malloc(sizeof(int) * np);
+    const char *c = list;
+    for (int q = 0; q < np; q++) {
+      if (sscanf(c, "%d,%d", &px[q], &py[q]) != 2 || px[q] < 0 || px[q] > 99 || py[q] < 0 || py[q] > 99) {
+        fprintf(stderr, "bad --list\n");
+        return 2;
+      }
+      c = strchr(c, ';');
+      c = c ? c + 1 : "";
+    }
   } else {
     np = npairs;
     px = malloc(sizeof(int) * np), py = malloc(sizeof(int) * np);
