@@ -25,8 +25,8 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->exact_max = 10;
   o->orient_k = 30;
   o->orient_descr_k = 100;
-  o->min_gap = 0.05;
-  o->min_mirror = 0.3;
+  o->min_gap = 0.03;
+  o->min_mirror = 0.15;
   o->orient_keep = 1.0;
   o->recheck_margin = 0.075;
   o->recheck_k = 30;
