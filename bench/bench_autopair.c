@@ -2,13 +2,15 @@
  * the ground truth (identity), up to the left-right mirror and with it, its confidence and CPU, and
  * optionally the landmark-free ss_match_prepared map error.
  *   bench_autopair [--data DIR] [--cache DIR] [--split tune|held|all] [--pairs N] [--seed S]
- *                  [--all-pairs] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
+ *                  [--all-pairs] [--list X,Y;X,Y;...] [--wd W] [--wg W] [--radius R] [--energies E] [--exact-max N]
  *                  [--ok K] [--odk K] (orientation test's basis / descriptor eigenpairs)
- *                  [--recheck M] [--rk K] [--rz K] [--rs N] (the second test: below margin M, basis K,
- *                  ZoomOut to K on N samples) [--keep F] (the test's landmarks: the fraction F of the
+ *                  [--recheck M] [--rk K] [--rz K] [--rs N] [--rkeep F] (the second test: below margin M,
+ *                  basis K, ZoomOut to K on N samples, or the fraction F of the centres as landmarks) [--keep F] (the test's landmarks: the fraction F of the
  *                  centres farthest from the others)
  *                  [--match N] [--verbose] [--dump DIR]
  *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
+ *                  [--variant K KEEP] (repeatable) the test with basis K and orient_keep KEEP on the
+ *                  ground-truth pairing and its mirror: right by the whole-shape scores / the median rule
  *                  [--self]   the orientation test of the first 5 shapes with themselves
  *   bench_autopair --tosca [--tosca-class NAME] [--verbose]
  *                  each TOSCA class: its first shape against the others with the same vertex count
@@ -123,6 +125,9 @@ static void next_pair(unsigned *r, int lo, int n, int *a, int *b) {
 int main(int argc, char **argv) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   const char *tosca_class = NULL, *data = SS_DATA_DIR_DEFAULT, *cache = "/tmp/specseg_autopair_cache", *split = "tune", *dump = NULL;
+  int fv_k[8], nfv = 0, fv_ok[8] = {0}, fv_okm[8] = {0}, fv_n = 0;
+  double fv_keep[8], fv_cpu[8] = {0};
+  const char *list = NULL;
   int tosca = 0, selftest = 0, npairs = 20, allpairs = 0, verbose = 0, nmatch = 0, gtrho = 0, n_gt = 0, n_gtok = 0;
   double gt_margin = 0;
   unsigned seed = 1;
@@ -136,9 +141,11 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--pairs") && v) npairs = atoi(v), i++;
     else if (!strcmp(a, "--seed") && v) seed = (unsigned)atoi(v), i++;
     else if (!strcmp(a, "--all-pairs")) allpairs = 1;
+    else if (!strcmp(a, "--list") && v) list = v, i++;
     else if (!strcmp(a, "--wd") && v) ao.w_descr = atof(v), i++;
     else if (!strcmp(a, "--wg") && v) ao.w_geo = atof(v), i++;
     else if (!strcmp(a, "--gtrho")) gtrho = 1;
+    else if (!strcmp(a, "--variant") && v && i + 2 < argc && nfv < 8) fv_k[nfv] = atoi(v), fv_keep[nfv++] = atof(argv[i + 2]), i += 2;
     else if (!strcmp(a, "--self")) selftest = 1;
     else if (!strcmp(a, "--tosca")) tosca = 1;
     else if (!strcmp(a, "--tosca-class") && v) tosca = 1, tosca_class = v, i++;
@@ -148,6 +155,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--odk") && v) ao.orient_descr_k = atoi(v), i++;
     else if (!strcmp(a, "--recheck") && v) ao.recheck_margin = atof(v), i++;
     else if (!strcmp(a, "--keep") && v) ao.orient_keep = atof(v), i++;
+    else if (!strcmp(a, "--rkeep") && v) ao.recheck_keep = atof(v), i++;
     else if (!strcmp(a, "--rk") && v) ao.recheck_k = atoi(v), i++;
     else if (!strcmp(a, "--rz") && v) ao.recheck_zoomout = atoi(v), i++;
     else if (!strcmp(a, "--rs") && v) ao.recheck_samples = atoi(v), i++;
@@ -219,6 +227,19 @@ int main(int argc, char **argv) {
     for (int a = lo; a < lo + n; a++)
       for (int b = lo; b < lo + n; b++)
         if (a != b) px[q] = a, py[q++] = b;
+  } else if (list) { /* "x,y;x,y;..." */
+    np = 1;
+    for (const char *c = list; *c; c++) np += *c == ';';
+    px = malloc(sizeof(int) * np), py = malloc(sizeof(int) * np);
+    const char *c = list;
+    for (int q = 0; q < np; q++) {
+      if (sscanf(c, "%d,%d", &px[q], &py[q]) != 2 || px[q] < 0 || px[q] > 99 || py[q] < 0 || py[q] > 99) {
+        fprintf(stderr, "bad --list\n");
+        return 2;
+      }
+      c = strchr(c, ';');
+      c = c ? c + 1 : "";
+    }
   } else {
     np = npairs;
     px = malloc(sizeof(int) * np), py = malloc(sizeof(int) * np);
@@ -283,6 +304,23 @@ int main(int argc, char **argv) {
       if (verbose) printf("   GT score %.3f  GT-mirror score %.3f\n", rg, rm);
       n_gt++, n_gtok += rg > rm, gt_margin += (rg - rm) / 2;
     }
+    if (nfv && S[a].sig.m == S[b].sig.m) { /* variants of the test on the ground truth and its mirror */
+      int g[64], gm[64], mm = S[a].sig.m;
+      for (int c = 0; c < mm && c < 64; c++) {
+        g[c] = S[b].prep.seg.labels[S[a].prep.seg.centers[c]];
+        gm[c] = S[b].prep.seg.labels[sym[S[a].prep.seg.centers[c]]];
+      }
+      printf("   fv %d->%d:", a, b);
+      for (int t = 0; t < nfv; t++) {
+        double r1 = 0, r2 = 0, med = 0, c0 = cpu_now();
+        if (ssi_orient_pair(&S[a].sig, &S[b].sig, g, gm, fv_k[t], ao.orient_descr_k, fv_keep[t], &r1, &r2, &med, &e)) { fprintf(stderr, "%s\n", e.msg); return 1; }
+        fv_cpu[t] += cpu_now() - c0;
+        fv_ok[t] += r1 > r2, fv_okm[t] += med > 0;
+        printf(" [%.3f %.3f %.3f]", r1, r2, med);
+      }
+      printf("\n");
+      fv_n++;
+    }
     n_right += all;
     n_mirror += all || allm;
     n_conf += info.confident;
@@ -306,9 +344,9 @@ int main(int argc, char **argv) {
     }
     if (verbose)
       printf("%3d -> %3d  m %d/%d  right %d/%d mirror-right %d  E %.4g mirror %.4g other %.4g  gap %.3f rho %.3f "
-             "rho_m %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d\n",
+             "rho_m %.3f margin %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d\n",
              a, b, S[a].sig.m, S[b].sig.m, right, pr.n, mright, info.energy, info.energy_mirror, info.energy_other, info.gap,
-             info.mirror, info.mirror_other, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr,
+             info.mirror, info.mirror_other, info.mirror_margin, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr,
              info.mirror_first, info.mirror_other_first, info.rechecked);
     ss_segment_pairs_free(&pr);
   }
@@ -333,6 +371,9 @@ int main(int argc, char **argv) {
          nsig ? sig_sum / nsig : 0);
   if (ao.recheck_margin > 0) printf("; second test (margin < %g, k %d, ZoomOut %d on %d samples) on %d pairs", ao.recheck_margin, ao.recheck_k, ao.recheck_zoomout, ao.recheck_samples, n_rechecked);
   if (n_gt) printf("; orientation test on the ground-truth pairing right on %d of %d (mean margin %.3f)", n_gtok, n_gt, gt_margin / n_gt);
+  for (int t = 0; t < nfv; t++)
+    printf("; variant k %d keep %g on the ground truth vs its mirror: right by the whole-shape scores on %d, by the "
+           "median rule on %d, of %d (CPU %.3f s)", fv_k[t], fv_keep[t], fv_ok[t], fv_okm[t], fv_n, fv_cpu[t] / fv_n);
   if (nerr) printf("; landmark-free map error mean %.4f over %d pairs", err_sum / nerr, nerr);
   printf("\n");
   if (dump) {

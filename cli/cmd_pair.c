@@ -14,8 +14,10 @@ static const char USAGE[] =
     "scores and its confidence (what 'specseg match X Y' without --landmarks uses). The segments are\n"
     "paired intrinsically (WKS at the segment centres, centre-to-centre exact geodesic distances; exact\n"
     "search up to 10 centres), then left and right are told apart by the orientation of the maps of the\n"
-    "two mirror candidates, which needs both meshes consistently oriented. A pairing below the\n"
-    "confidence thresholds says so ('NOT confident'): give landmarks then.\n"
+    "two mirror candidates (segment by segment: the median segment decides), which needs consistently\n"
+    "oriented meshes (faces wound inconsistently are taken in their component's majority orientation;\n"
+    "an open surface of ~zero volume is warned about). A pairing below the confidence thresholds says\n"
+    "so ('NOT confident'): give landmarks then.\n"
     "\n"
     "  X, Y                OFF, OBJ or PLY files; one of the inputs may be - (standard input)\n"
     "  -o, --output FILE   the paired centres, 'x y' (input vertices of X and Y) a line: a landmark file\n"
@@ -65,9 +67,10 @@ int cmd_pair(int argc, char **argv) {
   for (int s = 0; s < 2; s++) {
     ss_mesh_report rep;
     if (!ss_mesh_check(s ? &Y : &X, &rep, NULL) && !rep.oriented && rep.orientable)
-      cli_warn("%s: faces not consistently oriented (%d re-oriented internally); the left / right decision needs "
-               "consistently oriented meshes",
+      cli_warn("%s: faces not consistently oriented (%d reversed internally: the left / right decision takes each "
+               "component's majority orientation as outward-consistent)",
                s ? yn : xn, rep.reorient_faces);
+
   }
   double t1 = ss_time();
   int kev = mo.autopair.descr_k > mo.autopair.orient_k ? mo.autopair.descr_k : mo.autopair.orient_k;
@@ -114,8 +117,8 @@ int cmd_pair(int argc, char **argv) {
             pY.seg.centers[pr.sy[p]], pr.energy[p]);
   fprintf(report, "energy %.4g, mirror candidate %.4g, best other pairing %.4g: gap %.3f (min %.3f)\n", info.energy,
           info.energy_mirror, info.energy_other, info.gap, mo.autopair.min_gap);
-  fprintf(report, "orientation score %.3f, mirror candidate %.3f: margin %.3f (min %.3f)\n", info.mirror,
-          info.mirror_other, (info.mirror - info.mirror_other) / 2, mo.autopair.min_mirror);
+  fprintf(report, "orientation score %.3f, mirror candidate %.3f; median segment margin %.3f (min %.3f)\n", info.mirror,
+          info.mirror_other, info.mirror_margin, mo.autopair.min_mirror);
   fprintf(report, "%s\n", info.confident ? "confident" : "NOT confident: a segment pair or left / right may be wrong");
   if (timings) {
     fprintf(stderr, "timing: read %.6f\n", t1 - t0);

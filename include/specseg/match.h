@@ -142,7 +142,8 @@ SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals,
  *    distance-profile costs (each centre's sorted distances to the others), then swaps / moves to
  *    free centres while E decreases (a local minimum, no guarantee). E cannot tell left from right
  *    (a mirror is an isometry).
- * 2. Left / right. The mirror candidate is π∘σ, σ the centres' own left-right symmetry (per shape:
+ * 2. Left / right. The mirror candidate is π∘σ_A or σ_B∘π, whichever has the lower E, σ the centres'
+ *    own left-right symmetry (per shape:
  *    of the 6 best non-identity pairings of the centres with themselves by E — relaxed: single
  *    swaps — the one whose map below is the most clearly orientation-reversing), falling back to
  *    the best other pairing when there is none. For both candidates a small functional map (ss_fmap_match:
@@ -151,12 +152,17 @@ SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals,
  *    image triangle keeps its orientation − faces whose image flips) / faces, measured against B's
  *    outward vertex normals: +1 for an orientation-preserving map, −1 for a mirror. A left–right
  *    swap of the landmarks makes the functional map a reflection (orientation-reversing), so the
- *    candidate with the larger score is the answer. This needs consistently oriented meshes:
- *    ss_mesh_sanitize orients each component consistently, and the sign of the signed volume then
- *    fixes outward normals on both shapes (an open surface of ~zero volume cannot tell:
- *    volume_ratio). The intrinsic energy alone cannot decide it: a mirror is an isometry.
+ *    candidate that keeps orientation is the answer, decided segment by segment: the median over
+ *    A's segments of (segment score under π − under its mirror) (the torso saddles' segments follow
+ *    their centres, which sit front or back inconsistently between shapes, and vote wrong); when
+ *    its half (mirror_margin) is below recheck_margin a second pair of maps with only the
+ *    protrusion centres as landmarks adds its median (options below). This needs consistently
+ *    oriented meshes: faces wound against their component's majority are taken reversed, and the
+ *    sign of the signed volume fixes outward normals on both shapes (an open surface of ~zero
+ *    volume cannot tell: volume_ratio). The intrinsic energy alone cannot decide it: a mirror is an
+ *    isometry.
  * Confidence: gap = (E₃ − E₁) / E₁ with E₃ the best intrinsic energy of a pairing other than the
- * answer and its mirror, and the orientation margin (score − score_mirror) / 2. */
+ * answer and its mirror, and the orientation margin mirror_margin. */
 typedef struct ss_autopair_options {
   int descr_k;         /* eigenpairs of the WKS (default 100; min with what the shapes have) */
   int n_energies;      /* WKS energies (default 100) */
@@ -168,12 +174,14 @@ typedef struct ss_autopair_options {
   int orient_descr_k;  /* eigenpairs of its descriptors (default 100; min with what the shapes have) */
   double min_gap;      /* confidence thresholds: below either the result says so (notes) */
   double min_mirror;
-  /* Second orientation test, only when the first one's margin (score − mirror's score) / 2 is below
-   * recheck_margin (0: never): both candidates' maps again with recheck_k eigenfunctions,
-   * descriptors from orient_descr_k eigenpairs, ZoomOut up to recheck_zoomout (0: none; step 5 on
-   * recheck_samples samples of the smaller-count shape, then once on every vertex); that test
-   * decides and its margin is the one reported. Off by default (recheck_margin 0): neither k 50
-   * nor ZoomOut to 60 decided better on the tuning split (docs/tuning.md). */
+  /* Second orientation test, only when the first one's margin (mirror_margin below) is below
+   * recheck_margin (0: never; default 0.075): both candidates' maps again with recheck_k
+   * eigenfunctions (default 30) and only round(recheck_keep · m) centres as landmarks (default
+   * 0.625: the 5 protrusions of 8 on FAUST, whose maps do not follow the torso saddles front or back);
+   * the decision is then the mean of the two tests' median segment margins. With recheck_zoomout >
+   * recheck_k instead: ZoomOut-refined maps up to recheck_zoomout (step 5 on recheck_samples samples
+   * of the smaller-count shape, then once on every vertex), orient_keep's landmarks, and that test's
+   * whole-shape scores decide alone (no gain on the tuning split). docs/tuning.md. */
   double recheck_margin;
   int recheck_k;
   /* The left / right test (both tests) uses only round(orient_keep · m), at least 3, of the smaller
@@ -183,6 +191,7 @@ typedef struct ss_autopair_options {
   double orient_keep;
   int recheck_zoomout;
   int recheck_samples;
+  double recheck_keep;
 } ss_autopair_options;
 
 SS_API void ss_autopair_default_options(ss_autopair_options *o);
@@ -201,6 +210,12 @@ typedef struct ss_centre_signature {
   const ss_shape_prep *prep; /* borrowed: the shape it was computed from (must outlive it) */
   int *sigma;          /* m: the centres' left-right symmetry (identity where none was found) */
   double sigma_score;  /* the orientation score of σ's map (< 0: a mirror; 1: none found) */
+  /* the orientation test's probes of this shape, built once (ss_fmap_base_probes with every centre
+   * as a landmark, in its first probe_k eigenfunctions from probe_descr_k eigenpairs: coefficients
+   * probe_A, k x probe_p, and packed operators probe_P); NULL (e.g. a signature read from a
+   * prepared-shape file): the pairing builds them itself, to the same effect */
+  int probe_k, probe_descr_k, probe_p;
+  double *probe_A, *probe_P;
 } ss_centre_signature;
 
 SS_API ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_options *o,
@@ -220,6 +235,10 @@ typedef struct ss_autopair_info {
   double cpu;           /* CPU seconds of the search and the orientation test (signatures excluded) */
   int rechecked;        /* 1: the second orientation test decided (mirror / mirror_other are its scores) */
   double mirror_first, mirror_other_first; /* the first test's scores */
+  /* the left / right decision's margin: half the median over the segments of the smaller-count
+   * shape of (segment's score under the answer − under its mirror) (rechecked: (mirror −
+   * mirror_other) / 2); the confidence rule compares it with min_mirror */
+  double mirror_margin;
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:

@@ -120,14 +120,15 @@ class ss_autopair_options(C.Structure):
                 ("exact_max", C.c_int), ("orient_k", C.c_int), ("orient_descr_k", C.c_int),
                 ("min_gap", C.c_double), ("min_mirror", C.c_double),
                 ("recheck_margin", C.c_double), ("recheck_k", C.c_int), ("orient_keep", C.c_double),
-                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int)]
+                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int), ("recheck_keep", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):
     _fields_ = [("used", C.c_int), ("exact", C.c_int), ("energy", C.c_double), ("energy_mirror", C.c_double),
                 ("energy_other", C.c_double), ("gap", C.c_double), ("mirror", C.c_double),
                 ("mirror_other", C.c_double), ("confident", C.c_int), ("cpu", C.c_double),
-                ("rechecked", C.c_int), ("mirror_first", C.c_double), ("mirror_other_first", C.c_double)]
+                ("rechecked", C.c_int), ("mirror_first", C.c_double), ("mirror_other_first", C.c_double),
+                ("mirror_margin", C.c_double)]
 
 
 class ss_match_options(C.Structure):
@@ -162,7 +163,8 @@ class ss_centre_signature(C.Structure):
     _fields_ = [("m", C.c_int), ("nd", C.c_int), ("centers", C.POINTER(C.c_int)), ("descr", C.POINTER(C.c_double)),
                 ("D", C.POINTER(C.c_double)), ("volume_ratio", C.c_double), ("orient_sign", C.c_double),
                 ("normals", C.POINTER(C.c_double)), ("prep", C.POINTER(ss_shape_prep)), ("sigma", C.POINTER(C.c_int)),
-                ("sigma_score", C.c_double)]
+                ("sigma_score", C.c_double), ("probe_k", C.c_int), ("probe_descr_k", C.c_int), ("probe_p", C.c_int),
+                ("probe_A", C.POINTER(C.c_double)), ("probe_P", C.POINTER(C.c_double))]
 
 
 class ss_prepared_shape(C.Structure):

@@ -5,6 +5,7 @@
 #include "specseg/geodesic.h"
 #include "specseg/match.h"
 #include "match/autopair_internal.h"
+#include "mesh/mesh_topology.h"
 
 #include <cblas.h>
 #include <math.h>
@@ -24,13 +25,14 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->exact_max = 10;
   o->orient_k = 30;
   o->orient_descr_k = 100;
-  o->min_gap = 0.05;
-  o->min_mirror = 0.3;
+  o->min_gap = 0.03;
+  o->min_mirror = 0.15;
   o->orient_keep = 1.0;
-  o->recheck_margin = 0;
+  o->recheck_margin = 0.075;
   o->recheck_k = 30;
   o->recheck_zoomout = 0;
   o->recheck_samples = 1000;
+  o->recheck_keep = 0.625;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
@@ -40,10 +42,13 @@ void ss_centre_signature_free(ss_centre_signature *s) {
   free(s->D);
   free(s->normals);
   free(s->sigma);
+  free(s->probe_A);
+  free(s->probe_P);
   memset(s, 0, sizeof *s);
 }
 
 static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err);
+static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo);
 
 static double cpu_now(void) {
   struct timespec t;
@@ -118,11 +123,16 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
     nn = nn > 0 ? 1.0 / sqrt(nn) : 0.0;
     for (int j = 0; j < ne; j++) d[j] *= nn;
   }
-  /* 3. orientation: the signed volume's sign makes the normals outward */
+  /* 3. orientation: the signed volume's sign makes the normals outward; faces of a mesh that is not
+   * consistently oriented are taken as the consistent orientation of their component (majority)
+   * would have them, so the normals do not depend on the faces' own winding */
   {
+    int *Fo = NULL;
+    if ((st = ssi_mesh_orient_copy(mesh, &Fo, NULL, err))) goto done;
+    const int *FF = Fo ? Fo : mesh->F;
     double vol = 0;
     for (int f = 0; f < nf; f++) {
-      const int *t = mesh->F + 3 * (size_t)f;
+      const int *t = FF + 3 * (size_t)f;
       const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
       double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
       double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
@@ -130,12 +140,22 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
       for (int c = 0; c < 3; c++)
         for (int d = 0; d < 3; d++) out->normals[3 * (size_t)t[c] + d] += N[d];
     }
+    free(Fo);
     vol /= 6.0;
     out->volume_ratio = vol / (area * sqrt(area));
     out->orient_sign = vol < 0 ? -1.0 : 1.0;
     for (size_t i = 0; i < (size_t)n * 3; i++) out->normals[i] *= out->orient_sign;
   }
-  /* 4. the centres' own left-right symmetry */
+  /* 4. the orientation test's probes (WKS + every centre's wave kernels), once per shape */
+  {
+    ss_fmap_match_options fo;
+    orient_fmap_options(o.orient_k, o.orient_descr_k, p->kev, &fo);
+    ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0};
+    ss_fmap_probes pr;
+    if ((st = ss_fmap_base_probes(&fs, m, out->centers, &fo, 1, &pr, err))) goto done;
+    out->probe_k = fo.k, out->probe_descr_k = fo.descr_k, out->probe_p = pr.p, out->probe_A = pr.A, out->probe_P = pr.P;
+  }
+  /* 5. the centres' own left-right symmetry */
   st = self_symmetry(out, &o, err);
 done:
   ss_geodesic_mesh_free(gm);
@@ -144,20 +164,60 @@ done:
   return st;
 }
 
-double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
+/* The orientation score of T over A's faces (those of segments in segmask, NULL: all) and, in seg (A->m,
+ * may be NULL), that of each segment's faces (a face belongs to its first vertex's segment; NAN for a
+ * segment without a counted face). */
+static double map_orientation_seg(const ss_centre_signature *A, const ss_centre_signature *B, const int *T,
+                                  const int *segmask, double *seg) {
   const ss_mesh *mA = A->prep->mesh, *mB = B->prep->mesh;
+  const int *lab = A->prep->seg.labels, m = A->m;
   double pos = 0, tot = 0;
+  if (seg)
+    for (int a = 0; a < 2 * m; a++) seg[a] = 0; /* scratch: m counts then m positives, see below */
+  double *cnt = seg, *cpos = seg ? seg + m : NULL;
   for (int f = 0; f < mA->nf; f++) {
     const int *t = mA->F + 3 * (size_t)f;
+    if (segmask && !(segmask[lab[t[0]]] && segmask[lab[t[1]]] && segmask[lab[t[2]]])) continue;
     const double *q0 = mB->V + 3 * (size_t)T[t[0]], *q1 = mB->V + 3 * (size_t)T[t[1]], *q2 = mB->V + 3 * (size_t)T[t[2]];
     const double *nr = B->normals + 3 * (size_t)T[t[0]];
     double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
     double x = nr[0] * (u[1] * w[2] - u[2] * w[1]) + nr[1] * (u[2] * w[0] - u[0] * w[2]) + nr[2] * (u[0] * w[1] - u[1] * w[0]);
-    x *= A->orient_sign;
-    if (x != 0) tot += 1, pos += x > 0;
+    { /* the face's own orientation against A's outward normals (not its winding: see the signature) */
+      const double *p0 = mA->V + 3 * (size_t)t[0], *p1 = mA->V + 3 * (size_t)t[1], *p2 = mA->V + 3 * (size_t)t[2];
+      const double *n0 = A->normals + 3 * (size_t)t[0], *n1 = A->normals + 3 * (size_t)t[1], *n2 = A->normals + 3 * (size_t)t[2];
+      double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+      double y = (n0[0] + n1[0] + n2[0]) * (a[1] * b[2] - a[2] * b[1]) + (n0[1] + n1[1] + n2[1]) * (a[2] * b[0] - a[0] * b[2]) +
+                 (n0[2] + n1[2] + n2[2]) * (a[0] * b[1] - a[1] * b[0]);
+      if (y < 0) x = -x;
+      else if (!(y > 0)) continue;
+    }
+    if (x == 0) continue;
+    tot += 1, pos += x > 0;
+    if (seg) cnt[lab[t[0]]] += 1, cpos[lab[t[0]]] += x > 0;
   }
+  if (seg)
+    for (int a = 0; a < m; a++) seg[a] = cnt[a] > 0 ? (2 * cpos[a] - cnt[a]) / cnt[a] : NAN;
   return tot > 0 ? (2 * pos - tot) / tot : 0.0;
 }
+
+double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
+  return map_orientation_seg(A, B, T, NULL, NULL);
+}
+
+/* The median over A's segments of s1 − s2 (segments scored in both), 0 when none */
+static double median_margin(int m, const double *s1, const double *s2, double *tmp) {
+  int q = 0;
+  for (int a = 0; a < m; a++)
+    if (isfinite(s1[a]) && isfinite(s2[a])) {
+      double d = s1[a] - s2[a];
+      int j = q++;
+      for (; j > 0 && tmp[j - 1] > d; j--) tmp[j] = tmp[j - 1];
+      tmp[j] = d;
+    }
+  if (q == 0) return 0.0;
+  return q % 2 ? tmp[q / 2] : 0.5 * (tmp[q / 2 - 1] + tmp[q / 2]);
+}
+
 
 /* ---- the search ----------------------------------------------------------------------------- */
 
@@ -380,8 +440,8 @@ static void run_search(search *S, int exact, int ntop, int self, int *status) {
 /* The orientation test of a pairing p (A index -> B index): score of the map A -> B of a small
  * functional map (k eigenfunctions, descriptors from descr_k eigenpairs, ZoomOut up to zk when
  * zk > k, on ns samples of A) with the paired centres as landmarks. */
-static ss_status orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k, int descr_k,
-                              int zk, int ns, double keep, double *score, ss_error *err) {
+static ss_status orient_score_T(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k,
+                                int descr_k, int zk, int ns, double keep, double *score, int *Tout, ss_error *err) {
   const ss_shape_prep *pA = A->prep, *pB = B->prep;
   const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
   ss_fmap_match_options fo;
@@ -430,20 +490,170 @@ static ss_status orient_score(const ss_centre_signature *A, const ss_centre_sign
                   sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
     st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
   }
-  if (!st) *score = ssi_map_orientation(A, B, T);
+  if (!st && score) *score = ssi_map_orientation(A, B, T);
+  if (!st && Tout) memcpy(Tout, T, sizeof(int) * (size_t)pA->mesh->nv);
   free(lA), free(lB), free(T), free(ord), free(ecc);
+  return st;
+}
+
+static ss_status orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k, int descr_k,
+                              int zk, int ns, double keep, double *score, ss_error *err) {
+  return orient_score_T(A, B, p, k, descr_k, zk, ns, keep, score, NULL, err);
+}
+
+/* kept[a] = 1 for the round(keep · m) (at least 3) centres farthest on average from the others */
+static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
+  const int m = A->m;
+  int na = m;
+  if (keep > 0 && keep < 1 && m > 3) {
+    na = (int)floor(keep * m + 0.5);
+    if (na < 3) na = 3;
+    if (na > m) na = m;
+  }
+  for (int a = 0; a < m; a++) {
+    double ea = 0;
+    for (int c = 0; c < m; c++) ea += A->D[a + (size_t)m * c];
+    int rank = 0;
+    for (int b = 0; b < m; b++) {
+      double eb = 0;
+      for (int c = 0; c < m; c++) eb += A->D[b + (size_t)m * c];
+      rank += eb > ea || (eb == ea && b < a);
+    }
+    kept[a] = rank < na;
+  }
+}
+
+/* ---- the orientation test with probes shared by the candidates ------------------------------- *
+ * Every candidate's functional map has the same probes on A (WKS + the kept centres of A, in A's
+ * order) and, on B, the WKS and the wave-kernel maps of B's centres in the candidate's order: B's
+ * probes are built once for all of its centres and each candidate takes its columns (the probe list
+ * keeps every descr_step-th of n_energies columns per item, the same columns in every item when
+ * descr_step divides n_energies). What ss_fmap_match would compute, for a fraction of the cost. */
+typedef struct orient_ctx {
+  const ss_centre_signature *A, *B;
+  ss_fmap_match_options fo;
+  ss_fmap_shape sA, sB;
+  ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B (when built here) */
+  const double *bA, *bP;  /* B's probes: pB's, or its signature's */
+  ss_fmap_weights w;
+  int na, nb, per;        /* kept centres of A, centres of B, probe columns per item */
+  int *kept;              /* na indices of A's kept centres, ascending */
+  double *Abuf, *Pbuf;    /* a candidate's B probes */
+  int *T;
+} orient_ctx;
+
+static void orient_ctx_free(orient_ctx *c) {
+  ss_fmap_probes_free(&c->pA), ss_fmap_probes_free(&c->pB);
+  free(c->kept), free(c->Abuf), free(c->Pbuf), free(c->T);
+  memset(c, 0, sizeof *c);
+}
+
+/* the orientation test's functional-map options for shapes with kmin eigenpairs */
+static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo) {
+  ss_fmap_match_default_options(fo);
+  fo->k = k < kmin ? k : kmin;
+  fo->descr_k = descr_k < kmin ? descr_k : kmin;
+  if (fo->descr_k < fo->k) fo->descr_k = fo->k;
+  fo->zoomout_kmax = 0;
+}
+
+/* the signature's own probes when they were built with these options */
+static int have_probes(const ss_centre_signature *s, const ss_fmap_match_options *fo, int per) {
+  return s->probe_A && s->probe_P && s->probe_k == fo->k && s->probe_descr_k == fo->descr_k && s->probe_p == per * (1 + s->m);
+}
+
+static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
+                                orient_ctx *c, ss_error *err) {
+  memset(c, 0, sizeof *c);
+  const ss_shape_prep *pA = A->prep, *pB = B->prep;
+  const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
+  c->A = A, c->B = B;
+  orient_fmap_options(k, descr_k, kmin, &c->fo);
+  if (c->fo.n_energies % c->fo.descr_step) return ss_fail(err, SS_ERR_INVALID, "autopair: descr_step must divide n_energies");
+  c->per = c->fo.n_energies / c->fo.descr_step;
+  c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0};
+  c->sB = (ss_fmap_shape){pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
+  const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per;
+  int *mask = malloc(sizeof(int) * (size_t)m), *lA = malloc(sizeof(int) * (size_t)m);
+  c->kept = malloc(sizeof(int) * (size_t)m);
+  c->T = malloc(sizeof(int) * (size_t)pA->mesh->nv);
+  ss_status st = SS_OK;
+  if (!mask || !lA || !c->kept || !c->T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  if (!st) {
+    kept_centres(A, keep, mask);
+    for (int a = 0; a < m; a++)
+      if (mask[a]) lA[c->na] = A->centers[a], c->kept[c->na++] = a;
+    c->nb = B->m;
+    const int p = per * (1 + c->na);
+    c->Abuf = malloc(sizeof(double) * (size_t)kk * p);
+    c->Pbuf = malloc(sizeof(double) * (size_t)kp * p);
+    if (!c->Abuf || !c->Pbuf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  }
+  /* B: its signature's probes, or built here */
+  if (!st && have_probes(B, &c->fo, per)) c->bA = B->probe_A, c->bP = B->probe_P;
+  else if (!st && !(st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err))) c->bA = c->pB.A, c->bP = c->pB.P;
+  /* A: the WKS and its kept centres, in A's order, from its signature's probes or built here */
+  if (!st && have_probes(A, &c->fo, per)) {
+    c->pA = (ss_fmap_probes){kk, per * (1 + c->na), per * (1 + c->na), NULL, NULL};
+    c->pA.A = malloc(sizeof(double) * (size_t)kk * c->pA.p);
+    c->pA.P = malloc(sizeof(double) * (size_t)kp * c->pA.p);
+    if (!c->pA.A || !c->pA.P) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+    for (int i = 0; !st && i <= c->na; i++) {
+      const int src = i == 0 ? 0 : 1 + c->kept[i - 1];
+      memcpy(c->pA.A + (size_t)kk * per * i, A->probe_A + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
+      memcpy(c->pA.P + (size_t)kp * per * i, A->probe_P + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+    }
+  } else if (!st) {
+    st = ss_fmap_base_probes(&c->sA, c->na, lA, &c->fo, 1, &c->pA, err);
+  }
+  if (!st) st = ss_fmap_pair_weights(&c->sA, &c->sB, &c->fo, &c->w, err);
+  if (!st && (c->pA.p != per * (1 + c->na) || (c->pB.A && c->pB.p != per * (1 + B->m))))
+    st = ss_fail(err, SS_ERR_INVALID, "autopair: unexpected probe layout");
+  free(mask), free(lA);
+  if (st) orient_ctx_free(c);
+  return st;
+}
+
+/* the point map A -> B of candidate p (A index -> B index) into c->T, and its orientation score */
+static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, double *seg, ss_error *err) {
+  const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per, np = per * (1 + c->na);
+  for (int i = 0; i <= c->na; i++) { /* item 0: the WKS; item i: centre p[kept[i-1]] of B */
+    const int src = i == 0 ? 0 : 1 + p[c->kept[i - 1]];
+    memcpy(c->Abuf + (size_t)kk * per * i, c->bA + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
+    memcpy(c->Pbuf + (size_t)kp * per * i, c->bP + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+  }
+  ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf};
+  ss_fmap_system *sys = NULL;
+  double *Ck = malloc(sizeof(double) * (size_t)kk * kk);
+  ss_status st = Ck ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  /* source B, target A: C maps functions on B to functions on A, its point map is A -> B */
+  if (!st) st = ss_fmap_system_new(kk, kk, c->sB.evals, c->sA.evals, &pb, &c->pA, &c->w, &sys, err);
+  if (!st) st = ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, Ck, err);
+  if (!st) st = ss_fmap_match_finish(&c->sA, &c->sB, &c->fo, Ck, c->T, NULL, err);
+  if (!st && score) *score = map_orientation_seg(c->A, c->B, c->T, NULL, seg);
+  ss_fmap_system_free(sys);
+  free(Ck);
+  return st;
+}
+
+ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,
+                          int descr_k, double keep, double *r1, double *r2, double *med, ss_error *err) {
+  orient_ctx c;
+  ss_status st = orient_ctx_new(A, B, k, descr_k, keep, &c, err);
+  double *s1 = malloc(sizeof(double) * 2 * (size_t)A->m), *s2 = malloc(sizeof(double) * 2 * (size_t)A->m);
+  double *tmp = malloc(sizeof(double) * (size_t)A->m);
+  if (!st && (!s1 || !s2 || !tmp)) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  if (!st) st = orient_ctx_score(&c, p1, r1, s1, err);
+  if (!st) st = orient_ctx_score(&c, p2, r2, s2, err);
+  if (!st && med) *med = median_margin(A->m, s1, s2, tmp);
+  free(s1), free(s2), free(tmp);
+  orient_ctx_free(&c);
   return st;
 }
 
 ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
                                     const ss_autopair_options *o, double *score, ss_error *err) {
   return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, 1.0, score, err);
-}
-
-/* the left / right test of a candidate pairing (orient_keep applies) */
-static ss_status candidate_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                                 const ss_autopair_options *o, double *score, ss_error *err) {
-  return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, o->orient_keep, score, err);
 }
 
 ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
@@ -511,13 +721,17 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     run_search(&S, exact, SELF_CANDIDATES + 1 < TOPK ? SELF_CANDIDATES + 1 : TOPK, 1, &status);
     if (status) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   }
+  orient_ctx oc = {0};
+  int have_ctx = 0;
   for (int k = 0; !st && k < S.ntop; k++) {
     if (!isfinite(S.top_e[k])) break;
     int id = 1;
     for (int a = 0; a < m && id; a++) id = S.top_p[k][a] == a;
     if (id) continue;
-    double sc;
-    if ((st = ssi_autopair_orient_score(sg, sg, S.top_p[k], o, &sc, err))) break;
+    double sc = 0;
+    if (!have_ctx && (st = orient_ctx_new(sg, sg, o->orient_k, o->orient_descr_k, 1.0, &oc, err))) break;
+    have_ctx = 1;
+    if ((st = orient_ctx_score(&oc, S.top_p[k], &sc, NULL, err))) break;
     sc_k[k] = sc;
     moved[k] = 0;
     for (int a = 0; a < m; a++) moved[k] += S.top_p[k][a] != a;
@@ -532,6 +746,7 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     if (pick < 0 || moved[k] > moved[pick] || (moved[k] == moved[pick] && sc_k[k] < sc_k[pick])) pick = k;
   }
   if (pick >= 0) sg->sigma_score = sc_k[pick], memcpy(sg->sigma, S.top_p[pick], sizeof(int) * (size_t)m);
+  orient_ctx_free(&oc);
   free(U), free(minU), free(cur), free(used), free(buf);
   return st;
 }
@@ -552,8 +767,11 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     return ss_fail(err, SS_ERR_INVALID, "autopair: weights must be finite and non-negative");
   if (!(o.orient_keep > 0 && o.orient_keep <= 1))
     return ss_fail(err, SS_ERR_INVALID, "autopair: orient_keep must be in (0, 1]");
-  if (!(o.recheck_margin >= 0) || (o.recheck_margin > 0 && (o.recheck_k < 3 || o.recheck_zoomout < 0 || o.recheck_samples < 0)))
-    return ss_fail(err, SS_ERR_INVALID, "autopair: bad second-test options (recheck_margin >= 0, recheck_k >= 3)");
+  if (!(o.recheck_margin >= 0) ||
+      (o.recheck_margin > 0 && (o.recheck_k < 3 || o.recheck_zoomout < 0 || o.recheck_samples < 0 ||
+                                !(o.recheck_keep > 0 && o.recheck_keep <= 1))))
+    return ss_fail(err, SS_ERR_INVALID,
+                   "autopair: bad second-test options (recheck_margin >= 0, recheck_k >= 3, recheck_keep in (0, 1])");
   double c0 = cpu_now();
   const int swap = X->m > Y->m;
   const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
@@ -562,14 +780,16 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   int status = 0;
   const int nbuf = TOPK + 4;
   double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
-  double *share = malloc(sizeof(double) * (size_t)na);
+  double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
+  double *seg2 = malloc(sizeof(double) * 2 * (size_t)na);
   int *cur = malloc(sizeof(int) * (size_t)nb), *used = malloc(sizeof(int) * (size_t)nb);
   int *buf = malloc(sizeof(int) * (size_t)na * nbuf);
-  if (!U || !minU || !share || !cur || !used || !buf) {
+  search S;
+  orient_ctx oc = {0};
+  if (!U || !minU || !share || !seg1 || !seg2 || !cur || !used || !buf) {
     st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
     goto done;
   }
-  search S;
   init_search(&S, A, &o, U, minU, cur, used, buf);
   int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
   const int *sigma = A->sigma;
@@ -579,6 +799,13 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
   for (int a = 0; a < na; a++) pi2[a] = pi1[sigma[a]];
+  { /* B's own symmetry gives another mirror candidate, σ_B∘π: a mirror is an isometry, so of the two
+     * the one of lower energy (a wrong σ, e.g. a swap of the hands only, costs energy) */
+    for (int a = 0; a < na; a++) third[a] = B->sigma[pi1[a]];
+    const int id2 = same(pi2, pi1, na), idb = same(third, pi1, na);
+    if (!idb && (id2 || full_energy(&S, third, NULL) < full_energy(&S, pi2, NULL)))
+      memcpy(pi2, third, sizeof(int) * (size_t)na);
+  }
   double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = INFINITY;
   for (int k = 0; k < TOPK; k++)
     if (isfinite(S.top_e[k]) && !same(S.top_p[k], pi1, na) && !same(S.top_p[k], pi2, na)) {
@@ -588,21 +815,37 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     }
   /* left / right: the candidate whose map preserves orientation */
   double r1 = 0, r2 = 0;
-  if ((st = candidate_score(A, B, pi1, &o, &r1, err))) goto done;
+  if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
+  if ((st = orient_ctx_score(&oc, pi1, &r1, seg1, err))) goto done;
   if (same(pi1, pi2, na)) { /* no symmetry found: the runner-up is the other candidate */
     if (isfinite(e3)) memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
   }
-  if (same(pi1, pi2, na)) r2 = r1;
-  else if ((st = candidate_score(A, B, pi2, &o, &r2, err))) goto done;
+  if (same(pi1, pi2, na)) r2 = r1, memcpy(seg2, seg1, sizeof(double) * (size_t)na);
+  else if ((st = orient_ctx_score(&oc, pi2, &r2, seg2, err))) goto done;
+  /* the decision: the median over A's segments of the two maps' score difference (the torso
+   * saddles' segments follow their centres front or back, the protrusions' are too small to map
+   * well: a few segments vote wrong, the median is robust to them); ties: the whole-shape scores */
+  double med = median_margin(na, seg1, seg2, share);
+  if (med == 0) med = r1 - r2;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
-  if (!same(pi1, pi2, na) && fabs(r1 - r2) / 2 < o.recheck_margin) { /* a close call: the second test decides */
-    if ((st = ssi_autopair_recheck_score(A, B, pi1, &o, &r1, err))) goto done;
-    if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
+  if (!same(pi1, pi2, na) && fabs(med) / 2 < o.recheck_margin) { /* a close call: a second test */
+    if (o.recheck_zoomout > o.recheck_k) { /* ZoomOut-refined maps, whose scores decide */
+      if ((st = ssi_autopair_recheck_score(A, B, pi1, &o, &r1, err))) goto done;
+      if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
+      med = r1 - r2;
+    } else { /* the protrusions' landmarks only: the mean of both tests' medians */
+      orient_ctx_free(&oc);
+      if ((st = orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc, err))) goto done;
+      if ((st = orient_ctx_score(&oc, pi1, &r1, seg1, err))) goto done;
+      if ((st = orient_ctx_score(&oc, pi2, &r2, seg2, err))) goto done;
+      med = 0.5 * (med + median_margin(na, seg1, seg2, share));
+    }
     rechecked = 1;
   }
   double f1 = r1_first, f2 = r2_first;
-  if (r2 > r1) {
+  if (med < 0) {
+    med = -med;
     f1 = r2_first, f2 = r1_first;
     int *t = pi1;
     pi1 = pi2, pi2 = t;
@@ -638,13 +881,15 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     info->gap = isfinite(e3) ? (e3 - emin) / (emin > 1e-300 ? emin : 1e-300) : INFINITY;
     info->mirror = r1;
     info->mirror_other = r2;
-    info->confident = info->gap >= o.min_gap && (r1 - r2) / 2 >= o.min_mirror;
+    info->mirror_margin = med / 2;
+    info->confident = info->gap >= o.min_gap && info->mirror_margin >= o.min_mirror;
     info->rechecked = rechecked;
     info->mirror_first = f1;
     info->mirror_other_first = f2;
     info->cpu = cpu_now() - c0;
   }
 done:
-  free(U), free(minU), free(share), free(cur), free(used), free(buf);
+  orient_ctx_free(&oc);
+  free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf);
   return st;
 }

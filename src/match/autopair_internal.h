@@ -17,4 +17,8 @@ ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_cent
  * degenerate, (preserved − reversed) / count, against B's outward normals. */
 double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T);
 
+/* Both candidates' orientation scores r1, r2 (orient_k = k, orient_descr_k = descr_k, orient_keep =
+ * keep) and the decision's median margin med (> 0: p1), as ss_pair_centres_auto computes them. */
+ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,
+                          int descr_k, double keep, double *r1, double *r2, double *med, ss_error *err);
 #endif

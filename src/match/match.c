@@ -535,8 +535,8 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   out->autopair = info;
   if (!info.confident) {
     char msg[200];
-    snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation %.2f, min %.2f): the "
-             "map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror, o.autopair.min_mirror);
+    snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min %.2f): "
+             "the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin, o.autopair.min_mirror);
     add_note(out, msg);
   }
 done:
