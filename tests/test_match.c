@@ -87,6 +87,38 @@ static void test_pairing_confidence(void) {
   ss_segment_pairs_free(&p);
 }
 
+/* the map check (min_map_share) on hand-made labels: X has segments 0 (vertices 0-3) and 1 (4-5), Y
+ * segments 0 (0-2) and 1 (3-5); the map sends X's 0 to Y's 0 but for vertex 3 (share 3/4 by count,
+ * 0.5 by mass below) and X's 1 into Y's 0 (share 0 for the pair 1-1, 1 for a pair 1-0). */
+static void test_pairs_check_map(void) {
+  int lx[6] = {0, 0, 0, 0, 1, 1}, ly[6] = {0, 0, 0, 1, 1, 1}, map[6] = {0, 1, 2, 4, 0, 1};
+  ss_segmentation X, Y;
+  memset(&X, 0, sizeof X), memset(&Y, 0, sizeof Y);
+  X.nv = Y.nv = 6, X.m = Y.m = 2, X.labels = lx, Y.labels = ly;
+  int sx[3] = {0, 1, 1}, sy[3] = {0, 1, 0};
+  double en[3] = {0.1, 0.2, 0.3}, sh[3], M[6] = {1, 1, 1, 3, 1, 1};
+  ss_segment_pairs p = {3, sx, sy, en, 2, 2};
+  ss_error e;
+  int dropped = -1;
+  CHECK(ss_segment_pairs_check_map(&X, &Y, NULL, map, 0.7, &p, sh, &dropped, &e) == SS_OK);
+  CHECK(fabs(sh[0] - 0.75) < 1e-15 && sh[1] == 0 && sh[2] == 1);
+  CHECK(dropped == 1 && p.n == 2 && sx[0] == 0 && sy[0] == 0 && sx[1] == 1 && sy[1] == 0 && en[1] == 0.3);
+  p.n = 2; /* by mass: vertex 3 weighs 3 of 6 */
+  CHECK(ss_segment_pairs_check_map(&X, &Y, M, map, 0.7, &p, sh, &dropped, &e) == SS_OK);
+  CHECK(fabs(sh[0] - 0.5) < 1e-15 && dropped == 1 && p.n == 1 && sx[0] == 1 && sy[0] == 0);
+  map[0] = 6; /* out of range: counts as outside */
+  sx[0] = 0, sy[0] = 0, p.n = 1;
+  CHECK(ss_segment_pairs_check_map(&X, &Y, NULL, map, 0, &p, sh, &dropped, &e) == SS_OK);
+  CHECK(fabs(sh[0] - 0.5) < 1e-15 && dropped == 0 && p.n == 1);
+  sy[0] = 2; /* segment out of range */
+  CHECK(ss_segment_pairs_check_map(&X, &Y, NULL, map, 0, &p, sh, &dropped, &e) == SS_ERR_INVALID);
+  ss_pairing_options po;
+  ss_pairing_paper_options(&po);
+  CHECK(po.min_map_share == 0); /* the paper's rule: no check */
+  ss_pairing_default_options(&po);
+  CHECK(po.min_map_share > 0 && po.min_map_share < 1);
+}
+
 /* d(Π(x), GT(x)) / √area as per-vertex errors; returns the mean */
 static double map_error(const ss_mesh *Y, int n, const int *map, double *errors) {
   double mean = NAN;
@@ -98,6 +130,7 @@ static double map_error(const ss_mesh *Y, int n, const int *map, double *errors)
 int main(void) {
   test_pair_critical_points();
   test_pairing_confidence();
+  test_pairs_check_map();
 
   ss_error e;
   ss_mesh X = {0}, Y = {0};

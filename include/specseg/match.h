@@ -32,12 +32,18 @@ typedef struct ss_segment_pairs {
  *  - max_rel_energy > 0: kept only when e1 ≤ max_rel_energy · ‖d(a)‖ / √nl, ‖d(a)‖/√nl the RMS
  *    distance of a to the landmarks: the energy relative to how far the point is from them;
  *  - min_landmarks: with fewer landmarks ss_match_prepared uses no segment probes at all (it says so
- *    in its notes); the pairing itself is still computed and reported. */
+ *    in its notes); the pairing itself is still computed and reported;
+ *  - min_map_share > 0: a check against the STD map (WKS + landmarks alone, which the pairing does not
+ *    influence): ss_match_prepared keeps a pair only when that map sends at least this share (by
+ *    mass) of X's segment into the paired segment of Y (ss_segment_pairs_check_map), and says in its
+ *    notes how many it dropped. A wrong pair that the ratio test lets through pulls the segment-aided
+ *    map away from a good STD map (TOSCA, docs/tuning.md); a right one agrees with it. */
 typedef struct ss_pairing_options {
   double min_ratio;
   int mutual;
   double max_rel_energy;
   int min_landmarks;
+  double min_map_share;
 } ss_pairing_options;
 
 SS_API void ss_pairing_default_options(ss_pairing_options *o);
@@ -64,6 +70,15 @@ SS_API ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmen
                                        const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
                                        ss_error *err);
 SS_API void ss_segment_pairs_free(ss_segment_pairs *p);
+/* The check of min_map_share: for each pair p, share_p = Σ M(x) over the vertices x of X's segment
+ * sx[p] whose image map[x] lies in Y's segment sy[p], divided by Σ M(x) over that segment (M: MX, X's
+ * vertex masses, NULL: every vertex 1; labels: the segmentations' iVd labels of the input vertices).
+ * share (may be NULL): pairs->n values, the shares before dropping. Pairs with share_p < min_share are
+ * removed from pairs in place (order kept); *dropped (may be NULL) receives how many. map: X->nv
+ * vertices of Y. */
+SS_API ss_status ss_segment_pairs_check_map(const ss_segmentation *X, const ss_segmentation *Y, const double *MX,
+                                            const int *map, double min_share, ss_segment_pairs *pairs, double *share,
+                                            int *dropped, ss_error *err);
 
 /* ---- Segment probe functions (segment_probes.c) ------------------------------------------------- */
 
@@ -336,7 +351,8 @@ SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *
 
 /* The same with the pairing given instead of computed (e.g. by ss_pair_critical_points_conf from
  * landmark fields cached per shape, as specseg eval does; opts->pairing is then not used, except
- * min_landmarks): pairs (sx < X->seg.m, sy < Y->seg.m) is copied into out->pairs. With the pairing
+ * min_landmarks and min_map_share): pairs (sx < X->seg.m, sy < Y->seg.m) is copied into out->pairs
+ * (less the pairs the map check drops). With the pairing
  * ss_match_prepared would compute, the result is the same. */
 SS_API ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
                                          const int *lmY, const ss_segment_pairs *pairs, const ss_match_options *opts,

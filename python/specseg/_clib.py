@@ -111,7 +111,7 @@ class ss_fmap_match_options(C.Structure):
 
 class ss_pairing_options(C.Structure):
     _fields_ = [("min_ratio", C.c_double), ("mutual", C.c_int), ("max_rel_energy", C.c_double),
-                ("min_landmarks", C.c_int)]
+                ("min_landmarks", C.c_int), ("min_map_share", C.c_double)]
 
 
 class ss_autopair_options(C.Structure):

@@ -159,6 +159,19 @@ static ss_status match_paper(const ev_context *ctx, const ev_shape *X, const ev_
   ss_fmap_weights w;
   if ((st = ss_fmap_pair_weights(&sX, &sY, &fo, &w, err))) goto done;
   if ((st = ss_fmap_system_new(k, k, pY->evals, pX->evals, bY, bX, &w, &sys, err))) goto done;
+  if ((methods_mask & ~1) && pr.n > 0 && ctx->mopt.pairing.min_map_share > 0) {
+    /* the pairing's map check (the confident rule), against the STD map, as ss_match_prepared does */
+    int *m0 = malloc(sizeof(int) * (size_t)X->mesh.nv);
+    if (!m0) { st = ss_fail(err, SS_ERR_NOMEM, "eval: out of memory"); goto done; }
+    fo.zoomout_kmax = 0;
+    st = ss_fmap_system_solve(sys, NULL, NULL, fo.w_extra, fo.extra_dcomm, Ck, err);
+    if (!st) st = ss_fmap_match_finish(&sX, &sY, &fo, Ck, m0, NULL, err);
+    if (!st) st = ss_segment_pairs_check_map(&pX->seg, &pY->seg, pX->M, m0, ctx->mopt.pairing.min_map_share, &pr, NULL,
+                                             NULL, err);
+    free(m0);
+    if (st) goto done;
+    *paired = pr.n;
+  }
   if ((methods_mask & ~1) && pr.n > 0) {
     /* the same probe columns (indicator or tent profile) as ss_match_prepared builds */
     if ((st = ss_segment_probes(&pX->seg, pr.n, pr.sx, ctx->mopt.segment_profile, &EX, err))) goto done;

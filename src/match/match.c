@@ -231,7 +231,9 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     use_seg = 0;
   }
   /* candidate starts: 0 STD, 1 segment-aided */
-  const int want_std = !use_seg || o.refine == SS_REFINE_BEST, want_seg = use_seg;
+  /* the map check of the pairing (pairing.min_map_share) needs the STD map */
+  const int check = use_seg && o.pairing.min_map_share > 0;
+  const int want_std = !use_seg || o.refine == SS_REFINE_BEST || check, want_seg = use_seg;
   ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr},
                 sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr};
   /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
@@ -246,6 +248,25 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   if ((st = ss_fmap_pair_weights(&sX, &sY, &fo[0], &w, err))) goto fail;
   for (int c = 0; c < 2; c++) {
     if (!(c ? want_seg : want_std)) continue;
+    if (c == 1 && check) { /* drop the pairs the STD map contradicts (pairing.c) */
+      int *m0 = malloc(sizeof(int) * (size_t)nX), dropped = 0;
+      if (!m0) goto nomem;
+      st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[0], m0, err);
+      if (!st) st = ss_segment_pairs_check_map(&X->seg, &Y->seg, X->M, m0, o.pairing.min_map_share, &out->pairs, NULL,
+                                               &dropped, err);
+      free(m0);
+      if (st) goto fail;
+      np = out->pairs.n;
+      for (int p = 0; p < np; p++)
+        out->centerX[p] = X->seg.centers[out->pairs.sx[p]], out->centerY[p] = Y->seg.centers[out->pairs.sy[p]];
+      if (dropped) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "%d of %d segment pairs dropped: the STD map sends under %.2g of the segment there%s",
+                 dropped, np + dropped, o.pairing.min_map_share, np ? "" : "; STD map");
+        add_note(out, msg);
+      }
+      if (np == 0) { use_seg = 0; break; }
+    }
     if (c == 0 || own1) {
       if (c == 1 && want_std) {
         /* STD's base probes are kept for the selection energy (it reads their coefficients only) */
@@ -530,6 +551,7 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   for (int p = 0; p < pr.n; p++) lx[p] = X->seg.centers[pr.sx[p]], ly[p] = Y->seg.centers[pr.sy[p]];
   /* the paired centres are the landmarks; the pairing is the segments' */
   o.pairing.min_landmarks = 1;
+  o.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
   if ((st = match_core(X, Y, pr.n, lx, ly, &pr, &o, out, err))) goto done;
   out->t_pair += t_pair;
   out->autopair = info;

@@ -27,6 +27,50 @@ void ss_pairing_default_options(ss_pairing_options *o) {
   ss_pairing_paper_options(o);
   o->min_ratio = 2.0;     /* docs/tuning.md */
   o->min_landmarks = 4;
+  o->min_map_share = 0.5; /* docs/tuning.md */
+}
+
+ss_status ss_segment_pairs_check_map(const ss_segmentation *X, const ss_segmentation *Y, const double *MX,
+                                     const int *map, double min_share, ss_segment_pairs *pairs, double *share,
+                                     int *dropped, ss_error *err) {
+  if (dropped) *dropped = 0;
+  if (!X || !Y || !X->labels || !Y->labels || !map || !pairs || pairs->n < 0 || (pairs->n > 0 && (!pairs->sx || !pairs->sy)))
+    return ss_fail(err, SS_ERR_INVALID, "pairing: map check: incomplete input");
+  const int n = pairs->n, mx = X->m;
+  for (int p = 0; p < n; p++)
+    if (pairs->sx[p] < 0 || pairs->sx[p] >= mx || pairs->sy[p] < 0 || pairs->sy[p] >= Y->m)
+      return ss_fail(err, SS_ERR_INVALID, "pairing: map check: pair %d (%d, %d) out of range (%d, %d segments)", p,
+                     pairs->sx[p], pairs->sy[p], mx, Y->m);
+  /* per segment of X: its mass and the mass mapped into its partner (col: X segment -> pair) */
+  int *col = malloc(sizeof(int) * (size_t)(mx > 0 ? mx : 1));
+  double *tot = calloc((size_t)(n > 0 ? n : 1), sizeof(double)), *in = calloc((size_t)(n > 0 ? n : 1), sizeof(double));
+  if (!col || !tot || !in) {
+    free(col), free(tot), free(in);
+    return ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
+  }
+  for (int s = 0; s < mx; s++) col[s] = -1;
+  for (int p = 0; p < n; p++) col[pairs->sx[p]] = p;
+  for (int i = 0; i < X->nv; i++) {
+    int s = X->labels[i];
+    if (s < 0 || s >= mx || col[s] < 0) continue;
+    int p = col[s], y = map[i];
+    double w = MX ? MX[i] : 1.0;
+    tot[p] += w;
+    if (y >= 0 && y < Y->nv && Y->labels[y] == pairs->sy[p]) in[p] += w;
+  }
+  int q = 0;
+  for (int p = 0; p < n; p++) {
+    double sh = tot[p] > 0 ? in[p] / tot[p] : 0.0;
+    if (share) share[p] = sh;
+    if (!(sh >= min_share)) continue;
+    pairs->sx[q] = pairs->sx[p], pairs->sy[q] = pairs->sy[p];
+    if (pairs->energy) pairs->energy[q] = pairs->energy[p];
+    q++;
+  }
+  if (dropped) *dropped = n - q;
+  pairs->n = q;
+  free(col), free(tot), free(in);
+  return SS_OK;
 }
 
 ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
