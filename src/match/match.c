@@ -249,12 +249,12 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   for (int c = 0; c < 2; c++) {
     if (!(c ? want_seg : want_std)) continue;
     if (c == 1 && check) { /* drop the pairs the STD map contradicts (pairing.c) */
-      int *m0 = malloc(sizeof(int) * (size_t)nX), dropped = 0;
-      if (!m0) goto nomem;
-      st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[0], m0, err);
-      if (!st) st = ss_segment_pairs_check_map(&X->seg, &Y->seg, X->M, m0, o.pairing.min_map_share, &out->pairs, NULL,
-                                               &dropped, err);
-      free(m0);
+      /* the STD start's point map, kept for the selection energy below */
+      int dropped = 0;
+      if (!(smap[0] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
+      st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[0], smap[0], err);
+      if (!st) st = ss_segment_pairs_check_map(&X->seg, &Y->seg, X->M, smap[0], o.pairing.min_map_share, &out->pairs,
+                                               NULL, &dropped, err);
       if (st) goto fail;
       np = out->pairs.n;
       for (int p = 0; p < np; p++)
@@ -331,8 +331,10 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
     /* the starts' energies first (with refine_single only the lower one is refined) */
     for (int c = 0; c < 2; c++) {
       if (!Ck[c]) continue;
-      if (!(smap[c] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
-      if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], smap[c], err))) goto fail;
+      if (!smap[c]) { /* (the map check may have computed the STD start's already) */
+        if (!(smap[c] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
+        if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], smap[c], err))) goto fail;
+      }
       if ((st = select_energy(X, Y, &o, k, kz, qX, qY, smap[c], &out->refine_energy[2 * c], err))) goto fail;
     }
     if (kz > k) {
