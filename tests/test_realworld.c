@@ -647,6 +647,11 @@ static void test_match_components(void) {
   char want[96];
   snprintf(want, sizeof want, "X (the first mesh): landmark 2 (vertex %d) is on no segmented part", Xc.nv - 1);
   CHECK_MSG(st == SS_ERR_INVALID && strstr(e.msg, want), "%s", e.msg);
+  /* the same on Y: the message names Y and the caller's vertex */
+  int lm3[3] = {lm[0], Yc.nv - 1, lm[2]};
+  st = ss_match(&Xc, &Yc, 3, lm, lm3, &o, &r, &e);
+  snprintf(want, sizeof want, "Y (the second mesh): landmark 1 (vertex %d) is on no segmented part", Yc.nv - 1);
+  CHECK_MSG(st == SS_ERR_INVALID && strstr(e.msg, want), "%s", e.msg);
   ss_match_result_free(&r);
   ss_match_result_free(&r0);
   ss_mesh_free(&X), ss_mesh_free(&Y), ss_mesh_free(&Xc), ss_mesh_free(&Yc);

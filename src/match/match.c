@@ -7,6 +7,7 @@
 #include "specseg/streamline.h"
 #include "fmap/fmap_options.h"
 #include "match/proxy.h"
+#include "match/landmark_check.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -636,17 +637,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   have_x = 1;
   if ((st = ss_shape_prep_compute(PY, &o.seg, kev, &pY, err))) { name_shape(err, "Y (the second mesh)"); goto done; }
   have_y = 1;
-  for (int i = 0; i < 2 * nl; i++) { /* a landmark on a crumb has no place on the segmentation */
-    const ss_shape_prep *p = i < nl ? &pX : &pY;
-    int v = i < nl ? lx[i] : ly[i - nl];
-    if (p->seg.psi && p->seg.psi[v] < 0) {
-      st = ss_fail(err, SS_ERR_INVALID,
-                   "match: %s: landmark %d (vertex %d) is on no segmented part of the shape (a component under 1%% "
-                   "of the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
-                   i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, i < nl ? lmX[i] : lmY[i - nl]);
-      goto done;
-    }
-  }
+  if ((st = ssi_check_landmarks_segmented(&pX, &pY, nl, lx, ly, lmX, lmY, err))) goto done;
   if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
   if ((st = ssi_proxy_lift(&cx, &cy, FX->nv, out, err))) goto done;
   PX = FX, PY = FY;

@@ -3,6 +3,7 @@
  * the eigenpairs it computes) is checked here against what the shapes carry. See match.h. */
 #include "specseg/match.h"
 #include "match/proxy.h"
+#include "match/landmark_check.h"
 #include "mesh/mesh_topology.h"
 
 #include <stdio.h>
@@ -107,15 +108,10 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
     lm[i] = X->has_proxy ? X->to_proxy[lmX[i]] : lmX[i];
     lm[nl + i] = Y->has_proxy ? Y->to_proxy[lmY[i]] : lmY[i];
   }
-  for (int i = 0; i < 2 * nl; i++) { /* a landmark on a crumb has no place on the segmentation */
-    const ss_shape_prep *p = P[i < nl ? 0 : 1];
-    if (p->seg.psi && p->seg.psi[lm[i]] < 0) {
-      free(lm);
-      return ss_fail(err, SS_ERR_INVALID,
-                     "match: %s: landmark %d (vertex %d) is on no segmented part of the shape (a component under 1%% "
-                     "of the area, a crumb, gets no segmentation of its own); put the landmarks on its main components",
-                     i < nl ? "X (the first mesh)" : "Y (the second mesh)", i % nl, i < nl ? lmX[i] : lmY[i - nl]);
-    }
+  ss_status cst = ssi_check_landmarks_segmented(P[0], P[1], nl, lm, lm + nl, lmX, lmY, err);
+  if (cst) {
+    free(lm);
+    return cst;
   }
   /* the shapes as ss_match_prepared takes them, pointing into X and Y (which may have been copied);
    * no segmentation or eigensolve happens in this call */
