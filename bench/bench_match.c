@@ -401,7 +401,7 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
  * is ss_match_default_options changed by SPEC, comma-separated key=value:
  *   paper=1 (start from ss_match_paper_options instead), probes=std|asa|diff, k=K, dk=DESCR_K,
  *   zo=KMAX (fmap.zoomout_kmax), zstep=S, zs=N (fmap.zoomout_samples), single=0|1 (refine_single),
- *   prof=0|1|2, wextra=W, refine=none|zo|best, wlap=W
+ *   prof=0|1|2, wextra=W, orient=W (fmap.w_orient), refine=none|zo|best, wlap=W
  *   (refine_w_lap), pair=paper|default, ratio=R, mutual=0|1, rel=E, minlm=N (pairing options)
  * Without --cfg: the paper's STD and DIFF (unrefined, descr_k = k) and the library's default. CPU: process CPU seconds of the
  * ss_match_prepared call (all threads), shapes prepared beforehand and not counted. */
@@ -449,6 +449,7 @@ static int apply_spec(const char *spec, ss_match_options *o) {
     else if (!strcmp(k, "wextra")) o->fmap.w_extra = atof(v);
     else if (!strcmp(k, "zs")) o->fmap.zoomout_samples = atoi(v);
     else if (!strcmp(k, "single")) o->refine_single = atoi(v);
+    else if (!strcmp(k, "orient")) o->fmap.w_orient = atof(v);
     else return 1;
   }
   return 0;

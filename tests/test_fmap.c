@@ -131,7 +131,7 @@ static void test_solver(int fix) {
     for (int a = 0; a < kT; a++)
       for (int b = 0; b <= a; b++) DT[d * 25 + a + kT * b] = DT[d * 25 + b + kT * a] = urand() - 0.5;
   }
-  ss_fmap_weights w = {0.7, 0.05, 1.3, fix, 0.8};
+  ss_fmap_weights w = {0.7, 0.05, 1.3, fix, 0.8, 0};
   double C[30], g[30], E;
   CHECK(ss_fmap_solve(kS, kT, p, A, B, lS, lT, nd, DS, DT, &w, C, NULL) == SS_OK);
   CHECK(ss_fmap_energy(kS, kT, p, A, B, lS, lT, nd, DS, DT, &w, C, &E, g, NULL) == SS_OK);
@@ -181,7 +181,7 @@ static void test_solver(int fix) {
   free(K);
   free(rhs);
   /* all-zero weights: singular system reported */
-  ss_fmap_weights z = {0, 0, 0, 0, 0};
+  ss_fmap_weights z = {0, 0, 0, 0, 0, 0};
   ss_error e;
   CHECK(ss_fmap_solve(kS, kT, p, A, B, lS, lT, nd, DS, DT, &z, C, &e) == SS_ERR_NUMERIC);
 }

@@ -48,9 +48,9 @@ static void test_system_vs_solve(void) {
   const double wx = 0.37;
   for (int fix = 0; fix <= 1; fix++)
     for (int dcomm = 0; dcomm <= 1; dcomm++) {
-      ss_fmap_weights w = {0.9, 0.05, 1.3, fix, 0.8};
-      ss_fmap_probes bS = {kS, p, p, A, PS}, bT = {kT, p, p, B, PT};
-      ss_fmap_probes xS = {kS, q, dcomm ? q : 0, A + kS * p, PS + 28 * p}, xT = {kT, q, dcomm ? q : 0, B + kT * p, PT + 21 * p};
+      ss_fmap_weights w = {0.9, 0.05, 1.3, fix, 0.8, 0};
+      ss_fmap_probes bS = {kS, p, p, A, PS, 0, NULL}, bT = {kT, p, p, B, PT, 0, NULL};
+      ss_fmap_probes xS = {kS, q, dcomm ? q : 0, A + kS * p, PS + 28 * p, 0, NULL}, xT = {kT, q, dcomm ? q : 0, B + kT * p, PT + 21 * p, 0, NULL};
       ss_fmap_system *sys = NULL;
       double C1[42], C2[42], A2[7 * 8], B2[6 * 8], D2S[8 * 49], D2T[8 * 36];
       CHECK(ss_fmap_system_new(kS, kT, lS, lT, &bS, &bT, &w, &sys, NULL) == SS_OK);
@@ -221,8 +221,8 @@ static void test_bad_input(void) {
   ss_fmap_system *sys = (ss_fmap_system *)1;
   CHECK(ss_fmap_system_solve(NULL, NULL, NULL, 0, 0, C, &e) == SS_ERR_INVALID);
   CHECK(ss_fmap_system_new(2, 2, C, C, NULL, NULL, NULL, &sys, &e) == SS_ERR_INVALID && sys == NULL);
-  ss_fmap_probes a = {2, 1, 0, C, NULL}, b = {3, 1, 0, C, NULL};
-  ss_fmap_weights w = {1, 0, 0, 0, 0};
+  ss_fmap_probes a = {2, 1, 0, C, NULL, 0, NULL}, b = {3, 1, 0, C, NULL, 0, NULL};
+  ss_fmap_weights w = {1, 0, 0, 0, 0, 0};
   CHECK(ss_fmap_system_new(2, 2, C, C, &a, &b, &w, &sys, &e) == SS_ERR_INVALID && sys == NULL);
   CHECK(ss_fmap_system_new(100000, 100000, C, C, &a, &a, &w, &sys, &e) == SS_ERR_INVALID);
   CHECK(ss_fmap_match_finish(NULL, NULL, NULL, C, map, NULL, &e) == SS_ERR_INVALID);

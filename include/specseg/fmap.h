@@ -86,6 +86,9 @@ typedef struct ss_fmap_weights {
   double w_descr, w_lap, w_dcomm;
   int fix_constant;
   double const_value; /* value of C[0,0] when fix_constant (s·sqrt(area_T/area_S)) */
+  /* orientation term w_orient Σ_i ‖C O_i^S − O_i^T C‖² over the probes' orientation operators
+   * (ss_fmap_probes.O; Ren et al. 2018); used by ss_fmap_system, 0 in ss_fmap_solve */
+  double w_orient;
 } ss_fmap_weights;
 
 /* Global minimiser of E(C) (k_T x k_S, column-major). Solves the k_T·k_S normal equations, assembled
@@ -104,9 +107,26 @@ typedef struct ss_fmap_probes {
   int k, p, nd;
   double *A;
   double *P;
+  /* no orientation operators (ss_fmap_orientation_operators), k x k each, column-major, one after
+   * the other (NULL when no = 0); both sides of a pair must have the same no */
+  int no;
+  double *O;
 } ss_fmap_probes;
 
-SS_API void ss_fmap_probes_free(ss_fmap_probes *pr); /* frees A and P, zeroes the struct */
+SS_API void ss_fmap_probes_free(ss_fmap_probes *pr); /* frees A, P and O, zeroes the struct */
+
+/* Orientation operators in the reduced basis (Ren, Poulenard, Wonka, Ovsjanikov 2018): for each of
+ * the p functions f (columns of F, n x p), the k x k matrix of g ↦ ⟨n × ∇f, ∇g⟩ (the signed
+ * Jacobian of f and g on the surface), O[i, j] = ∫ φ_i ⟨n × ∇f, ∇φ_j⟩ with piecewise-linear
+ * gradients per face, averaged to the vertices by area and integrated with the lumped masses. The
+ * face areas cancel: per face t = (a, b, c), ⟨n × ∇f, ∇g⟩·area = ±(f_a(g_b − g_c) + f_b(g_c − g_a) +
+ * f_c(g_a − g_b))/2, so O depends on the values and on each face's winding only, and an
+ * orientation-preserving isometry C satisfies C O^Y_f = O^X_{Cf} C, an orientation-reversing one
+ * C O^Y = −O^X C. Needs a consistently oriented mesh. m: the mesh (n = m->nv vertices), evecs: n x >= k
+ * (column-major, leading dimension n). O: p consecutive k x k column-major blocks. Cost:
+ * 2·nf·k²·p flops. */
+SS_API ss_status ss_fmap_orientation_operators(const ss_mesh *m, int k, const double *evecs, int p, const double *F,
+                                               double *O, ss_error *err);
 
 /* The normal equations of Eq. (1) for a pair's base probes (source S, target T), assembled once so
  * that several extra-probe blocks can be solved against them (STD / ASA / DIFF differ only in the
@@ -293,6 +313,11 @@ typedef struct ss_fmap_match_options {
   /* 1: no WKS columns among the base probes, so the shapes' own descriptors (ss_fmap_shape.descr)
    * replace them; default 0 (WKS, then the shapes' descriptors, if any) */
   int no_wks;
+  /* Weight of the orientation term (ss_fmap_weights.w_orient) over the orientation operators of the
+   * WKS probes (with no_wks: of the first of the shape's own descriptors, as many as the WKS columns
+   * they replace); 0 (default, the paper's Eq. (1)): none computed. Each mesh is taken wound
+   * outward (consistently per component, positive signed volume). */
+  double w_orient;
 } ss_fmap_match_options;
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);

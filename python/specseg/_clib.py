@@ -106,7 +106,7 @@ class ss_fmap_match_options(C.Structure):
                 ("w_descr", C.c_double), ("w_lap", C.c_double), ("w_dcomm", C.c_double), ("fix_constant", C.c_int),
                 ("zoomout_kmax", C.c_int), ("zoomout_step", C.c_int),
                 ("w_extra", C.c_double), ("extra_dcomm", C.c_int), ("descr_k", C.c_int),
-                ("zoomout_samples", C.c_int), ("no_wks", C.c_int)]
+                ("zoomout_samples", C.c_int), ("no_wks", C.c_int), ("w_orient", C.c_double)]
 
 
 class ss_pairing_options(C.Structure):

@@ -30,7 +30,7 @@ ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
   else
     areaY = ss_mesh_area(Y->mesh);
   if (!(areaX > 0) || !(areaY > 0)) return ss_fail(err, SS_ERR_INVALID, "match: shape of zero area");
-  ss_fmap_weights ww = {o.w_descr, sd > 0 ? o.w_lap / sd : 0.0, o.w_dcomm, o.fix_constant, 0.0};
+  ss_fmap_weights ww = {o.w_descr, sd > 0 ? o.w_lap / sd : 0.0, o.w_dcomm, o.fix_constant, 0.0, o.w_orient};
   ww.const_value = (X->evecs[0] * Y->evecs[0] < 0 ? -1.0 : 1.0) * sqrt(areaX / areaY);
   *w = ww;
   return SS_OK;

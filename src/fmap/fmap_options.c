@@ -21,6 +21,7 @@ void ss_fmap_match_default_options(ss_fmap_match_options *o) {
   o->descr_k = 0;
   o->zoomout_samples = 0;
   o->no_wks = 0;
+  o->w_orient = 0.0;
 }
 
 ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) {
@@ -31,6 +32,8 @@ ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) 
       !isfinite(o->w_dcomm))
     return ss_fail(err, SS_ERR_INVALID, "match: weights must be finite and non-negative (%g, %g, %g)", o->w_descr,
                    o->w_lap, o->w_dcomm);
+  if (!(o->w_orient >= 0) || !isfinite(o->w_orient))
+    return ss_fail(err, SS_ERR_INVALID, "match: orientation weight %g must be finite and non-negative", o->w_orient);
   if (!(o->w_extra >= 0) || !isfinite(o->w_extra))
     return ss_fail(err, SS_ERR_INVALID, "match: negative extra-probe weight %g", o->w_extra);
   if (o->zoomout_samples < 0) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut samples %d below 0", o->zoomout_samples);

@@ -14,6 +14,7 @@
  * kd = k is the NO17 / paper construction, computed by the same operations as before the option. */
 #include "fmap/fmap_options.h"
 #include "specseg/laplacian.h"
+#include "mesh/mesh_topology.h"
 
 #include <cblas.h>
 #include <math.h>
@@ -64,14 +65,45 @@ done:
   return st;
 }
 
+/* The orientation operators need every face wound the same way on both shapes: *out gets (in its F
+ * only; V shared with m) the faces of m oriented consistently per component and then outward (positive
+ * signed volume), or F = NULL when m's own faces already are. A scan wound inward, or partly wound
+ * each way, thus gives the operators of its outward orientation. */
+static ss_status outward_mesh(const ss_mesh *m, ss_mesh *out, ss_error *err) {
+  int *Fo = NULL;
+  ss_status st = ssi_mesh_orient_copy(m, &Fo, NULL, err);
+  if (st) return st;
+  const int *F = Fo ? Fo : m->F;
+  double vol = 0;
+  for (int t = 0; t < m->nf; t++) {
+    const double *a = m->V + 3 * (size_t)F[3 * (size_t)t], *b = m->V + 3 * (size_t)F[3 * (size_t)t + 1],
+                 *c = m->V + 3 * (size_t)F[3 * (size_t)t + 2];
+    vol += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+  }
+  if (vol < 0) {
+    if (!Fo) {
+      if (!(Fo = malloc(sizeof(int) * 3 * (size_t)m->nf))) return ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
+      memcpy(Fo, m->F, sizeof(int) * 3 * (size_t)m->nf);
+    }
+    for (int t = 0; t < m->nf; t++) {
+      int tmp = Fo[3 * (size_t)t + 1];
+      Fo[3 * (size_t)t + 1] = Fo[3 * (size_t)t + 2], Fo[3 * (size_t)t + 2] = tmp;
+    }
+  }
+  *out = *m;
+  out->F = Fo;
+  return SS_OK;
+}
+
 /* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked).
  * Scale: with the shape scaled by s, Φ goes as 1/s, M as s² and a unit-L²(M) function as 1/s, so the
  * coefficients A = Φᵀ M f are scale-free but D = Φᵀ M diag(f) Φ goes as 1/s: the commutativity term of
  * Eq. (1) would weigh 1/s² against the data term (x1e4 made it vanish, x1e-4 swamp the descriptors).
  * The operators are therefore those of the shape scaled to unit area, D·√area (f·√area is the
  * function normalised at unit area; Φ and M scale back); A is the same at any scale. */
-static ss_status finish(int n, int k, const double *evecs, const double *M, double *F, int p, int with_operators,
-                        ss_fmap_probes *out, ss_error *err) {
+static ss_status finish(const ss_mesh *mesh, int k, const double *evecs, const double *M, double *F, int p,
+                        int with_operators, int orient_from, int n_orient, ss_fmap_probes *out, ss_error *err) {
+  const int n = mesh->nv;
   double area = 0;
   for (int x = 0; x < n; x++) area += M[x];
   if (with_operators && !(area > 0 && isfinite(area)))
@@ -90,6 +122,18 @@ static ss_status finish(int n, int k, const double *evecs, const double *M, doub
   if (!st) st = ss_fmap_project(n, k, evecs, M, p, F, out->A, err);
   if (!st && with_operators) st = ss_fmap_mult_operators_packed(n, k, evecs, M, p, F, out->P, err);
   if (!st && with_operators) cblas_dscal((int)((size_t)k * (k + 1) / 2 * p), sqrt(area), out->P, 1);
+  if (!st && with_operators && n_orient > 0) {
+    /* the orientation operators of columns orient_from.. orient_from + n_orient − 1, those of the shape
+     * at unit area (φ and the unit-L²(M) functions scale back by √area each, O is trilinear in them) */
+    out->no = n_orient < p - orient_from ? n_orient : p - orient_from;
+    if (!(out->O = malloc(sizeof(double) * (size_t)k * k * out->no))) st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
+    ss_mesh outward = {0};
+    if (!st) st = outward_mesh(mesh, &outward, err);
+    if (!st) st = ss_fmap_orientation_operators(outward.F ? &outward : mesh, k, evecs, out->no, F + (size_t)n * orient_from,
+                                                out->O, err);
+    free(outward.F);
+    if (!st) cblas_dscal((int)((size_t)k * k * out->no), area * sqrt(area), out->O, 1);
+  }
   if (st) ss_fmap_probes_free(out);
   return st;
 }
@@ -150,7 +194,11 @@ ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, con
     p += s->ndescr;
   }
   if (p == 0) { st = ss_fail(err, SS_ERR_INVALID, "probes: no WKS, no landmark and no descriptor"); goto done; }
-  st = finish(n, k, s->evecs, M, F, p, with_operators, out, err);
+  /* orientation operators (when the term is weighted) of the WKS columns, the first kept ones, or
+   * without the WKS of as many of the shape's own descriptors that replace it */
+  const int nwks = (o.n_energies + o.descr_step - 1) / o.descr_step;
+  const int n_orient = !(o.w_orient > 0) ? 0 : !o.no_wks ? nwks : s->ndescr < nwks ? s->ndescr : nwks;
+  st = finish(s->mesh, k, s->evecs, M, F, p, with_operators, o.no_wks ? p - s->ndescr : 0, n_orient, out, err);
 done:
   free(own), free(coef), free(F);
   return st;
@@ -185,7 +233,7 @@ ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const
     memcpy(F, extra, sizeof(double) * (size_t)n * nextra);
     p = nextra;
   }
-  st = finish(n, k, s->evecs, M, F, p, with_operators, out, err);
+  st = finish(s->mesh, k, s->evecs, M, F, p, with_operators, 0, 0, out, err);
 done:
   free(own), free(coef), free(F);
   return st;

@@ -98,7 +98,7 @@ ss_status ss_fmap_solve(int k_S, int k_T, int p, const double *A, const double *
                         const ss_fmap_weights *w, double *C, ss_error *err) {
   ss_status st = check_args(k_S, k_T, p, A, B, nd, D_S, D_T, w, err);
   if (st) return st;
-  ss_fmap_probes S = {k_S, p, nd, (double *)A, NULL}, T = {k_T, p, nd, (double *)B, NULL};
+  ss_fmap_probes S = {k_S, p, nd, (double *)A, NULL, 0, NULL}, T = {k_T, p, nd, (double *)B, NULL, 0, NULL};
   ss_fmap_system *sys = NULL;
   if (nd > 0 && (!(S.P = pack_blocks(k_S, nd, D_S)) || !(T.P = pack_blocks(k_T, nd, D_T)))) {
     st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");

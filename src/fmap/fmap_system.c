@@ -35,6 +35,7 @@ void ss_fmap_probes_free(ss_fmap_probes *p) {
   if (!p) return;
   free(p->A);
   free(p->P);
+  free(p->O);
   memset(p, 0, sizeof *p);
 }
 
@@ -98,6 +99,37 @@ static ss_status add_cross_term(int k_S, int k_T, size_t m, int nd, const double
   return SS_OK;
 }
 
+/* N += w_o Σ_i ‖C O_i^S − O_i^T C‖²'s normal equations over the no operator pairs (full k x k,
+ * not symmetric): (O^S O^Sᵀ) ⊗ I + I ⊗ (O^Tᵀ O^T) − O^S ⊗ O^T − O^Sᵀ ⊗ O^Tᵀ, i.e. N[(r1,c1),(r2,c2)]
+ * −= H[(c1,c2),(r1,r2)] + H[(c2,c1),(r2,r1)] with H = Σ_i vec(O_i^S) vec(O_i^T)ᵀ (one dgemm). */
+static ss_status add_orientation(int k_S, int k_T, size_t m, int no, const double *OS, const double *OT, double w_o,
+                                 double *N, ss_error *err) {
+  const size_t kS2 = (size_t)k_S * k_S, kT2 = (size_t)k_T * k_T;
+  double *SS = calloc(kS2, sizeof(double)), *ST = calloc(kT2, sizeof(double)), *H = malloc(sizeof(double) * kS2 * kT2);
+  if (!SS || !ST || !H) {
+    free(SS), free(ST), free(H);
+    return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
+  }
+  for (int i = 0; i < no; i++) {
+    cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_S, k_S, k_S, w_o, OS + kS2 * i, k_S, OS + kS2 * i, k_S, 1.0, SS, k_S);
+    cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, k_T, k_T, k_T, w_o, OT + kT2 * i, k_T, OT + kT2 * i, k_T, 1.0, ST, k_T);
+  }
+  add_side_blocks(k_S, k_T, m, SS, ST, N);
+  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, (int)kS2, (int)kT2, no, w_o, OS, (int)kS2, OT, (int)kT2, 0.0, H,
+              (int)kS2);
+#pragma omp parallel for schedule(static)
+  for (int c2 = 0; c2 < k_S; c2++)
+    for (int r2 = 0; r2 < k_T; r2++) {
+      double *col = N + m * (r2 + (size_t)k_T * c2);
+      for (int c1 = 0; c1 < k_S; c1++)
+        for (int r1 = 0; r1 < k_T; r1++)
+          col[r1 + (size_t)k_T * c1] -= H[(c1 + (size_t)k_S * c2) + kS2 * (r1 + (size_t)k_T * r2)] +
+                                        H[(c2 + (size_t)k_S * c1) + kS2 * (r2 + (size_t)k_T * r1)];
+    }
+  free(SS), free(ST), free(H);
+  return SS_OK;
+}
+
 /* All terms of one probe block pair: data weight wd, commutativity weight wc over the first nd
  * columns. */
 static ss_status add_block(int k_S, int k_T, size_t m, const ss_fmap_probes *S, const ss_fmap_probes *T, double wd,
@@ -133,6 +165,8 @@ static ss_status check_probes(const ss_fmap_probes *S, const ss_fmap_probes *T, 
                    T ? T->k : -1, S ? S->p : -1, T ? T->p : -1);
   if (S->nd != T->nd || S->nd < 0 || (S->nd > 0 && (!S->P || !T->P)))
     return ss_fail(err, SS_ERR_INVALID, "fmap: %s probes: operator counts do not match", what);
+  if (S->no != T->no || S->no < 0 || (S->no > 0 && (!S->O || !T->O)))
+    return ss_fail(err, SS_ERR_INVALID, "fmap: %s probes: orientation operator counts do not match", what);
   return SS_OK;
 }
 
@@ -141,7 +175,7 @@ ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const doub
   if (!out) return ss_fail(err, SS_ERR_INVALID, "fmap: NULL output");
   *out = NULL;
   if (k_S < 1 || k_T < 1 || !w || !evals_S || !evals_T) return ss_fail(err, SS_ERR_INVALID, "fmap: bad sizes");
-  if (!(w->w_descr >= 0 && w->w_lap >= 0 && w->w_dcomm >= 0))
+  if (!(w->w_descr >= 0 && w->w_lap >= 0 && w->w_dcomm >= 0 && w->w_orient >= 0))
     return ss_fail(err, SS_ERR_INVALID, "fmap: weights must be non-negative");
   ss_status st = check_probes(S, T, k_S, k_T, "base", err);
   if (st) return st;
@@ -164,6 +198,10 @@ ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const doub
         s->N[i + m * i] += w->w_lap * d * d;
       }
   if ((st = add_block(k_S, k_T, m, S, T, w->w_descr, w->w_dcomm, 1, s->N, s->rhs, err))) {
+    ss_fmap_system_free(s);
+    return st;
+  }
+  if (w->w_orient > 0 && S->no > 0 && (st = add_orientation(k_S, k_T, m, S->no, S->O, T->O, w->w_orient, s->N, err))) {
     ss_fmap_system_free(s);
     return st;
   }

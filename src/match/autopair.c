@@ -594,7 +594,7 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
   else if (!st && !(st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err))) c->bA = c->pB.A, c->bP = c->pB.P;
   /* A: the WKS and its kept centres, in A's order, from its signature's probes or built here */
   if (!st && have_probes(A, &c->fo, per)) {
-    c->pA = (ss_fmap_probes){kk, per * (1 + c->na), per * (1 + c->na), NULL, NULL};
+    c->pA = (ss_fmap_probes){kk, per * (1 + c->na), per * (1 + c->na), NULL, NULL, 0, NULL};
     c->pA.A = malloc(sizeof(double) * (size_t)kk * c->pA.p);
     c->pA.P = malloc(sizeof(double) * (size_t)kp * c->pA.p);
     if (!c->pA.A || !c->pA.P) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
@@ -622,7 +622,7 @@ static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, do
     memcpy(c->Abuf + (size_t)kk * per * i, c->bA + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
     memcpy(c->Pbuf + (size_t)kp * per * i, c->bP + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
   }
-  ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf};
+  ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf, 0, NULL};
   ss_fmap_system *sys = NULL;
   double *Ck = malloc(sizeof(double) * (size_t)kk * kk);
   ss_status st = Ck ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
