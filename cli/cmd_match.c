@@ -13,7 +13,7 @@
 static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
-    "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K]\n"
+    "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -39,12 +39,16 @@ static const char USAGE[] =
     "                      default) or soft (soft Voronoi membership; better than tent from k = 60 on)\n"
     "  --k K               basis size, 3..10000 (default 50)\n"
     "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 120)\n"
-    "  --no-refine         the unrefined map of --probes at size K (the paper's variants)\n"
+    "  --no-refine         the unrefined map of --probes at size K (with the library's descriptors, pairing\n"
+    "                      safeguards and orientation term; specseg eval computes the paper's variants)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
     "  --descr-k K         eigenpairs the descriptors are computed from (default 100; = K for the\n"
     "                      paper's construction)\n"
+    "  --orient W          weight of the orientation-preserving term (Ren et al. 2018: the WKS probes'\n"
+    "                      orientation operators, each mesh taken wound outward) (default 0.001; 0: the\n"
+    "                      paper's Eq. (1) without it)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K, in the bases of\n"
     "                      both shapes scaled to unit area) as .npy\n"
     "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
@@ -62,7 +66,7 @@ static const char USAGE[] =
 
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
                                    "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
-                                   "--zoomout-step=", "--zoomout-samples=", "--timings", "--descriptors==",
+                                   "--zoomout-step=", "--zoomout-samples=", "--orient=", "--timings", "--descriptors==",
                                    "--no-wks", "--json", NULL};
 
 int cmd_match(int argc, char **argv) {
@@ -113,6 +117,9 @@ int cmd_match(int argc, char **argv) {
     } else if (cli_is(&A, "--descr-k")) {
       if (cli_parse_int(v, 3, 10000, &o.fmap.descr_k))
         return cli_bad(&A, "--descr-k needs an integer between 3 and 10000, not '%s'", v);
+    } else if (cli_is(&A, "--orient")) {
+      if (cli_parse_double(v, &o.fmap.w_orient) || !(o.fmap.w_orient >= 0) || o.fmap.w_orient > 1e6)
+        return cli_bad(&A, "--orient needs a weight between 0 and 1e6, not '%s'", v);
     } else if (cli_is(&A, "--timings")) {
       timings = 1;
     } else if (cli_is(&A, "--descriptors")) {

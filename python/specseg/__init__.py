@@ -559,7 +559,7 @@ _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
 def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None,
-          segment_profile=None, descriptors=None, wks=True):
+          segment_profile=None, descriptors=None, wks=True, orient=None):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
 
@@ -594,6 +594,9 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
     segment_profile : {"indicator", "tent", "soft"}, optional
         The paired segments' probe functions, as ``specseg match --segment-profile`` (library default
         "tent").
+    orient : float, optional
+        Weight of the orientation-preserving term (Ren et al. 2018; ``specseg match --orient``), >= 0
+        (library default 0.001; 0: the paper's Eq. (1) without it).
     descriptors : (array_like, array_like), optional
         Your own per-vertex descriptors (DX, DY) of shapes (nX, d) and (nY, d), column j of DX
         corresponding to column j of DY (e.g. `wks` / `hks`, or any features), as
@@ -666,6 +669,11 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         o.fmap.zoomout_kmax = _as_int32(zoomout, "zoomout")
     if segment_profile is not None:
         o.segment_profile = profiles[segment_profile]
+    if orient is not None:
+        w = float(orient)
+        if not (w >= 0 and math.isfinite(w)):
+            raise ValueError(f"orient must be a finite weight >= 0, not {orient!r}")
+        o.fmap.w_orient = w
     if not wks and descriptors is None:
         raise ValueError("wks=False needs descriptors: they replace the WKS")
     o.fmap.no_wks = 0 if wks else 1

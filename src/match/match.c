@@ -21,6 +21,7 @@
 #define SS_DEFAULT_REFINE_STEP 5
 #define SS_DEFAULT_REFINE_SAMPLES 1000
 #define SS_DEFAULT_REFINE_SINGLE 1
+#define SS_DEFAULT_W_ORIENT 1e-3
 
 void ss_match_default_options(ss_match_options *o) {
   memset(o, 0, sizeof *o);
@@ -30,6 +31,7 @@ void ss_match_default_options(ss_match_options *o) {
   o->fmap.zoomout_kmax = SS_DEFAULT_REFINE_KMAX;
   o->fmap.zoomout_step = SS_DEFAULT_REFINE_STEP;
   o->fmap.zoomout_samples = SS_DEFAULT_REFINE_SAMPLES;
+  o->fmap.w_orient = SS_DEFAULT_W_ORIENT;
   ss_segment_default_options(&o->seg);
   o->segment_profile = SS_PROFILE_TENT;
   ss_pairing_default_options(&o->pairing);
@@ -45,6 +47,7 @@ void ss_match_paper_options(ss_match_options *o) {
   o->fmap.descr_k = 0;
   o->seg_descr_k = 0;
   o->fmap.zoomout_kmax = 0;
+  o->fmap.w_orient = 0.0;
   ss_pairing_paper_options(&o->pairing);
   o->refine = SS_REFINE_NONE;
 }

@@ -135,6 +135,16 @@ else:
         check(False, "match: unknown segment profile accepted")
     except ValueError:
         check(True, "match: unknown segment profile refused")
+    # the orientation term's weight, as the CLI's --orient (0: the paper's Eq. (1) without it)
+    cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "--orient", 0, "-o", path("mo.txt"))
+    mo = np.loadtxt(path("mo.txt"), dtype=np.int64)
+    check(np.array_equal(specseg.match(V, F, V, F, lm, k=20, orient=0).map, mo), "match: orient=0 as the CLI's --orient 0")
+    for bad in (-1.0, float("nan")):
+        try:
+            specseg.match(V, F, V, F, lm, k=20, orient=bad)
+            check(False, "match: orient=%r accepted" % bad)
+        except ValueError:
+            check(True, "")
 
 # --- prepared shapes: prepare once, match many (the same map as from the arrays and the CLI) ---
 if NO_MATCH or not hasattr(specseg.lib, "ss_prepared_shape_compute"):
