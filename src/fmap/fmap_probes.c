@@ -65,36 +65,6 @@ done:
   return st;
 }
 
-/* The orientation operators need every face wound the same way on both shapes: *out gets (in its F
- * only; V shared with m) the faces of m oriented consistently per component and then outward (positive
- * signed volume), or F = NULL when m's own faces already are. A scan wound inward, or partly wound
- * each way, thus gives the operators of its outward orientation. */
-static ss_status outward_mesh(const ss_mesh *m, ss_mesh *out, ss_error *err) {
-  int *Fo = NULL;
-  ss_status st = ssi_mesh_orient_copy(m, &Fo, NULL, err);
-  if (st) return st;
-  const int *F = Fo ? Fo : m->F;
-  double vol = 0;
-  for (int t = 0; t < m->nf; t++) {
-    const double *a = m->V + 3 * (size_t)F[3 * (size_t)t], *b = m->V + 3 * (size_t)F[3 * (size_t)t + 1],
-                 *c = m->V + 3 * (size_t)F[3 * (size_t)t + 2];
-    vol += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-  }
-  if (vol < 0) {
-    if (!Fo) {
-      if (!(Fo = malloc(sizeof(int) * 3 * (size_t)m->nf))) return ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
-      memcpy(Fo, m->F, sizeof(int) * 3 * (size_t)m->nf);
-    }
-    for (int t = 0; t < m->nf; t++) {
-      int tmp = Fo[3 * (size_t)t + 1];
-      Fo[3 * (size_t)t + 1] = Fo[3 * (size_t)t + 2], Fo[3 * (size_t)t + 2] = tmp;
-    }
-  }
-  *out = *m;
-  out->F = Fo;
-  return SS_OK;
-}
-
 /* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked).
  * Scale: with the shape scaled by s, Φ goes as 1/s, M as s² and a unit-L²(M) function as 1/s, so the
  * coefficients A = Φᵀ M f are scale-free but D = Φᵀ M diag(f) Φ goes as 1/s: the commutativity term of
@@ -127,11 +97,14 @@ static ss_status finish(const ss_mesh *mesh, int k, const double *evecs, const d
      * at unit area (φ and the unit-L²(M) functions scale back by √area each, O is trilinear in them) */
     out->no = n_orient < p - orient_from ? n_orient : p - orient_from;
     if (!(out->O = malloc(sizeof(double) * (size_t)k * k * out->no))) st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
-    ss_mesh outward = {0};
-    if (!st) st = outward_mesh(mesh, &outward, err);
-    if (!st) st = ss_fmap_orientation_operators(outward.F ? &outward : mesh, k, evecs, out->no, F + (size_t)n * orient_from,
-                                                out->O, err);
-    free(outward.F);
+    /* every face wound the same way on both shapes: each mesh's outward orientation (a scan wound
+     * inward, or partly each way, gives the same operators) */
+    int *Fo = NULL;
+    if (!st) st = ssi_mesh_outward_copy(mesh, &Fo, err);
+    ss_mesh outward = *mesh;
+    if (Fo) outward.F = Fo;
+    if (!st) st = ss_fmap_orientation_operators(&outward, k, evecs, out->no, F + (size_t)n * orient_from, out->O, err);
+    free(Fo);
     if (!st) cblas_dscal((int)((size_t)k * k * out->no), area * sqrt(area), out->O, 1);
   }
   if (st) ss_fmap_probes_free(out);

@@ -67,5 +67,8 @@ void ssi_orientation_free(ssi_orientation *o);
 /* A consistently re-oriented copy of m->F in *F_out (malloc'd), or NULL when m is consistently
  * oriented already; *flipped (may be NULL) = faces reversed. SS_ERR_INVALID when not orientable. */
 ss_status ssi_mesh_orient_copy(const ss_mesh *m, int **F_out, int *flipped, ss_error *err);
+/* The same, then every face reversed when the total signed volume is negative: the faces wound
+ * outward (for a closed surface), in *F_out (malloc'd), or NULL when m's own faces already are. */
+ss_status ssi_mesh_outward_copy(const ss_mesh *m, int **F_out, ss_error *err);
 
 #endif
