@@ -20,7 +20,7 @@
  * by the guided cluster search */
 static ss_status zoomout_loop(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                               const double *C0, int kmax, int step, int brute, const int *part_in, const double *L, int ldl,
-                              int *map, double *C_out, ss_error *err) {
+                              int map_at_kmax, int *map, double *C_out, ss_error *err) {
   if (n_S < 1 || n_T < 1 || k0 < 1 || kmax < k0 || step < 1)
     return ss_fail(err, SS_ERR_INVALID, "zoomout: need 1 <= k0 <= kmax and step >= 1 (k0 %d, kmax %d, step %d)", k0,
                    kmax, step);
@@ -47,6 +47,7 @@ static ss_status zoomout_loop(int n_S, int n_T, const double *evecs_S, const dou
       cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, k, k, 1.0, L, ldl, C, k);
       cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasTrans, CblasNonUnit, k, k, 1.0, L, ldl, C, k);
     }
+    if (k == kmax && !map_at_kmax) break; /* map: the previous size's (the caller's passes at kmax follow) */
   }
   if (!st && C_out) memcpy(C_out, C, sizeof(double) * (size_t)k * k);
   free(C);
@@ -57,7 +58,7 @@ static ss_status zoomout_loop(int n_S, int n_T, const double *evecs_S, const dou
 
 ss_status ss_zoomout(int n_S, int n_T, const double *evecs_S, const double *evecs_T, const double *M_T, int k0,
                      const double *C0, int kmax, int step, int *map, double *C_out, ss_error *err) {
-  return zoomout_loop(n_S, n_T, evecs_S, evecs_T, M_T, k0, C0, kmax, step, 0, NULL, NULL, 0, map, C_out, err);
+  return zoomout_loop(n_S, n_T, evecs_S, evecs_T, M_T, k0, C0, kmax, step, 0, NULL, NULL, 0, 1, map, C_out, err);
 }
 
 /* Sampled iterations search by brute force up to this many source samples: among sparse samples a
@@ -112,9 +113,11 @@ ss_status ss_zoomout_sampled(int n_S, int n_T, const double *evecs_S, const doub
     if (LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', kmax, L, kmax) != 0) free(L), L = NULL; /* the weighted sum */
   }
   /* among every source vertex: the cluster search on the given (or its own) partition; among source
-   * samples: brute force up to ZOOMOUT_BRUTE_MAX of them */
-  if (full_S) st = zoomout_loop(n_S, mT, evecs_S, PT, smp->w_T, k0, C0, kmax, step, 0, smp->part_S, L, kmax, smap, C, err);
-  else st = zoomout_loop(mS, mT, PS, PT, smp->w_T, k0, C0, kmax, step, mS <= ZOOMOUT_BRUTE_MAX, NULL, L, kmax, smap, C, err);
+   * samples: brute force up to ZOOMOUT_BRUTE_MAX of them. The samples' map at kmax would only be the
+   * first pass's guess (that pass maps every vertex, the samples too, and its exact search does not
+   * depend on the guess): the map of the size before serves as the guess instead. */
+  if (full_S) st = zoomout_loop(n_S, mT, evecs_S, PT, smp->w_T, k0, C0, kmax, step, 0, smp->part_S, L, kmax, 0, smap, C, err);
+  else st = zoomout_loop(mS, mT, PS, PT, smp->w_T, k0, C0, kmax, step, mS <= ZOOMOUT_BRUTE_MAX, NULL, L, kmax, 0, smap, C, err);
   if (st) goto done;
   /* the point map of every target vertex from the final C, then the iterations on every vertex */
   if (guess)
