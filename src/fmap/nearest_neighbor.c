@@ -145,27 +145,40 @@ static double dot(int d, const double *a, const double *b) {
   return s;
 }
 
-/* Centroid, radius and frame of cluster c; W: scratch of maxcnt x d. */
-static void cluster_setup(nn_index *t, int ndb, int c, double *W) {
+/* Centroid, radius and frame of cluster c; W: scratch of maxcnt x d, nrm: of maxcnt. The frame's
+ * pivots are chosen on squared norms updated by −p² (a choice only: the pivot's own residual is then
+ * taken exactly); coordinates and off-frame residuals are computed from scratch, one fused pass each. */
+static void cluster_setup(nn_index *t, int ndb, int c, double *W, double *nrm) {
   const int d = t->d, s0 = t->start[c], cnt = t->start[c + 1] - s0;
-  double *cc = t->cen + (size_t)c * d, *U = t->U + (size_t)c * NN_FRAME * d, R = 0;
+  double *cc = t->cen + (size_t)c * d, *U = t->U + (size_t)c * NN_FRAME * d, R2 = 0;
   for (int j = 0; j < d; j++) cc[j] = 0;
-  for (int s = 0; s < cnt; s++)
-    for (int j = 0; j < d; j++) cc[j] += t->Pc[(size_t)(s0 + s) * d + j];
-  for (int j = 0; j < d; j++) cc[j] /= cnt > 0 ? cnt : 1;
   for (int s = 0; s < cnt; s++) {
-    R = fmax(R, sqrt(d2row(d, cc, t->Pc + (size_t)(s0 + s) * d)));
-    for (int j = 0; j < d; j++) W[(size_t)s * d + j] = t->Pc[(size_t)(s0 + s) * d + j] - cc[j];
+    const double *b = t->Pc + (size_t)(s0 + s) * d;
+#pragma omp simd
+    for (int j = 0; j < d; j++) cc[j] += b[j];
   }
+  for (int j = 0; j < d; j++) cc[j] /= cnt > 0 ? cnt : 1;
+  for (int s = 0; s < cnt; s++) { /* centred members and their squared norms (the radius) */
+    const double *b = t->Pc + (size_t)(s0 + s) * d;
+    double *w = W + (size_t)s * d, q = 0;
+#pragma omp simd reduction(+ : q)
+    for (int j = 0; j < d; j++) {
+      double v = b[j] - cc[j];
+      w[j] = v;
+      q += v * v;
+    }
+    nrm[s] = q;
+    R2 = fmax(R2, q);
+  }
+  const double R = sqrt(R2);
   t->R[c] = R;
   for (int a = 0; a < NN_FRAME; a++) { /* next direction: the member farthest from the span so far */
     double *u = U + (size_t)a * d, bn = 0;
     int bs = -1;
-    for (int s = 0; s < cnt; s++) {
-      double v = dot(d, W + (size_t)s * d, W + (size_t)s * d);
-      if (v > bn) { bn = v; bs = s; }
-    }
+    for (int s = 0; s < cnt; s++)
+      if (nrm[s] > bn) { bn = nrm[s]; bs = s; }
     for (int j = 0; j < d; j++) u[j] = bs < 0 ? 0 : W[(size_t)bs * d + j];
+    bn = dot(d, u, u); /* the pivot's residual, exactly */
     for (int pass = 0; pass < 2; pass++) /* re-orthogonalised */
       for (int a2 = 0; a2 < a; a2++) {
         const double *v = U + (size_t)a2 * d;
@@ -177,9 +190,11 @@ static void cluster_setup(nn_index *t, int ndb, int c, double *W) {
     double nu = sqrt(dot(d, u, u));
     int keep = sqrt(bn) > 1e-9 * R && nu > 0.5 * sqrt(bn);
     for (int j = 0; j < d; j++) u[j] = keep ? u[j] / nu : 0;
-    for (int s = 0; s < cnt && keep; s++) {
+    for (int s = 0; s < cnt && keep && a + 1 < NN_FRAME; s++) { /* (the last direction needs no update) */
       double *w = W + (size_t)s * d, p = dot(d, w, u);
+#pragma omp simd
       for (int j = 0; j < d; j++) w[j] -= p * u[j];
+      nrm[s] -= p * p;
     }
   }
   double dev = 0; /* the bound needs ‖Uᵀx‖ ≤ ‖x‖: check orthonormality, else no frame at all */
@@ -191,16 +206,31 @@ static void cluster_setup(nn_index *t, int ndb, int c, double *W) {
     }
   if (!(dev < 2e-14)) /* a frame error δ moves h_q by ~√(3δ)‖q − c‖; fm below covers δ = 2e-14 ~4x */
     for (size_t j = 0; j < (size_t)NN_FRAME * d; j++) U[j] = 0;
+  /* rows of the frame (absent ones: a zero row, never used with a non-zero weight) */
+  const double *U0 = U, *U1 = NN_FRAME > 1 ? U + d : U, *U2 = NN_FRAME > 2 ? U + 2 * (size_t)d : U,
+               *U3 = NN_FRAME > 3 ? U + 3 * (size_t)d : U;
   for (int s = 0; s < cnt; s++) { /* coordinates and residuals from scratch, not from the updates */
     const double *b = t->Pc + (size_t)(s0 + s) * d;
-    double *w = W, y[NN_FRAME];
-    for (int j = 0; j < d; j++) w[j] = b[j] - cc[j];
-    for (int a = 0; a < NN_FRAME; a++) y[a] = dot(d, w, U + (size_t)a * d);
-    for (int a = 0; a < NN_FRAME; a++) {
-      for (int j = 0; j < d; j++) w[j] -= y[a] * U[(size_t)a * d + j];
-      t->Y[(size_t)a * ndb + s0 + s] = y[a];
+    double y0 = 0, y1 = 0, y2 = 0, y3 = 0, h = 0;
+#pragma omp simd reduction(+ : y0, y1, y2, y3)
+    for (int j = 0; j < d; j++) {
+      double v = b[j] - cc[j];
+      y0 += v * U0[j];
+      y1 += v * U1[j];
+      y2 += v * U2[j];
+      y3 += v * U3[j];
     }
-    t->H[s0 + s] = sqrt(dot(d, w, w));
+    if (NN_FRAME < 2) y1 = 0;
+    if (NN_FRAME < 3) y2 = 0;
+    if (NN_FRAME < 4) y3 = 0;
+#pragma omp simd reduction(+ : h)
+    for (int j = 0; j < d; j++) {
+      double v = b[j] - cc[j] - y0 * U0[j] - y1 * U1[j] - y2 * U2[j] - y3 * U3[j];
+      h += v * v;
+    }
+    const double y[4] = {y0, y1, y2, y3};
+    for (int a = 0; a < NN_FRAME; a++) t->Y[(size_t)a * ndb + s0 + s] = y[a];
+    t->H[s0 + s] = sqrt(h);
   }
 }
 
@@ -235,20 +265,26 @@ static int index_build(int ndb, int d, const double *db, int lddb, int nc, const
     t->slot[b] = s;
   }
   free(fill);
-  for (int j = 0; j < d; j++)
-    for (int b = 0; b < ndb; b++) t->Pc[(size_t)t->slot[b] * d + j] = db[b + (size_t)lddb * j];
+  /* row-major copy, 16 points at a time (the 16 destination rows stay in cache across the columns) */
+  for (int b0 = 0; b0 < ndb; b0 += 16) {
+    const int b1 = b0 + 16 < ndb ? b0 + 16 : ndb;
+    for (int j = 0; j < d; j++)
+      for (int b = b0; b < b1; b++) t->Pc[(size_t)t->slot[b] * d + j] = db[b + (size_t)lddb * j];
+  }
   int fail = 0;
 #pragma omp parallel
   {
-    double *W = malloc(sizeof(double) * (size_t)(t->maxcnt > 0 ? t->maxcnt : 1) * d);
-    if (!W) {
+    const size_t mc = (size_t)(t->maxcnt > 0 ? t->maxcnt : 1);
+    double *W = malloc(sizeof(double) * mc * d), *nrm = malloc(sizeof(double) * mc);
+    if (!W || !nrm) {
 #pragma omp atomic write
       fail = 1;
     }
 #pragma omp for schedule(dynamic, 4) nowait /* the region's end is the barrier */
     for (int c = 0; c < nc; c++)
-      if (W) cluster_setup(t, ndb, c, W);
+      if (W && nrm) cluster_setup(t, ndb, c, W, nrm);
     free(W);
+    free(nrm);
   }
   if (fail) index_free(t);
   return fail;
