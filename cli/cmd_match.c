@@ -38,7 +38,7 @@ static const char USAGE[] =
     "  --segment-profile S the segments' probe functions: indicator, tent (1 - d/R from the centre;\n"
     "                      default) or soft (soft Voronoi membership; better than tent from k = 60 on)\n"
     "  --k K               basis size, 3..10000 (default 50)\n"
-    "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 120)\n"
+    "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 110)\n"
     "  --no-refine         the unrefined map of --probes at size K (with the library's descriptors, pairing\n"
     "                      safeguards and orientation term; specseg eval computes the paper's variants)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"

@@ -19,7 +19,7 @@ static const char USAGE[] =
     "\n"
     "  MESH                OFF, OBJ or PLY file; - reads standard input\n"
     "  -o, --output FILE   the prepared shape (required; a file, not standard output)\n"
-    "  -k K                eigenpairs, 3..10000 (default 120: what the default match needs, with or\n"
+    "  -k K                eigenpairs, 3..10000 (default 110: what the default match needs, with or\n"
     "                      without landmarks; a match with a larger --k / --zoomout / --descr-k needs\n"
     "                      more, and says so). The map equals the one from the meshes when K is\n"
     "                      exactly what the match needs.\n"

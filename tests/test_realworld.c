@@ -540,7 +540,7 @@ static void test_match_small_messages(void) {
   CHECK(ss_match(&tri, &s, 1, &lm, &lm, NULL, &r, &e) == SS_ERR_INVALID);
   CHECK_MSG(strstr(e.msg, "X (the first mesh): the mesh has 3 vertices and 1 face: too small to match"), "%s", e.msg);
   ss_match_options o;
-  ss_match_paper_options(&o); /* the refined default needs 120 eigenpairs: more than the sphere has */
+  ss_match_paper_options(&o); /* the refined default needs 110 eigenpairs: more than the sphere has */
   o.fmap.k = 10;
   CHECK(ss_match(&s, &tri, 1, &lm, &lm, &o, &r, &e) == SS_ERR_INVALID);
   CHECK_MSG(strstr(e.msg, "match: Y (the second mesh): the mesh has 3 vertices and 1 face"), "%s", e.msg);

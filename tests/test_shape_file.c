@@ -177,7 +177,7 @@ int main(void) {
   humanoid_landmarks(&X, lm);
   ss_match_options o;
   ss_match_default_options(&o);
-  CHECK(ss_match_eigenpairs(NULL, 5) == 120 && ss_match_eigenpairs(NULL, 0) == 120);
+  CHECK(ss_match_eigenpairs(NULL, 5) == 110 && ss_match_eigenpairs(NULL, 0) == 110);
   const int kev = ss_match_eigenpairs(&o, 5);
 
   /* prepare, write, read back: bit-identical */
@@ -242,7 +242,7 @@ int main(void) {
     ss_match_result r = {0};
     CHECK(ss_prepared_shape_compute(&X, NULL, 60, NULL, &SX, &e) == SS_OK && !SX.has_signature);
     CHECK(ss_match_prepared_shapes(&SX, &RY, 5, lm, lm, &o, &r, NULL, 0, &e) == SS_ERR_INVALID &&
-          strstr(e.msg, "X (the first shape) was prepared with 60 eigenpairs") && strstr(e.msg, "needs 120"));
+          strstr(e.msg, "X (the first shape) was prepared with 60 eigenpairs") && strstr(e.msg, "needs 110"));
     ss_match_options small = o;
     small.fmap.zoomout_kmax = 55, small.fmap.descr_k = 50;
     CHECK_MSG(ss_match_prepared_shapes(&SX, &RY, 5, lm, lm, &small, &r, NULL, 0, &e) == SS_OK, "%s", e.msg);

@@ -279,7 +279,7 @@ typedef enum ss_refine_mode {
   SS_REFINE_BEST = 2     /* default: the starts STD and, with ASA / DIFF probes and segments paired,
                             the segment-aided map; the one of lower selection energy (both with
                             refine_single 0) refined by ZoomOut up to fmap.zoomout_kmax (default
-                            120, step fmap.zoomout_step 5, on fmap.zoomout_samples 1,000 samples of
+                            110, step fmap.zoomout_step 5, on fmap.zoomout_samples 1,000 samples of
                             X then once on every vertex: docs/tuning.md); of
                             the starts and their refinements the map with the lowest selection energy
                             ss_p2p_energy (k0 = k, K = max(k, zoomout_kmax), step 1, w_lap =
@@ -440,7 +440,7 @@ SS_API const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s
  *  m: the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face or
  *     vertex the sanitizer would drop).
  *  seg_opts: segmentation options (NULL: ss_segment_default_options).
- *  kev: eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (120 for the default match).
+ *  kev: eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (110 for the default match).
  *  autopair: options of the landmark-free pairing's centre signature (NULL: none computed); it is
  *     computed only for a mesh of one component (the landmark-free match of several keeps the
  *     largest one and prepares that).
@@ -464,7 +464,7 @@ SS_API void ss_prepared_shape_free(ss_prepared_shape *s);
 
 /* Eigenpairs each shape needs for ss_match_prepared with opts (NULL: the defaults) and nl landmarks
  * (0: landmark-free, which adds the pairing's descr_k and orient_k): max(k, ZoomOut's kmax when
- * refining, descr_k, seg_descr_k with segment probes). 120 for the defaults. */
+ * refining, descr_k, seg_descr_k with segment probes). 110 for the defaults. */
 SS_API int ss_match_eigenpairs(const ss_match_options *opts, int nl);
 
 /* ss_match_warn on two prepared shapes: the same map, pairs and notes as ss_match_warn(&X->mesh,

@@ -831,7 +831,7 @@ class Shape:
 
 
 def k_needed(landmarks=True, k=None, zoomout=None):
-    """Eigenpairs a prepared shape needs for `match` with these options (120 for the defaults, with or
+    """Eigenpairs a prepared shape needs for `match` with these options (110 for the defaults, with or
     without landmarks).
 
     Parameters
@@ -841,7 +841,7 @@ def k_needed(landmarks=True, k=None, zoomout=None):
     k : int, optional
         The match's basis size (library default 50).
     zoomout : int, optional
-        The match's ZoomOut size (library default 120).
+        The match's ZoomOut size (library default 110).
 
     Returns
     -------
@@ -872,7 +872,7 @@ def prepare(V, F, k=None, target_faces=None, no_streamline=False, signature=True
     F : array_like of int, shape (m, 3)
         Triangles, 0-based vertex indices.
     k : int, optional
-        Eigenpairs, 3 <= k < n (default: what the default `match` needs, 120).
+        Eigenpairs, 3 <= k < n (default: what the default `match` needs, 110).
     target_faces : int, optional
         The segmentation's remeshing target (library default 15000).
     no_streamline : bool, optional

@@ -16,7 +16,7 @@
 
 /* Defaults of what the paper leaves open (docs/tuning.md). */
 #define SS_DEFAULT_DESCR_K 100
-#define SS_DEFAULT_REFINE_KMAX 120
+#define SS_DEFAULT_REFINE_KMAX 110
 #define SS_DEFAULT_REFINE_W_DESCR 1.0
 #define SS_DEFAULT_REFINE_STEP 5
 #define SS_DEFAULT_REFINE_SAMPLES 1000

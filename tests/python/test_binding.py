@@ -151,7 +151,7 @@ if NO_MATCH or not hasattr(specseg.lib, "ss_prepared_shape_compute"):
     print("SKIP: prepared shapes (%s)" % ("--no-match" if NO_MATCH else "no ss_prepared_shape_compute"))
 else:
     S = specseg.prepare(V, F)
-    check(S.n == n and S.k == specseg.k_needed() == 120 and np.array_equal(S.V, V) and np.array_equal(S.F, F),
+    check(S.n == n and S.k == specseg.k_needed() == 110 and np.array_equal(S.V, V) and np.array_equal(S.F, F),
           "prepare: %r" % S)
     check(np.array_equal(S.labels, seg.labels) and np.array_equal(S.centers, seg.centers), "prepare: the segmentation")
     rp = specseg.match(S, S, lm, k=20)
