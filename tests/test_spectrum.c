@@ -323,6 +323,29 @@ static void test_block(void) {
   /* sphere: multiplicities 2l+1 up to 13 inside k = 40, more than the block of 8 */
   CHECK(ss_synth_icosphere(4, &m, NULL) == SS_OK);
   compare_methods(&m, 40, "sphere");
+  /* a Krylov size just above k (ncv = k + 10): the block method used to keep all but one block at each
+   * restart and gave up after 1,000 restarts (0 of 39 pairs); it now keeps room for 4 blocks */
+  {
+    ss_sparse W;
+    double *M, ea[40], eb[40];
+    CHECK(operators(&m, &W, &M) == 0);
+    ss_eigs_options o;
+    ss_eigs_stats st;
+    ss_eigs_default_options(&o);
+    o.method = SS_EIGS_ARPACK;
+    ss_error e;
+    CHECK_MSG(ss_eigs(&W, M, 40, &o, ea, NULL, &e) == SS_OK, "%s", e.msg);
+    o.method = SS_EIGS_BLOCK;
+    o.ncv = 50;
+    o.stats = &st;
+    CHECK_MSG(ss_eigs(&W, M, 40, &o, eb, NULL, &e) == SS_OK, "block, ncv 50: %s", e.msg);
+    CHECK_MSG(st.restarts <= 100, "block, ncv 50: %d restarts", st.restarts);
+    double worst = 0;
+    for (int i = 0; i < 40; i++) worst = fmax(worst, fabs(eb[i] - ea[i]) / (1 + fabs(ea[i])));
+    CHECK_MSG(worst < 1e-10, "block, ncv 50: eigenvalues differ by %g", worst);
+    free(M);
+    ss_sparse_free(&W);
+  }
   ss_mesh_free(&m);
   /* two components: two exact null pairs deflated */
   {

@@ -47,7 +47,7 @@ typedef struct ss_eigs_options {
                    e.g. the default on any shape of area 1e-2 ... 1e5; the nearer end of the
                    band outside it), so results scale exactly with the shape */
   double tol;   /* convergence tolerance (ARPACK's test, both methods); default 1e-10 */
-  int ncv;      /* Krylov dimension (block: most basis vectors kept); 0 = automatic */
+  int ncv;      /* Krylov dimension (block: most basis vectors kept, at least k + 4·block); 0 = automatic */
   int maxiter;  /* restarts; 0 = automatic */
   ss_eigs_stats *stats; /* NULL (default), or receives the timing breakdown of the call */
   int method;   /* ss_eigs_method; default SS_EIGS_AUTO */

@@ -461,7 +461,9 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
     int b = o.block ? o.block : 8;
     if (b > kk) b = kk;
     int mmax = o.ncv ? o.ncv : 2 * kk + 6 * b;
-    if (mmax < kk + b) mmax = kk + b;
+    /* a restart keeps about kk + (mmax − kk)/2 columns: below kk + 4b it adds one block or none and
+     * the method crawls (ncv = k + 20 at k = 100: 1,000 restarts, 10 s, no convergence) */
+    if (mmax < kk + 4 * b) mmax = kk + 4 * b;
     int room = n - nnull;
     int use_block = o.method == SS_EIGS_BLOCK || (o.method == SS_EIGS_AUTO && n >= SS_EIGS_BLOCK_MIN_N && kk >= 32);
     if (sigma > 0 || mmax + b > room) use_block = 0;
