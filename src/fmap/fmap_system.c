@@ -59,11 +59,12 @@ static ss_status sum_squares_packed(int k, int nd, const double *P, double *S, s
 }
 
 /* N += S-side block (same for every row r: N[(r,c1),(r,c2)] += SS[c1,c2]) and T-side block (same for
- * every column c: N[(r1,c),(r2,c)] += ST[r1,r2]); either may be NULL. */
+ * every column c: N[(r1,c),(r2,c)] += ST[r1,r2]); either may be NULL. Like every term below, only
+ * N's lower triangle (row index >= column index) is formed: the solver (dsposv 'L') reads no other. */
 static void add_side_blocks(int k_S, int k_T, size_t m, const double *SS, const double *ST, double *N) {
   if (SS)
     for (int c2 = 0; c2 < k_S; c2++)
-      for (int c1 = 0; c1 < k_S; c1++) {
+      for (int c1 = c2; c1 < k_S; c1++) {
         double v = SS[c1 + (size_t)k_S * c2];
         if (v == 0) continue;
         for (int r = 0; r < k_T; r++) N[(r + (size_t)k_T * c1) + m * (r + (size_t)k_T * c2)] += v;
@@ -71,7 +72,7 @@ static void add_side_blocks(int k_S, int k_T, size_t m, const double *SS, const 
   if (ST)
     for (int c = 0; c < k_S; c++)
       for (int r2 = 0; r2 < k_T; r2++)
-        for (int r1 = 0; r1 < k_T; r1++) N[(r1 + (size_t)k_T * c) + m * (r2 + (size_t)k_T * c)] += ST[r1 + (size_t)k_T * r2];
+        for (int r1 = r2; r1 < k_T; r1++) N[(r1 + (size_t)k_T * c) + m * (r2 + (size_t)k_T * c)] += ST[r1 + (size_t)k_T * r2];
 }
 
 /* N += −2 w_c Σ_i D_i^S ⊗ D_i^T over the nd packed operator pairs: H = P_S P_Tᵀ, then
@@ -87,9 +88,9 @@ static ss_status add_cross_term(int k_S, int k_T, size_t m, int nd, const double
   for (int c2 = 0; c2 < k_S; c2++)
     for (int r2 = 0; r2 < k_T; r2++) {
       double *col = N + m * (r2 + (size_t)k_T * c2);
-      for (int c1 = 0; c1 < k_S; c1++) {
+      for (int c1 = c2; c1 < k_S; c1++) { /* lower triangle: c1 > c2, or c1 = c2 and r >= r2 */
         size_t hs = c1 <= c2 ? pk(c1, c2) : pk(c2, c1);
-        for (int r = 0; r < k_T; r++) {
+        for (int r = c1 == c2 ? r2 : 0; r < k_T; r++) {
           size_t ht = r <= r2 ? pk(r, r2) : pk(r2, r);
           col[r + (size_t)k_T * c1] += H[hs + kkS * ht];
         }
@@ -121,8 +122,8 @@ static ss_status add_orientation(int k_S, int k_T, size_t m, int no, const doubl
   for (int c2 = 0; c2 < k_S; c2++)
     for (int r2 = 0; r2 < k_T; r2++) {
       double *col = N + m * (r2 + (size_t)k_T * c2);
-      for (int c1 = 0; c1 < k_S; c1++)
-        for (int r1 = 0; r1 < k_T; r1++)
+      for (int c1 = c2; c1 < k_S; c1++) /* lower triangle */
+        for (int r1 = c1 == c2 ? r2 : 0; r1 < k_T; r1++)
           col[r1 + (size_t)k_T * c1] -= H[(c1 + (size_t)k_S * c2) + kS2 * (r1 + (size_t)k_T * r2)] +
                                         H[(c2 + (size_t)k_S * c1) + kS2 * (r2 + (size_t)k_T * r1)];
     }
@@ -227,7 +228,8 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
   if (have_extra && !(w_extra >= 0)) return ss_fail(err, SS_ERR_INVALID, "fmap: negative extra-probe weight %g", w_extra);
   double *N = malloc(sizeof(double) * m * m), *rhs = malloc(sizeof(double) * m), *x = malloc(sizeof(double) * m);
   if (!N || !rhs || !x) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
-  memcpy(N, s->N, sizeof(double) * m * m);
+  for (size_t j = 0; j < m; j++) /* the lower triangle (all the solver reads) */
+    memcpy(N + j + m * j, s->N + j + m * j, sizeof(double) * (m - j));
   memcpy(rhs, s->rhs, sizeof(double) * m);
   if (have_extra && S_extra->p > 0 &&
       (st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, N, rhs, err)))
