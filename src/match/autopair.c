@@ -130,18 +130,16 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
     int *Fo = NULL;
     if ((st = ssi_mesh_orient_copy(mesh, &Fo, NULL, err))) goto done;
     const int *FF = Fo ? Fo : mesh->F;
-    double vol = 0;
+    const double vol = ssi_mesh_signed_volume6(mesh, FF) / 6.0;
     for (int f = 0; f < nf; f++) {
       const int *t = FF + 3 * (size_t)f;
       const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
       double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
       double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      vol += p0[0] * N[0] + p0[1] * N[1] + p0[2] * N[2]; /* p0 · (u × w) = p0 · (p1 × p2) */
       for (int c = 0; c < 3; c++)
         for (int d = 0; d < 3; d++) out->normals[3 * (size_t)t[c] + d] += N[d];
     }
     free(Fo);
-    vol /= 6.0;
     out->volume_ratio = vol / (area * sqrt(area));
     out->orient_sign = vol < 0 ? -1.0 : 1.0;
     for (size_t i = 0; i < (size_t)n * 3; i++) out->normals[i] *= out->orient_sign;

@@ -148,18 +148,22 @@ ss_status ssi_mesh_orient_copy(const ss_mesh *m, int **F_out, int *flipped, ss_e
   return SS_OK;
 }
 
-ss_status ssi_mesh_outward_copy(const ss_mesh *m, int **F_out, ss_error *err) {
-  int *Fo = NULL;
-  ss_status st = ssi_mesh_orient_copy(m, &Fo, NULL, err);
-  if (st) return st;
-  const int *F = Fo ? Fo : m->F;
-  double vol = 0; /* 6 x the signed volume: Σ p0 · (p1 × p2) */
+double ssi_mesh_signed_volume6(const ss_mesh *m, const int *F) {
+  if (!F) F = m->F;
+  double vol = 0;
   for (int t = 0; t < m->nf; t++) {
     const double *a = m->V + 3 * (size_t)F[3 * (size_t)t], *b = m->V + 3 * (size_t)F[3 * (size_t)t + 1],
                  *c = m->V + 3 * (size_t)F[3 * (size_t)t + 2];
     vol += a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
   }
-  if (vol < 0) {
+  return vol;
+}
+
+ss_status ssi_mesh_outward_copy(const ss_mesh *m, int **F_out, ss_error *err) {
+  int *Fo = NULL;
+  ss_status st = ssi_mesh_orient_copy(m, &Fo, NULL, err);
+  if (st) return st;
+  if (ssi_mesh_signed_volume6(m, Fo) < 0) {
     if (!Fo) {
       if (!(Fo = malloc(sizeof(int) * 3 * (size_t)m->nf)))
         return ss_fail(err, SS_ERR_NOMEM, "out of memory orienting a mesh of %d faces", m->nf);

@@ -70,5 +70,8 @@ ss_status ssi_mesh_orient_copy(const ss_mesh *m, int **F_out, int *flipped, ss_e
 /* The same, then every face reversed when the total signed volume is negative: the faces wound
  * outward (for a closed surface), in *F_out (malloc'd), or NULL when m's own faces already are. */
 ss_status ssi_mesh_outward_copy(const ss_mesh *m, int **F_out, ss_error *err);
+/* 6 x the signed volume enclosed by m's vertices with faces F (nf x 3; m->F when F is NULL):
+ * Σ p0 · (p1 × p2), positive when the faces are wound outward on a closed surface. */
+double ssi_mesh_signed_volume6(const ss_mesh *m, const int *F);
 
 #endif
