@@ -7,7 +7,9 @@
  *                  [--recheck M] [--rk K] [--rz K] [--rs N] [--rkeep F] (the second test: below margin M,
  *                  basis K, ZoomOut to K on N samples, or the fraction F of the centres as landmarks) [--keep F] (the test's landmarks: the fraction F of the
  *                  centres farthest from the others)
- *                  [--match N] [--verbose] [--dump DIR]
+ *                  [--alt N GAP MARGIN] [--alt-min S] (near-ties: up to N pairings within GAP of the
+                  best, replacing it when their score is >= S and beats the best's pair by MARGIN)
+                  [--match N] [--verbose] [--dump DIR]
  *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
  *                  [--variant K KEEP] (repeatable) the test with basis K and orient_keep KEEP on the
  *                  ground-truth pairing and its mirror: right by the whole-shape scores / the median rule
@@ -156,6 +158,9 @@ int main(int argc, char **argv) {
     else if (!strcmp(a, "--recheck") && v) ao.recheck_margin = atof(v), i++;
     else if (!strcmp(a, "--keep") && v) ao.orient_keep = atof(v), i++;
     else if (!strcmp(a, "--rkeep") && v) ao.recheck_keep = atof(v), i++;
+    else if (!strcmp(a, "--alt-min") && v) ao.alt_min_score = atof(v), i++;
+    else if (!strcmp(a, "--alt") && v && i + 3 < argc)
+      ao.alt_max = atoi(v), ao.alt_gap = atof(argv[i + 2]), ao.alt_margin = atof(argv[i + 3]), i += 3;
     else if (!strcmp(a, "--rk") && v) ao.recheck_k = atoi(v), i++;
     else if (!strcmp(a, "--rz") && v) ao.recheck_zoomout = atoi(v), i++;
     else if (!strcmp(a, "--rs") && v) ao.recheck_samples = atoi(v), i++;
@@ -269,7 +274,7 @@ int main(int argc, char **argv) {
     }
     return 0;
   }
-  int n_right = 0, n_mirror = 0, n_conf = 0, n_conf_wrong = 0, n_done = 0, n_unequal = 0, n_rechecked = 0;
+  int n_right = 0, n_mirror = 0, n_conf = 0, n_conf_wrong = 0, n_done = 0, n_unequal = 0, n_rechecked = 0, n_alt = 0, n_altc = 0;
   double cpu_sum = 0, cpu_max = 0, err_sum = 0, sig_sum = 0;
   int nerr = 0, nsig = 0;
   for (int q = 0; q < np; q++) {
@@ -325,6 +330,7 @@ int main(int argc, char **argv) {
     n_mirror += all || allm;
     n_conf += info.confident;
     n_rechecked += info.rechecked;
+    n_alt += info.alternatives > 0, n_altc += info.alternative;
     n_conf_wrong += info.confident && !all;
     n_unequal += S[a].sig.m != S[b].sig.m;
     n_done++;
@@ -344,10 +350,10 @@ int main(int argc, char **argv) {
     }
     if (verbose)
       printf("%3d -> %3d  m %d/%d  right %d/%d mirror-right %d  E %.4g mirror %.4g other %.4g  gap %.3f rho %.3f "
-             "rho_m %.3f margin %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d\n",
+             "rho_m %.3f margin %.3f conf %d  %s %.4f s  err %.4f  first %.3f %.3f rechecked %d alt %d/%d\n",
              a, b, S[a].sig.m, S[b].sig.m, right, pr.n, mright, info.energy, info.energy_mirror, info.energy_other, info.gap,
              info.mirror, info.mirror_other, info.mirror_margin, info.confident, info.exact ? "exact" : "relaxed", info.cpu, merr,
-             info.mirror_first, info.mirror_other_first, info.rechecked);
+             info.mirror_first, info.mirror_other_first, info.rechecked, info.alternative, info.alternatives);
     ss_segment_pairs_free(&pr);
   }
   int nsig_ok = 0, nsig_all = 0;
@@ -370,6 +376,7 @@ int main(int argc, char **argv) {
          100.0 * n_right / n_done, n_mirror, 100.0 * n_mirror / n_done, n_conf, n_conf_wrong, cpu_sum / n_done, cpu_max,
          nsig ? sig_sum / nsig : 0);
   if (ao.recheck_margin > 0) printf("; second test (margin < %g, k %d, ZoomOut %d on %d samples) on %d pairs", ao.recheck_margin, ao.recheck_k, ao.recheck_zoomout, ao.recheck_samples, n_rechecked);
+  if (ao.alt_max > 0) printf("; near-ties (up to %d within %g, margin %g) tested on %d pairs, chosen on %d", ao.alt_max, ao.alt_gap, ao.alt_margin, n_alt, n_altc);
   if (n_gt) printf("; orientation test on the ground-truth pairing right on %d of %d (mean margin %.3f)", n_gtok, n_gt, gt_margin / n_gt);
   for (int t = 0; t < nfv; t++)
     printf("; variant k %d keep %g on the ground truth vs its mirror: right by the whole-shape scores on %d, by the "

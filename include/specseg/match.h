@@ -207,6 +207,17 @@ typedef struct ss_autopair_options {
   int recheck_zoomout;
   int recheck_samples;
   double recheck_keep;
+  /* Near-ties beyond the mirror pair: up to alt_max (default 2; 0: off) other pairings of the
+   * search whose energy is within a relative alt_gap (default 0.03) of the best go through the same
+   * left / right test (each with its own mirror); one replaces the answer when its winner's
+   * whole-shape score is at least alt_min_score (default 0.35) and beats both first-test scores of
+   * the answer and its mirror by more than alt_margin (default 0.05).
+   * The intrinsic energy cannot tell two torso saddles apart when they sit front / back alike; a
+   * swap of them is a partial mirror, which the orientation test sees. docs/tuning.md. */
+  int alt_max;
+  double alt_gap;
+  double alt_margin;
+  double alt_min_score;
 } ss_autopair_options;
 
 SS_API void ss_autopair_default_options(ss_autopair_options *o);
@@ -254,6 +265,8 @@ typedef struct ss_autopair_info {
    * shape of (segment's score under the answer − under its mirror) (rechecked: (mirror −
    * mirror_other) / 2); the confidence rule compares it with min_mirror */
   double mirror_margin;
+  int alternatives;     /* near-tie pairings tested beyond the mirror pair (ss_autopair_options.alt_*) */
+  int alternative;      /* 1: one of them replaced the search's best (energy: its energy) */
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:

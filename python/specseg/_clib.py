@@ -120,7 +120,9 @@ class ss_autopair_options(C.Structure):
                 ("exact_max", C.c_int), ("orient_k", C.c_int), ("orient_descr_k", C.c_int),
                 ("min_gap", C.c_double), ("min_mirror", C.c_double),
                 ("recheck_margin", C.c_double), ("recheck_k", C.c_int), ("orient_keep", C.c_double),
-                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int), ("recheck_keep", C.c_double)]
+                ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int), ("recheck_keep", C.c_double),
+                ("alt_max", C.c_int), ("alt_gap", C.c_double), ("alt_margin", C.c_double),
+                ("alt_min_score", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):
@@ -128,7 +130,7 @@ class ss_autopair_info(C.Structure):
                 ("energy_other", C.c_double), ("gap", C.c_double), ("mirror", C.c_double),
                 ("mirror_other", C.c_double), ("confident", C.c_int), ("cpu", C.c_double),
                 ("rechecked", C.c_int), ("mirror_first", C.c_double), ("mirror_other_first", C.c_double),
-                ("mirror_margin", C.c_double)]
+                ("mirror_margin", C.c_double), ("alternatives", C.c_int), ("alternative", C.c_int)]
 
 
 class ss_match_options(C.Structure):

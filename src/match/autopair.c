@@ -33,6 +33,10 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->recheck_zoomout = 0;
   o->recheck_samples = 1000;
   o->recheck_keep = 0.625;
+  o->alt_max = 2;
+  o->alt_gap = 0.03;
+  o->alt_margin = 0.05;
+  o->alt_min_score = 0.35;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
@@ -749,6 +753,35 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
   return st;
 }
 
+/* The mirror candidate of p: p∘σ_A or σ_B∘p, whichever has the lower energy (a mirror is an
+ * isometry; a wrong σ costs energy); p itself when neither differs from it. */
+static void mirror_candidate(const search *S, const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+                             int *mir, int *tmp) {
+  const int na = A->m;
+  for (int a = 0; a < na; a++) mir[a] = p[A->sigma[a]], tmp[a] = B->sigma[p[a]];
+  const int id2 = same(mir, p, na), idb = same(tmp, p, na);
+  if (!idb && (id2 || full_energy(S, tmp, NULL) < full_energy(S, mir, NULL))) memcpy(mir, tmp, sizeof(int) * (size_t)na);
+}
+
+/* The left / right test (first test only) of a near-tie pairing p and its mirror, as for the best
+ * pairing: win / lose (A->m each) receive the one the median rule picks and the other, sw / sl their
+ * whole-shape scores, *med the rule's margin (>= 0). seg1, seg2: 2·A->m scratch, dtmp: A->m. */
+static ss_status decide_family(orient_ctx *oc, const search *S, const int *p, int *win, int *lose, double *seg1,
+                               double *seg2, double *dtmp, double *sw, double *sl, double *med, ss_error *err) {
+  const int na = oc->A->m;
+  mirror_candidate(S, oc->A, oc->B, p, lose, win);
+  const int alone = same(lose, p, na);
+  double r1 = 0, r2 = 0;
+  ss_status st = orient_ctx_score(oc, p, &r1, seg1, err);
+  if (!st && !alone) st = orient_ctx_score(oc, lose, &r2, seg2, err);
+  if (st) return st;
+  double m = alone ? 0.0 : median_margin(na, seg1, seg2, dtmp);
+  if (m == 0) m = alone ? 1.0 : r1 - r2;
+  if (m >= 0) memcpy(win, p, sizeof(int) * (size_t)na), *sw = r1, *sl = alone ? r1 : r2, *med = m;
+  else memcpy(win, lose, sizeof(int) * (size_t)na), memcpy(lose, p, sizeof(int) * (size_t)na), *sw = r2, *sl = r1, *med = -m;
+  return SS_OK;
+}
+
 ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y, const ss_autopair_options *o_in,
                                ss_segment_pairs *out, ss_autopair_info *info, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "autopair: NULL output");
@@ -770,6 +803,9 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
                                 !(o.recheck_keep > 0 && o.recheck_keep <= 1))))
     return ss_fail(err, SS_ERR_INVALID,
                    "autopair: bad second-test options (recheck_margin >= 0, recheck_k >= 3, recheck_keep in (0, 1])");
+  if (o.alt_max < 0 || !(o.alt_gap >= 0) || !isfinite(o.alt_gap) || !(o.alt_margin >= 0) || !isfinite(o.alt_margin) ||
+      !isfinite(o.alt_min_score))
+    return ss_fail(err, SS_ERR_INVALID, "autopair: bad near-tie options (alt_max >= 0, alt_gap and alt_margin finite, >= 0)");
   double c0 = cpu_now();
   const int swap = X->m > Y->m;
   const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
@@ -781,29 +817,21 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
   double *seg2 = malloc(sizeof(double) * 2 * (size_t)na);
   int *cur = malloc(sizeof(int) * (size_t)nb), *used = malloc(sizeof(int) * (size_t)nb);
-  int *buf = malloc(sizeof(int) * (size_t)na * nbuf);
+  int *buf = malloc(sizeof(int) * (size_t)na * nbuf), *alt_seen = malloc(sizeof(int) * (size_t)na * 2 * TOPK);
   search S;
   orient_ctx oc = {0};
-  if (!U || !minU || !share || !seg1 || !seg2 || !cur || !used || !buf) {
+  if (!U || !minU || !share || !seg1 || !seg2 || !cur || !used || !buf || !alt_seen) {
     st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
     goto done;
   }
   init_search(&S, A, &o, U, minU, cur, used, buf);
   int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
-  const int *sigma = A->sigma;
   const int exact = na <= o.exact_max && count_injections(na, nb) <= 5e7;
   fill_unary(&S, U, minU, A, B, o.w_descr);
   run_search(&S, exact, TOPK, 0, &status);
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
-  for (int a = 0; a < na; a++) pi2[a] = pi1[sigma[a]];
-  { /* B's own symmetry gives another mirror candidate, σ_B∘π: a mirror is an isometry, so of the two
-     * the one of lower energy (a wrong σ, e.g. a swap of the hands only, costs energy) */
-    for (int a = 0; a < na; a++) third[a] = B->sigma[pi1[a]];
-    const int id2 = same(pi2, pi1, na), idb = same(third, pi1, na);
-    if (!idb && (id2 || full_energy(&S, third, NULL) < full_energy(&S, pi2, NULL)))
-      memcpy(pi2, third, sizeof(int) * (size_t)na);
-  }
+  mirror_candidate(&S, A, B, pi1, pi2, third);
   double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = INFINITY;
   for (int k = 0; k < TOPK; k++)
     if (isfinite(S.top_e[k]) && !same(S.top_p[k], pi1, na) && !same(S.top_p[k], pi2, na)) {
@@ -833,10 +861,12 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
       if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
       med = r1 - r2;
     } else { /* the protrusions' landmarks only: the mean of both tests' medians */
-      orient_ctx_free(&oc);
-      if ((st = orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc, err))) goto done;
-      if ((st = orient_ctx_score(&oc, pi1, &r1, seg1, err))) goto done;
-      if ((st = orient_ctx_score(&oc, pi2, &r2, seg2, err))) goto done;
+      orient_ctx oc2;
+      if ((st = orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc2, err))) goto done;
+      st = orient_ctx_score(&oc2, pi1, &r1, seg1, err);
+      if (!st) st = orient_ctx_score(&oc2, pi2, &r2, seg2, err);
+      orient_ctx_free(&oc2);
+      if (st) goto done;
       med = 0.5 * (med + median_margin(na, seg1, seg2, share));
     }
     rechecked = 1;
@@ -850,6 +880,29 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     double x = r1;
     r1 = r2, r2 = x;
     x = e1, e1 = e2, e2 = x;
+  }
+  /* near-ties beyond the mirror pair: each with its own mirror through the first test; one replaces
+   * the answer when its winner's map is clearly orientation-preserving (whole-shape score at least
+   * alt_min_score) and beats both first-test scores of the answer's pair by alt_margin (a swap of
+   * two torso saddles is a partial mirror: its map reverses orientation there; where the second
+   * test decided, the first test's scores of the pair are both weak) */
+  int n_alt = 0, alt = 0;
+  const int amax = o.alt_max < TOPK ? o.alt_max : TOPK;
+  for (int k = 0; k < TOPK && n_alt < amax; k++) {
+    if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.alt_gap)) break;
+    const int *c = S.top_p[k];
+    int seen = same(c, pi1, na) || same(c, pi2, na);
+    for (int t = 0; t < 2 * n_alt && !seen; t++) seen = same(c, alt_seen + (size_t)na * t, na);
+    if (seen) continue;
+    int *win = alt_seen + (size_t)na * 2 * n_alt, *lose = win + na;
+    double sw, sl, am;
+    if ((st = decide_family(&oc, &S, c, win, lose, seg1, seg2, share, &sw, &sl, &am, err))) goto done;
+    n_alt++;
+    if (sw >= o.alt_min_score && sw > (f1 > f2 ? f1 : f2) + o.alt_margin) {
+      memcpy(pi1, win, sizeof(int) * (size_t)na), memcpy(pi2, lose, sizeof(int) * (size_t)na);
+      r1 = f1 = sw, r2 = f2 = sl, med = am, rechecked = 0, alt = 1;
+      e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL);
+    }
   }
   (void)full_energy(&S, pi1, share);
   out->nx = X->m, out->ny = Y->m, out->n = na;
@@ -885,9 +938,11 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     info->mirror_first = f1;
     info->mirror_other_first = f2;
     info->cpu = cpu_now() - c0;
+    info->alternatives = n_alt;
+    info->alternative = alt;
   }
 done:
   orient_ctx_free(&oc);
-  free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf);
+  free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf), free(alt_seen);
   return st;
 }
