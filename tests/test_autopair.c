@@ -216,6 +216,12 @@ static void test_permuted_and_mirrored(void) {
     CHECK(ss_pair_centres_auto(&sX, &sR, &ao, &pr, NULL, &e) == SS_ERR_INVALID);
     ak.orient_keep = 0;
     CHECK(ss_pair_centres_auto(&sX, &sR, &ak, &pr, NULL, &e) == SS_ERR_INVALID);
+    ss_autopair_default_options(&ak);
+    ak.alt_max = -1;
+    CHECK(ss_pair_centres_auto(&sX, &sR, &ak, &pr, NULL, &e) == SS_ERR_INVALID);
+    ss_autopair_default_options(&ak);
+    ak.alt_gap = NAN;
+    CHECK(ss_pair_centres_auto(&sX, &sR, &ak, &pr, NULL, &e) == SS_ERR_INVALID);
     /* a signature without its probes (as read from a prepared-shape file) gives the same answer */
     ss_centre_signature sRn = sR;
     sRn.probe_A = NULL, sRn.probe_P = NULL;
@@ -283,8 +289,45 @@ static void test_faust(void) {
   CHECK(nright >= np - 1); /* 15 -> 33 was wrong before the median rule (its torso saddles sit front / back) */
 }
 
+/* FAUST 10 -> 48 (tuning split): the search's best pairing swaps two torso saddles (energy gap
+ * 0.002 to the right one); the near-tie test (alt_*) finds the right one, without it the swap stays */
+static void test_faust_near_tie(void) {
+  const char *d = tl_data_dir();
+  if (!d) { SKIP("FAUST data not found (SS_DATA_DIR)"); return; }
+  const int ids[2] = {10, 48};
+  ss_mesh m[2] = {{0}};
+  ss_shape_prep p[2];
+  ss_centre_signature sg[2];
+  ss_error e;
+  int ok = 1;
+  for (int s = 0; s < 2; s++) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", d, ids[s]);
+    ok = ok && ss_read_mesh(path, &m[s], &e) == SS_OK && ss_shape_prep_compute(&m[s], NULL, 100, &p[s], &e) == SS_OK &&
+         ss_centre_signature_compute(&p[s], NULL, &sg[s], &e) == SS_OK;
+  }
+  CHECK_MSG(ok, "%s", e.msg);
+  if (!ok) return;
+  int *id = malloc(sizeof(int) * m[0].nv);
+  for (int i = 0; i < m[0].nv; i++) id[i] = i;
+  ss_autopair_options ao;
+  ss_autopair_default_options(&ao);
+  ss_autopair_info i0, i1;
+  int n1, r1 = pair_sigs(&sg[0], &sg[1], id, &ao, &i1, &n1);
+  ao.alt_max = 0;
+  int n0, r0 = pair_sigs(&sg[0], &sg[1], id, &ao, &i0, &n0);
+  printf("FAUST 10 -> 48: near-tie test %d of %d right (%d tested, chosen %d, score %.3f), without it %d of %d "
+         "(score %.3f)\n", r1, n1, i1.alternatives, i1.alternative, i1.mirror_first, r0, n0, i0.mirror_first);
+  CHECK(r1 == n1 && n1 == 8 && i1.alternative == 1 && i1.alternatives >= 1);
+  CHECK(r0 < n0 && i0.alternatives == 0 && i0.alternative == 0);
+  CHECK(i1.mirror_first > i0.mirror_first && !i1.confident);
+  free(id);
+  for (int s = 0; s < 2; s++) ss_centre_signature_free(&sg[s]), ss_shape_prep_free(&p[s]), ss_mesh_free(&m[s]);
+}
+
 int main(void) {
   test_permuted_and_mirrored();
   test_faust();
+  test_faust_near_tie();
   TEST_MAIN_END();
 }
