@@ -119,6 +119,9 @@ int cmd_pair(int argc, char **argv) {
           info.energy_mirror, info.energy_other, info.gap, mo.autopair.min_gap);
   fprintf(report, "orientation score %.3f, mirror candidate %.3f; median segment margin %.3f (min %.3f)\n", info.mirror,
           info.mirror_other, info.mirror_margin, mo.autopair.min_mirror);
+  if (info.alternatives > 0)
+    fprintf(report, "near-tie pairings tested: %d%s\n", info.alternatives,
+            info.alternative ? "; one replaced the search's best (its map preserves orientation clearly better)" : "");
   fprintf(report, "%s\n", info.confident ? "confident" : "NOT confident: a segment pair or left / right may be wrong");
   if (timings) {
     fprintf(stderr, "timing: read %.6f\n", t1 - t0);

@@ -191,7 +191,7 @@ typedef struct ss_autopair_options {
   double min_mirror;
   /* Second orientation test, only when the first one's margin (mirror_margin below) is below
    * recheck_margin (0: never; default 0.075): both candidates' maps again with recheck_k
-   * eigenfunctions (default 30) and only round(recheck_keep · m) centres as landmarks (default
+   * eigenfunctions (default 50) and only round(recheck_keep · m) centres as landmarks (default
    * 0.625: the 5 protrusions of 8 on FAUST, whose maps do not follow the torso saddles front or back);
    * the decision is then the mean of the two tests' median segment margins. With recheck_zoomout >
    * recheck_k instead: ZoomOut-refined maps up to recheck_zoomout (step 5 on recheck_samples samples

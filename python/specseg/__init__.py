@@ -909,7 +909,8 @@ def prepare(V, F, k=None, target_faces=None, no_streamline=False, signature=True
     return sh
 
 
-Pairing = namedtuple("Pairing", "pairs_x pairs_y centers_x centers_y energy gap mirror mirror_other confident exact")
+Pairing = namedtuple("Pairing", "pairs_x pairs_y centers_x centers_y energy gap mirror mirror_other confident exact "
+                                 "alternative")
 Pairing.__doc__ = """The result of `pair`.
 
 Attributes
@@ -928,6 +929,9 @@ confident : bool
     gap and orientation margin above the library's thresholds.
 exact : bool
     Exact search (else the Hungarian + local moves relaxation).
+alternative : bool
+    A near-tie pairing (within 3 % of the best energy) replaced the search's best because its map
+    preserves orientation clearly better (e.g. two torso saddles the energy could not tell apart).
 """
 
 
@@ -966,7 +970,8 @@ def pair(VX, FX, VY, FY):
         return Pairing(pairs_x=cp(pr.sx, pr.n, np.int32), pairs_y=cp(pr.sy, pr.n, np.int32),
                        centers_x=cp(cx, pr.n, np.int32), centers_y=cp(cy, pr.n, np.int32),
                        energy=cp(pr.energy, pr.n, np.float64), gap=info.gap, mirror=info.mirror,
-                       mirror_other=info.mirror_other, confident=bool(info.confident), exact=bool(info.exact))
+                       mirror_other=info.mirror_other, confident=bool(info.confident), exact=bool(info.exact),
+                       alternative=bool(info.alternative))
     finally:
         lib.ss_segment_pairs_free(C.byref(pr))
         _libc_free(cx)

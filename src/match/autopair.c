@@ -29,7 +29,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->min_mirror = 0.15;
   o->orient_keep = 1.0;
   o->recheck_margin = 0.075;
-  o->recheck_k = 30;
+  o->recheck_k = 50;
   o->recheck_zoomout = 0;
   o->recheck_samples = 1000;
   o->recheck_keep = 0.625;
