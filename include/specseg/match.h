@@ -237,7 +237,8 @@ typedef struct ss_centre_signature {
   int *sigma;          /* m: the centres' left-right symmetry (identity where none was found) */
   double sigma_score;  /* the orientation score of σ's map (< 0: a mirror; 1: none found) */
   /* the orientation test's probes of this shape, built once (ss_fmap_base_probes with every centre
-   * as a landmark, in its first probe_k eigenfunctions from probe_descr_k eigenpairs: coefficients
+   * as a landmark, in its first probe_k eigenfunctions (the larger of the two tests' bases; a test
+   * with a smaller basis takes the leading block) from probe_descr_k eigenpairs: coefficients
    * probe_A, k x probe_p, and packed operators probe_P); NULL (e.g. a signature read from a
    * prepared-shape file): the pairing builds them itself, to the same effect */
   int probe_k, probe_descr_k, probe_p;

@@ -148,10 +148,12 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
     out->orient_sign = vol < 0 ? -1.0 : 1.0;
     for (size_t i = 0; i < (size_t)n * 3; i++) out->normals[i] *= out->orient_sign;
   }
-  /* 4. the orientation test's probes (WKS + every centre's wave kernels), once per shape */
+  /* 4. the orientation tests' probes (WKS + every centre's wave kernels), once per shape, in the
+   * larger of the two tests' bases (the other takes its leading block) */
   {
     ss_fmap_match_options fo;
-    orient_fmap_options(o.orient_k, o.orient_descr_k, p->kev, &fo);
+    const int kt = o.recheck_margin > 0 && o.recheck_zoomout <= o.recheck_k && o.recheck_k > o.orient_k ? o.recheck_k : o.orient_k;
+    orient_fmap_options(kt, o.orient_descr_k, p->kev, &fo);
     ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0};
     ss_fmap_probes pr;
     if ((st = ss_fmap_base_probes(&fs, m, out->centers, &fo, 1, &pr, err))) goto done;
@@ -536,7 +538,8 @@ typedef struct orient_ctx {
   ss_fmap_match_options fo;
   ss_fmap_shape sA, sB;
   ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B (when built here) */
-  const double *bA, *bP;  /* B's probes: pB's, or its signature's */
+  const double *bA, *bP;  /* B's probes: pB's, or its signature's (basis bk >= fo.k) */
+  int bk;
   ss_fmap_weights w;
   int na, nb, per;        /* kept centres of A, centres of B, probe columns per item */
   int *kept;              /* na indices of A's kept centres, ascending */
@@ -560,8 +563,27 @@ static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_opti
 }
 
 /* the signature's own probes when they were built with these options */
+/* the signature's own probes when they were built with these options and at least this basis: the
+ * probe functions do not depend on the basis (they are synthesised from descr_k eigenpairs), so the
+ * coefficients in the first k eigenfunctions are the first k rows, and the packed operators of the
+ * first k the first k(k+1)/2 entries of each column */
 static int have_probes(const ss_centre_signature *s, const ss_fmap_match_options *fo, int per) {
-  return s->probe_A && s->probe_P && s->probe_k == fo->k && s->probe_descr_k == fo->descr_k && s->probe_p == per * (1 + s->m);
+  return s->probe_A && s->probe_P && s->probe_k >= fo->k && s->probe_descr_k == fo->descr_k && s->probe_p == per * (1 + s->m);
+}
+
+/* columns [c0, c0 + nc) of probes with basis ks (coefficients A, packed operators P) into the basis
+ * k <= ks (dA, dP: nc columns) */
+static void copy_probe_columns(int ks, const double *A, const double *P, int c0, int nc, int k, double *dA, double *dP) {
+  const size_t kps = (size_t)ks * (ks + 1) / 2, kp = (size_t)k * (k + 1) / 2;
+  if (ks == k) {
+    memcpy(dA, A + (size_t)ks * c0, sizeof(double) * (size_t)k * nc);
+    memcpy(dP, P + kps * c0, sizeof(double) * kp * nc);
+    return;
+  }
+  for (int j = 0; j < nc; j++) {
+    memcpy(dA + (size_t)k * j, A + (size_t)ks * (c0 + j), sizeof(double) * (size_t)k);
+    memcpy(dP + kp * j, P + kps * (c0 + j), sizeof(double) * kp);
+  }
 }
 
 static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
@@ -592,8 +614,9 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
     if (!c->Abuf || !c->Pbuf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   }
   /* B: its signature's probes, or built here */
-  if (!st && have_probes(B, &c->fo, per)) c->bA = B->probe_A, c->bP = B->probe_P;
-  else if (!st && !(st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err))) c->bA = c->pB.A, c->bP = c->pB.P;
+  if (!st && have_probes(B, &c->fo, per)) c->bA = B->probe_A, c->bP = B->probe_P, c->bk = B->probe_k;
+  else if (!st && !(st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err)))
+    c->bA = c->pB.A, c->bP = c->pB.P, c->bk = kk;
   /* A: the WKS and its kept centres, in A's order, from its signature's probes or built here */
   if (!st && have_probes(A, &c->fo, per)) {
     c->pA = (ss_fmap_probes){kk, per * (1 + c->na), per * (1 + c->na), NULL, NULL, 0, NULL};
@@ -602,8 +625,8 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
     if (!c->pA.A || !c->pA.P) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
     for (int i = 0; !st && i <= c->na; i++) {
       const int src = i == 0 ? 0 : 1 + c->kept[i - 1];
-      memcpy(c->pA.A + (size_t)kk * per * i, A->probe_A + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
-      memcpy(c->pA.P + (size_t)kp * per * i, A->probe_P + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+      copy_probe_columns(A->probe_k, A->probe_A, A->probe_P, per * src, per, kk, c->pA.A + (size_t)kk * per * i,
+                         c->pA.P + (size_t)kp * per * i);
     }
   } else if (!st) {
     st = ss_fmap_base_probes(&c->sA, c->na, lA, &c->fo, 1, &c->pA, err);
@@ -621,8 +644,7 @@ static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, do
   const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per, np = per * (1 + c->na);
   for (int i = 0; i <= c->na; i++) { /* item 0: the WKS; item i: centre p[kept[i-1]] of B */
     const int src = i == 0 ? 0 : 1 + p[c->kept[i - 1]];
-    memcpy(c->Abuf + (size_t)kk * per * i, c->bA + (size_t)kk * per * src, sizeof(double) * (size_t)kk * per);
-    memcpy(c->Pbuf + (size_t)kp * per * i, c->bP + (size_t)kp * per * src, sizeof(double) * (size_t)kp * per);
+    copy_probe_columns(c->bk, c->bA, c->bP, per * src, per, kk, c->Abuf + (size_t)kk * per * i, c->Pbuf + (size_t)kp * per * i);
   }
   ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf, 0, NULL};
   ss_fmap_system *sys = NULL;
