@@ -194,7 +194,11 @@ int main(int argc, char **argv) {
         }
         size_t L = strlen(segs);
         snprintf(segs + L, sizeof segs - L, " %d", Y.sig.m);
-        if (!have0) { X0 = Y; have0 = 1; continue; }
+        if (!have0) { /* the copy's prep and signature must point at the copy, not at the loop's Y */
+          X0 = Y, have0 = 1;
+          X0.prep.mesh = &X0.m, X0.sig.prep = &X0.prep;
+          continue;
+        }
         if (Y.m.nv == X0.m.nv) {
           ss_segment_pairs pr;
           ss_autopair_info info;
