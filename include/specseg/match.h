@@ -255,7 +255,8 @@ typedef struct ss_autopair_info {
   double energy;        /* E of the chosen pairing */
   double energy_mirror; /* E of its mirror candidate */
   double energy_other;  /* E₃: the best pairing other than those two (INFINITY: none) */
-  double gap;           /* (energy_other − min(energy, energy_mirror)) / that minimum */
+  double gap;           /* (energy_other − min(energy, energy_mirror)) / that minimum (negative when a near
+                         * tie replaced the search's best: energy_other is then the search's best) */
   double mirror;        /* orientation score of the chosen pairing's map */
   double mirror_other;  /* that of the mirror candidate */
   int confident;        /* gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror */

@@ -775,6 +775,16 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
   return st;
 }
 
+/* The energy of the best leaf of the search other than p1 and p2 (INFINITY: none), copied to other */
+static double best_other(const search *S, const int *p1, const int *p2, int *other) {
+  for (int k = 0; k < TOPK; k++)
+    if (isfinite(S->top_e[k]) && !same(S->top_p[k], p1, S->na) && !same(S->top_p[k], p2, S->na)) {
+      memcpy(other, S->top_p[k], sizeof(int) * (size_t)S->na);
+      return S->top_e[k];
+    }
+  return INFINITY;
+}
+
 /* The mirror candidate of p: p∘σ_A or σ_B∘p, whichever has the lower energy (a mirror is an
  * isometry; a wrong σ costs energy); p itself when neither differs from it. */
 static void mirror_candidate(const search *S, const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
@@ -854,13 +864,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
   mirror_candidate(&S, A, B, pi1, pi2, third);
-  double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = INFINITY;
-  for (int k = 0; k < TOPK; k++)
-    if (isfinite(S.top_e[k]) && !same(S.top_p[k], pi1, na) && !same(S.top_p[k], pi2, na)) {
-      e3 = S.top_e[k];
-      memcpy(third, S.top_p[k], sizeof(int) * (size_t)na);
-      break;
-    }
+  double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
   /* left / right: the candidate whose map preserves orientation */
   double r1 = 0, r2 = 0;
   if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
@@ -926,6 +930,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
       e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL);
     }
   }
+  if (alt) e3 = best_other(&S, pi1, pi2, third); /* the search's best, now the runner-up */
   (void)full_energy(&S, pi1, share);
   out->nx = X->m, out->ny = Y->m, out->n = na;
   out->sx = malloc(sizeof(int) * (size_t)na);
