@@ -562,7 +562,6 @@ static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_opti
   fo->zoomout_kmax = 0;
 }
 
-/* the signature's own probes when they were built with these options */
 /* the signature's own probes when they were built with these options and at least this basis: the
  * probe functions do not depend on the basis (they are synthesised from descr_k eigenpairs), so the
  * coefficients in the first k eigenfunctions are the first k rows, and the packed operators of the
