@@ -794,21 +794,33 @@ static void mirror_candidate(const search *S, const ss_centre_signature *A, cons
   if (!idb && (id2 || full_energy(S, tmp, NULL) < full_energy(S, mir, NULL))) memcpy(mir, tmp, sizeof(int) * (size_t)na);
 }
 
-/* The left / right test (first test only) of a near-tie pairing p and its mirror, as for the best
- * pairing: win / lose (A->m each) receive the one the median rule picks and the other, sw / sl their
- * whole-shape scores, *med the rule's margin (>= 0). seg1, seg2: 2·A->m scratch, dtmp: A->m. */
+/* The first left / right test of p1 against p2: both maps' whole-shape scores r1, r2 (r2 = r1 when
+ * p2 = p1) and the decision's margin *med (> 0: p1), the median over A's segments of the two maps'
+ * score difference (the torso saddles' segments follow their centres front or back, the
+ * protrusions' are too small to map well: a few segments vote wrong, the median is robust to them);
+ * ties: the whole-shape scores. seg1, seg2: 2·A->m scratch (per-segment scores), dtmp: A->m. */
+static ss_status first_test(orient_ctx *oc, const int *p1, const int *p2, double *seg1, double *seg2, double *dtmp,
+                            double *r1, double *r2, double *med, ss_error *err) {
+  const int na = oc->A->m;
+  ss_status st = orient_ctx_score(oc, p1, r1, seg1, err);
+  if (st) return st;
+  if (same(p1, p2, na)) *r2 = *r1, memcpy(seg2, seg1, sizeof(double) * (size_t)na);
+  else if ((st = orient_ctx_score(oc, p2, r2, seg2, err))) return st;
+  *med = median_margin(na, seg1, seg2, dtmp);
+  if (*med == 0) *med = *r1 - *r2;
+  return SS_OK;
+}
+
+/* A near-tie pairing p against its own mirror by the first test: win / lose (A->m each) receive
+ * the one the test picks and the other, sw / sl their whole-shape scores, *med the margin (>= 0). */
 static ss_status decide_family(orient_ctx *oc, const search *S, const int *p, int *win, int *lose, double *seg1,
                                double *seg2, double *dtmp, double *sw, double *sl, double *med, ss_error *err) {
   const int na = oc->A->m;
   mirror_candidate(S, oc->A, oc->B, p, lose, win);
-  const int alone = same(lose, p, na);
-  double r1 = 0, r2 = 0;
-  ss_status st = orient_ctx_score(oc, p, &r1, seg1, err);
-  if (!st && !alone) st = orient_ctx_score(oc, lose, &r2, seg2, err);
+  double r1 = 0, r2 = 0, m = 0;
+  ss_status st = first_test(oc, p, lose, seg1, seg2, dtmp, &r1, &r2, &m, err);
   if (st) return st;
-  double m = alone ? 0.0 : median_margin(na, seg1, seg2, dtmp);
-  if (m == 0) m = alone ? 1.0 : r1 - r2;
-  if (m >= 0) memcpy(win, p, sizeof(int) * (size_t)na), *sw = r1, *sl = alone ? r1 : r2, *med = m;
+  if (m >= 0) memcpy(win, p, sizeof(int) * (size_t)na), *sw = r1, *sl = r2, *med = m;
   else memcpy(win, lose, sizeof(int) * (size_t)na), memcpy(lose, p, sizeof(int) * (size_t)na), *sw = r2, *sl = r1, *med = -m;
   return SS_OK;
 }
@@ -865,19 +877,11 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   mirror_candidate(&S, A, B, pi1, pi2, third);
   double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
   /* left / right: the candidate whose map preserves orientation */
-  double r1 = 0, r2 = 0;
+  if (same(pi1, pi2, na) && isfinite(e3)) /* no symmetry found: the runner-up is the other candidate */
+    memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
+  double r1 = 0, r2 = 0, med = 0;
   if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
-  if ((st = orient_ctx_score(&oc, pi1, &r1, seg1, err))) goto done;
-  if (same(pi1, pi2, na)) { /* no symmetry found: the runner-up is the other candidate */
-    if (isfinite(e3)) memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
-  }
-  if (same(pi1, pi2, na)) r2 = r1, memcpy(seg2, seg1, sizeof(double) * (size_t)na);
-  else if ((st = orient_ctx_score(&oc, pi2, &r2, seg2, err))) goto done;
-  /* the decision: the median over A's segments of the two maps' score difference (the torso
-   * saddles' segments follow their centres front or back, the protrusions' are too small to map
-   * well: a few segments vote wrong, the median is robust to them); ties: the whole-shape scores */
-  double med = median_margin(na, seg1, seg2, share);
-  if (med == 0) med = r1 - r2;
+  if ((st = first_test(&oc, pi1, pi2, seg1, seg2, share, &r1, &r2, &med, err))) goto done;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
   if (!same(pi1, pi2, na) && fabs(med) / 2 < o.recheck_margin) { /* a close call: a second test */
