@@ -8,8 +8,8 @@
  *                  basis K, ZoomOut to K on N samples, or the fraction F of the centres as landmarks) [--keep F] (the test's landmarks: the fraction F of the
  *                  centres farthest from the others)
  *                  [--alt N GAP MARGIN] [--alt-min S] (near-ties: up to N pairings within GAP of the
-                  best, replacing it when their score is >= S and beats the best's pair by MARGIN)
-                  [--match N] [--verbose] [--dump DIR]
+ *                  best, replacing it when their score is >= S and beats the best's pair by MARGIN)
+ *                  [--match N] [--verbose] [--dump DIR]
  *                  [--gtrho]  the orientation test on the ground-truth pairing and its mirror
  *                  [--variant K KEEP] (repeatable) the test with basis K and orient_keep KEEP on the
  *                  ground-truth pairing and its mirror: right by the whole-shape scores / the median rule

@@ -574,11 +574,6 @@ static int have_probes(const ss_centre_signature *s, const ss_fmap_match_options
  * k <= ks (dA, dP: nc columns) */
 static void copy_probe_columns(int ks, const double *A, const double *P, int c0, int nc, int k, double *dA, double *dP) {
   const size_t kps = (size_t)ks * (ks + 1) / 2, kp = (size_t)k * (k + 1) / 2;
-  if (ks == k) {
-    memcpy(dA, A + (size_t)ks * c0, sizeof(double) * (size_t)k * nc);
-    memcpy(dP, P + kps * c0, sizeof(double) * kp * nc);
-    return;
-  }
   for (int j = 0; j < nc; j++) {
     memcpy(dA + (size_t)k * j, A + (size_t)ks * (c0 + j), sizeof(double) * (size_t)k);
     memcpy(dP + kp * j, P + kps * (c0 + j), sizeof(double) * kp);
