@@ -82,6 +82,33 @@ static void test_system_vs_solve(void) {
     }
 }
 
+/* A system too ill-conditioned for the single-precision Cholesky with refinement (condition ~1e13:
+ * the data term has rank k_T, the Laplacian term weighs 1e-13) still gets a backward-stable
+ * solution: the double factorisation takes over. */
+static void test_ill_conditioned(void) {
+  enum { kS = 4, kT = 4, m = kS * kT };
+  double A[kS], B[kT], lS[kS], lT[kT], C[m];
+  for (int i = 0; i < kS; i++) A[i] = urand() + 0.5, lS[i] = 1.0 + i;
+  for (int i = 0; i < kT; i++) B[i] = urand() - 0.5, lT[i] = 1.3 + i;
+  ss_fmap_weights w = {1.0, 1e-13, 0, 0, 0, 0};
+  ss_fmap_probes S = {kS, 1, 0, A, NULL, 0, NULL}, T = {kT, 1, 0, B, NULL, 0, NULL};
+  ss_fmap_system *sys = NULL;
+  CHECK(ss_fmap_system_new(kS, kT, lS, lT, &S, &T, &w, &sys, NULL) == SS_OK);
+  CHECK(ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, C, NULL) == SS_OK);
+  ss_fmap_system_free(sys);
+  /* N x − b with N = A Aᵀ ⊗ I + w_l diag((λ_T,r − λ_S,c)²), b = vec(B Aᵀ) */
+  double worst = 0, nn = 0, xn = 0;
+  for (int c = 0; c < kS; c++)
+    for (int r = 0; r < kT; r++) {
+      double d = lT[r] - lS[c], v = w.w_lap * d * d * C[r + kT * c] - B[r] * A[c];
+      for (int c2 = 0; c2 < kS; c2++) v += A[c] * A[c2] * C[r + kT * c2];
+      worst = fmax(worst, fabs(v));
+      xn = fmax(xn, fabs(C[r + kT * c]));
+    }
+  for (int c = 0; c < kS; c++) nn += A[c] * A[c];
+  CHECK_MSG(worst <= 1e-13 * nn * xn, "ill-conditioned system: residual %g (|N| %g, |x| %g)", worst, nn, xn);
+}
+
 /* base + extra probes == the virtual column list from ss_wks / ss_wks_landmarks / ss_wks_filter,
  * every step-th column kept, normalised, projected */
 static void test_probes_split(void) {
@@ -236,6 +263,7 @@ static void test_bad_input(void) {
 int main(void) {
   test_bad_input();
   test_system_vs_solve();
+  test_ill_conditioned();
   test_probes_split();
   test_descr_k();
   TEST_MAIN_END();

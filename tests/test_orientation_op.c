@@ -127,49 +127,90 @@ static double urand(void) {
   return (rng_state >> 8) / 16777216.0 - 0.5;
 }
 
-/* the system with the orientation term solves min w_d ‖C A − B‖² + w_o Σ ‖C O_S − O_T C‖² (C: k_T x
- * k_S), checked against dense least squares on the stacked residuals */
+/* The system with every term — data, Laplacian commutativity, multiplication operators, orientation
+ * operators, and an extra probe block with or without its operators — solves the least-squares
+ * problem of the stacked residuals (C: k_T x k_S; x = vec(C), index r + k_T·c):
+ *   √w_d (C A − B), √w_l (λ_T,r − λ_S,c) C[r, c], √w_c (C D_S − D_T C), √w_o (C O_S − O_T C),
+ *   √(w_d·w_x) (C A_x − B_x) [, √w_c (C D_Sx − D_Tx C)]
+ * checked against dense least squares (LAPACK dgels). */
+static void add_commutator_rows(int kS, int kT, double wt, const double *XS, const double *XT, double *K, int rows, int *row) {
+  for (int c = 0; c < kS; c++)
+    for (int r = 0; r < kT; r++, (*row)++) { /* (C X_S − X_T C)[r, c] */
+      for (int c2 = 0; c2 < kS; c2++) K[*row + (size_t)rows * (r + kT * c2)] += sqrt(wt) * XS[c2 + kS * c];
+      for (int r2 = 0; r2 < kT; r2++) K[*row + (size_t)rows * (r2 + kT * c)] -= sqrt(wt) * XT[r + kT * r2];
+    }
+}
+
+static void add_data_rows(int kS, int kT, int p, double wt, const double *A, const double *B, double *K, double *rhs, int rows,
+                          int *row) {
+  for (int j = 0; j < p; j++)
+    for (int r = 0; r < kT; r++, (*row)++) { /* (C A)[r, j] = Σ_c C[r, c] A[c, j] */
+      for (int c = 0; c < kS; c++) K[*row + (size_t)rows * (r + kT * c)] = sqrt(wt) * A[c + kS * j];
+      rhs[*row] = sqrt(wt) * B[r + kT * j];
+    }
+}
+
+static void sym_random(int k, int nd, double *D, double *P) {
+  for (int i = 0; i < nd; i++)
+    for (int b = 0; b < k; b++)
+      for (int a = 0; a <= b; a++)
+        D[(size_t)k * k * i + a + k * b] = D[(size_t)k * k * i + b + k * a] =
+            P[(size_t)k * (k + 1) / 2 * i + (size_t)b * (b + 1) / 2 + a] = urand();
+}
+
 static void test_system(void) {
-  enum { kS = 6, kT = 5, p = 4, no = 3, m = kS * kT };
-  double A[kS * p], B[kT * p], OS[no * kS * kS], OT[no * kT * kT], lS[kS] = {0}, lT[kT] = {0};
+  enum { kS = 6, kT = 5, p = 4, no = 3, nd = 2, q = 2, m = kS * kT };
+  double A[kS * p], B[kT * p], OS[no * kS * kS], OT[no * kT * kT], lS[kS], lT[kT];
+  double DS[(nd + q) * kS * kS], DT[(nd + q) * kT * kT], PS[(nd + q) * kS * (kS + 1) / 2], PT[(nd + q) * kT * (kT + 1) / 2];
+  double AX[kS * q], BX[kT * q];
   for (int i = 0; i < kS * p; i++) A[i] = urand();
   for (int i = 0; i < kT * p; i++) B[i] = urand();
+  for (int i = 0; i < kS * q; i++) AX[i] = urand();
+  for (int i = 0; i < kT * q; i++) BX[i] = urand();
   for (int i = 0; i < no * kS * kS; i++) OS[i] = urand();
   for (int i = 0; i < no * kT * kT; i++) OT[i] = urand();
-  const double wd = 0.7, wo = 1.9;
-  ss_fmap_probes S = {kS, p, 0, A, NULL, no, OS}, T = {kT, p, 0, B, NULL, no, OT};
-  ss_fmap_weights w = {wd, 0, 0, 0, 0, wo};
-  ss_fmap_system *sys = NULL;
-  ss_error e = {{0}};
-  double C[m];
-  CHECK_MSG(ss_fmap_system_new(kS, kT, lS, lT, &S, &T, &w, &sys, &e) == SS_OK, "%s", e.msg);
-  CHECK_MSG(ss_fmap_system_solve(sys, NULL, NULL, 0, 0, C, &e) == SS_OK, "%s", e.msg);
-  ss_fmap_system_free(sys);
-  /* rows: √w_d (C A − B) entries (kT x p), then √w_o (C O_S − O_T C) entries (kT x kS per operator);
-   * unknown x = vec(C), index r + kT c */
-  const int rows = kT * p + no * kT * kS;
-  double *K = calloc((size_t)rows * m, sizeof(double)), *rhs = calloc((size_t)rows, sizeof(double));
-  int row = 0;
-  for (int j = 0; j < p; j++)
-    for (int r = 0; r < kT; r++, row++) { /* (C A)[r, j] = Σ_c C[r, c] A[c, j] */
-      for (int c = 0; c < kS; c++) K[row + (size_t)rows * (r + kT * c)] = sqrt(wd) * A[c + kS * j];
-      rhs[row] = sqrt(wd) * B[r + kT * j];
-    }
-  for (int q = 0; q < no; q++)
+  for (int i = 0; i < kS; i++) lS[i] = 0.9 * i + urand();
+  for (int i = 0; i < kT; i++) lT[i] = 1.1 * i + urand();
+  sym_random(kS, nd + q, DS, PS);
+  sym_random(kT, nd + q, DT, PT);
+  for (int variant = 0; variant < 4; variant++) {
+    /* 0: data + orientation only (no operators, no Laplacian); 1: every base term; 2: + extras;
+     * 3: + extras with their operators */
+    const double wd = 0.7, wo = 1.9, wl = variant ? 0.05 : 0, wc = variant ? 1.3 : 0, wx = 0.45;
+    const int ndv = variant ? nd : 0, extras = variant >= 2, xops = variant == 3;
+    ss_fmap_probes S = {kS, p, ndv, A, PS, no, OS}, T = {kT, p, ndv, B, PT, no, OT};
+    ss_fmap_probes XS = {kS, q, xops ? q : 0, AX, PS + nd * kS * (kS + 1) / 2, 0, NULL};
+    ss_fmap_probes XT = {kT, q, xops ? q : 0, BX, PT + nd * kT * (kT + 1) / 2, 0, NULL};
+    ss_fmap_weights w = {wd, wl, wc, 0, 0, wo};
+    ss_fmap_system *sys = NULL;
+    ss_error e = {{0}};
+    double C[m];
+    CHECK_MSG(ss_fmap_system_new(kS, kT, lS, lT, &S, &T, &w, &sys, &e) == SS_OK, "%s", e.msg);
+    CHECK_MSG(ss_fmap_system_solve(sys, extras ? &XS : NULL, extras ? &XT : NULL, wx, xops, C, &e) == SS_OK, "%s", e.msg);
+    ss_fmap_system_free(sys);
+    const int rows = kT * p + m + nd * m + no * m + kT * q + q * m;
+    double *K = calloc((size_t)rows * m, sizeof(double)), *rhs = calloc((size_t)rows, sizeof(double));
+    int row = 0;
+    add_data_rows(kS, kT, p, wd, A, B, K, rhs, rows, &row);
     for (int c = 0; c < kS; c++)
-      for (int r = 0; r < kT; r++, row++) {
-        const double *os = OS + q * kS * kS, *ot = OT + q * kT * kT;
-        for (int c2 = 0; c2 < kS; c2++) K[row + (size_t)rows * (r + kT * c2)] += sqrt(wo) * os[c2 + kS * c];
-        for (int r2 = 0; r2 < kT; r2++) K[row + (size_t)rows * (r2 + kT * c)] -= sqrt(wo) * ot[r + kT * r2];
-      }
-  CHECK(LAPACKE_dgels(LAPACK_COL_MAJOR, 'N', rows, m, 1, K, rows, rhs, rows) == 0);
-  double worst = 0, scale = 0;
-  for (int i = 0; i < m; i++) worst = fmax(worst, fabs(C[i] - rhs[i])), scale = fmax(scale, fabs(rhs[i]));
-  CHECK_MSG(worst < 1e-9 * scale, "system with the orientation term vs least squares: %g (scale %g)", worst, scale);
+      for (int r = 0; r < kT; r++, row++) K[row + (size_t)rows * (r + kT * c)] = sqrt(wl) * (lT[r] - lS[c]);
+    for (int i = 0; i < ndv; i++) add_commutator_rows(kS, kT, wc, DS + i * kS * kS, DT + i * kT * kT, K, rows, &row);
+    for (int i = 0; i < no; i++) add_commutator_rows(kS, kT, wo, OS + i * kS * kS, OT + i * kT * kT, K, rows, &row);
+    if (extras) add_data_rows(kS, kT, q, wd * wx, AX, BX, K, rhs, rows, &row);
+    for (int i = 0; i < (xops ? q : 0); i++)
+      add_commutator_rows(kS, kT, wc, DS + (nd + i) * kS * kS, DT + (nd + i) * kT * kT, K, rows, &row);
+    CHECK(LAPACKE_dgels(LAPACK_COL_MAJOR, 'N', rows, m, 1, K, rows, rhs, rows) == 0);
+    double worst = 0, scale = 0;
+    for (int i = 0; i < m; i++) worst = fmax(worst, fabs(C[i] - rhs[i])), scale = fmax(scale, fabs(rhs[i]));
+    CHECK_MSG(worst < 1e-9 * scale, "variant %d: system vs least squares: %g (scale %g)", variant, worst, scale);
+    free(K), free(rhs);
+  }
   /* mismatched operator counts are refused */
-  T.no = no - 1;
+  ss_fmap_probes S = {kS, p, 0, A, NULL, no, OS}, T = {kT, p, 0, B, NULL, no - 1, OT};
+  ss_fmap_weights w = {0.7, 0, 0, 0, 0, 1.9};
+  ss_fmap_system *sys = NULL;
+  ss_error e;
   CHECK(ss_fmap_system_new(kS, kT, lS, lT, &S, &T, &w, &sys, &e) == SS_ERR_INVALID && sys == NULL);
-  free(K), free(rhs);
 }
 
 /* The pipeline's operators (ss_fmap_base_probes with w_orient) are those of the outward orientation:

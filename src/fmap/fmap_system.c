@@ -5,17 +5,20 @@
  * With x = vec(C) (column-major, index r + k_T·c), E(C) = xᵀ N x − 2 bᵀ x + const where
  *   N = w_d (A Aᵀ ⊗ I) + w_l diag((λ_T,r − λ_S,c)²)
  *     + w_c Σ_i [ (D_i^S)² ⊗ I + I ⊗ (D_i^T)² − 2 D_i^S ⊗ D_i^T ],   b = w_d vec(B Aᵀ)
- * (the D's are symmetric). The only expensive block, Σ_i D_i^S ⊗ D_i^T, is one dgemm of the packed
- * upper triangles of the D's. At k = 50 with ~120 probes, N is 2500 x 2500 with a condition number of
+ * (the D's are symmetric), and with orientation operators (w_o > 0) w_o Σ_i ‖C O_i^S − O_i^T C‖²'s
+ * terms alike. The only expensive part, the Kronecker sums Σ_i D_i^S ⊗ D_i^T (and the O's), is one
+ * dgemm per block column of N (add_operator_terms). At k = 50 with ~120 probes, N is 2500 x 2500 with a condition number of
  * ~3e3 on FAUST (LAPACK dpocon): CG to a 1e-8 relative residual needs a few hundred iterations of
  * either a pass over the 50 MB N or 4·k³·p flops, both slower than one compute-bound Cholesky. The
- * Cholesky runs in single precision with iterative refinement in double (LAPACK dsposv: ~25% faster
- * than dposv here; it falls back to a double factorisation by itself when refinement stalls), so the
- * solution has double accuracy. */
+ * Cholesky runs in single precision with iterative refinement in double (dsposv's scheme, solve_spd;
+ * it falls back to a double factorisation when refinement stalls), so the solution has double
+ * accuracy. */
 #include "specseg/fmap.h"
 
 #include <cblas.h>
 #include <lapacke.h>
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -75,70 +78,88 @@ static void add_side_blocks(int k_S, int k_T, size_t m, const double *SS, const 
         for (int r1 = r2; r1 < k_T; r1++) N[(r1 + (size_t)k_T * c) + m * (r2 + (size_t)k_T * c)] += ST[r1 + (size_t)k_T * r2];
 }
 
-/* N += −2 w_c Σ_i D_i^S ⊗ D_i^T over the nd packed operator pairs: H = P_S P_Tᵀ, then
- * N[(r,c1),(r2,c2)] += H[(c1,c2),(r,r2)]. */
-static ss_status add_cross_term(int k_S, int k_T, size_t m, int nd, const double *PS, const double *PT, double w_c,
-                                double *N, ss_error *err) {
-  const size_t kkS = (size_t)k_S * (k_S + 1) / 2, kkT = (size_t)k_T * (k_T + 1) / 2;
-  double *H = malloc(sizeof(double) * kkS * kkT);
-  if (!H) return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
-  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, (int)kkS, (int)kkT, nd, -2.0 * w_c, PS, (int)kkS, PT, (int)kkT,
-              0.0, H, (int)kkS);
-#pragma omp parallel for schedule(static)
-  for (int c2 = 0; c2 < k_S; c2++)
-    for (int r2 = 0; r2 < k_T; r2++) {
-      double *col = N + m * (r2 + (size_t)k_T * c2);
-      for (int c1 = c2; c1 < k_S; c1++) { /* lower triangle: c1 > c2, or c1 = c2 and r >= r2 */
-        size_t hs = c1 <= c2 ? pk(c1, c2) : pk(c2, c1);
-        for (int r = c1 == c2 ? r2 : 0; r < k_T; r++) {
-          size_t ht = r <= r2 ? pk(r, r2) : pk(r2, r);
-          col[r + (size_t)k_T * c1] += H[hs + kkS * ht];
+/* N += Σ_j X_j ⊗ Y_j over the operator terms: −2 w_c D_i^S ⊗ D_i^T for the nd packed symmetric pairs
+ * and −w_o (O_i^S ⊗ O_i^T + O_i^Sᵀ ⊗ O_i^Tᵀ) for the no orientation pairs, i.e. block (c1, c2) of N
+ * (k_T x k_T, rows k_T·c1.., columns k_T·c2..) += Σ_j X_j[c1, c2] Y_j. With Y = [vec Y_j] (k_T² x q)
+ * and the coefficients K[j, (c1, c2)] = X_j[c1, c2], the blocks of one block column c2 are one dgemm
+ * Y K[:, (c2.., c2)] written straight into their places: no k_S² x k_T² product matrix and no
+ * strided scatter (both cost more than the arithmetic). */
+static ss_status add_operator_terms(int k_S, int k_T, size_t m, int nd, const double *PS, const double *PT, double w_c,
+                                    int no, const double *OS, const double *OT, double w_o, double *N, ss_error *err) {
+  const int q = nd + 2 * no;
+  if (q == 0) return SS_OK;
+  const size_t kS2 = (size_t)k_S * k_S, kT2 = (size_t)k_T * k_T;
+  double *Y = malloc(sizeof(double) * kT2 * q), *K = malloc(sizeof(double) * kS2 * q);
+  if (!Y || !K) {
+    free(Y), free(K);
+    return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
+  }
+  for (int i = 0; i < nd; i++) {
+    const double *pS = PS + (size_t)k_S * (k_S + 1) / 2 * i, *pT = PT + (size_t)k_T * (k_T + 1) / 2 * i;
+    double *y = Y + kT2 * i;
+    for (int b = 0; b < k_T; b++)
+      for (int a = 0; a <= b; a++) y[a + (size_t)k_T * b] = y[b + (size_t)k_T * a] = pT[pk(a, b)];
+    for (int b = 0; b < k_S; b++)
+      for (int a = 0; a <= b; a++) K[i + (size_t)q * (a + (size_t)k_S * b)] = K[i + (size_t)q * (b + (size_t)k_S * a)] = -2.0 * w_c * pS[pk(a, b)];
+  }
+  for (int i = 0; i < no; i++) {
+    const double *oS = OS + kS2 * i, *oT = OT + kT2 * i;
+    double *y = Y + kT2 * (nd + i), *yt = Y + kT2 * (nd + no + i);
+    for (int b = 0; b < k_T; b++)
+      for (int a = 0; a < k_T; a++) y[a + (size_t)k_T * b] = yt[b + (size_t)k_T * a] = oT[a + (size_t)k_T * b];
+    for (int b = 0; b < k_S; b++)
+      for (int a = 0; a < k_S; a++) {
+        K[nd + i + (size_t)q * (a + (size_t)k_S * b)] = -w_o * oS[a + (size_t)k_S * b];
+        K[nd + no + i + (size_t)q * (a + (size_t)k_S * b)] = -w_o * oS[b + (size_t)k_S * a];
+      }
+  }
+  int failed = 0;
+#pragma omp parallel
+  {
+    double *blk = malloc(sizeof(double) * kT2 * k_S);
+    if (!blk) {
+#pragma omp atomic write
+      failed = 1;
+    }
+#pragma omp for schedule(dynamic, 1)
+    for (int c2 = 0; c2 < k_S; c2++) {
+      if (!blk) continue;
+      /* block rows c1 = c2 .. k_S − 1 (N's lower triangle) */
+      cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, (int)kT2, k_S - c2, q, 1.0, Y, (int)kT2,
+                  K + (size_t)q * (c2 + (size_t)k_S * c2), q, 0.0, blk, (int)kT2);
+      for (int c1 = c2; c1 < k_S; c1++) {
+        const double *B = blk + kT2 * (c1 - c2);
+        for (int r2 = 0; r2 < k_T; r2++) {
+          double *col = N + m * (r2 + (size_t)k_T * c2) + (size_t)k_T * c1;
+          for (int r1 = c1 == c2 ? r2 : 0; r1 < k_T; r1++) col[r1] += B[r1 + (size_t)k_T * r2];
         }
       }
     }
-  free(H);
-  return SS_OK;
+    free(blk);
+  }
+  free(Y), free(K);
+  return failed ? ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory") : SS_OK;
 }
 
-/* N += w_o Σ_i ‖C O_i^S − O_i^T C‖²'s normal equations over the no operator pairs (full k x k,
- * not symmetric): (O^S O^Sᵀ) ⊗ I + I ⊗ (O^Tᵀ O^T) − O^S ⊗ O^T − O^Sᵀ ⊗ O^Tᵀ, i.e. N[(r1,c1),(r2,c2)]
- * −= H[(c1,c2),(r1,r2)] + H[(c2,c1),(r2,r1)] with H = Σ_i vec(O_i^S) vec(O_i^T)ᵀ (one dgemm). */
-static ss_status add_orientation(int k_S, int k_T, size_t m, int no, const double *OS, const double *OT, double w_o,
-                                 double *N, ss_error *err) {
+/* the side blocks of the orientation term: w_o Σ_i O_i^S O_i^Sᵀ (k_S x k_S) and w_o Σ_i O_i^Tᵀ O_i^T
+ * (k_T x k_T), added to SS and ST */
+static void orientation_sides(int k_S, int k_T, int no, const double *OS, const double *OT, double w_o, double *SS,
+                              double *ST) {
   const size_t kS2 = (size_t)k_S * k_S, kT2 = (size_t)k_T * k_T;
-  double *SS = calloc(kS2, sizeof(double)), *ST = calloc(kT2, sizeof(double)), *H = malloc(sizeof(double) * kS2 * kT2);
-  if (!SS || !ST || !H) {
-    free(SS), free(ST), free(H);
-    return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
-  }
   for (int i = 0; i < no; i++) {
     cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_S, k_S, k_S, w_o, OS + kS2 * i, k_S, OS + kS2 * i, k_S, 1.0, SS, k_S);
     cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, k_T, k_T, k_T, w_o, OT + kT2 * i, k_T, OT + kT2 * i, k_T, 1.0, ST, k_T);
   }
-  add_side_blocks(k_S, k_T, m, SS, ST, N);
-  cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, (int)kS2, (int)kT2, no, w_o, OS, (int)kS2, OT, (int)kT2, 0.0, H,
-              (int)kS2);
-#pragma omp parallel for schedule(static)
-  for (int c2 = 0; c2 < k_S; c2++)
-    for (int r2 = 0; r2 < k_T; r2++) {
-      double *col = N + m * (r2 + (size_t)k_T * c2);
-      for (int c1 = c2; c1 < k_S; c1++) /* lower triangle */
-        for (int r1 = c1 == c2 ? r2 : 0; r1 < k_T; r1++)
-          col[r1 + (size_t)k_T * c1] -= H[(c1 + (size_t)k_S * c2) + kS2 * (r1 + (size_t)k_T * r2)] +
-                                        H[(c2 + (size_t)k_S * c1) + kS2 * (r2 + (size_t)k_T * r1)];
-    }
-  free(SS), free(ST), free(H);
-  return SS_OK;
 }
 
 /* All terms of one probe block pair: data weight wd, commutativity weight wc over the first nd
- * columns. */
+ * columns, orientation weight wo over the no orientation operators (0: none). */
 static ss_status add_block(int k_S, int k_T, size_t m, const ss_fmap_probes *S, const ss_fmap_probes *T, double wd,
-                           double wc, int use_ops, double *N, double *rhs, ss_error *err) {
+                           double wc, int use_ops, double wo, double *N, double *rhs, ss_error *err) {
   ss_status st = SS_OK;
   double *SS = calloc((size_t)k_S * k_S, sizeof(double)), *ST = calloc((size_t)k_T * k_T, sizeof(double));
   if (!SS || !ST) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory"); goto done; }
-  const int p = S->p, nd = use_ops && wc > 0 ? S->nd : 0;
+  const int p = S->p, nd = use_ops && wc > 0 ? S->nd : 0, no = wo > 0 ? S->no : 0;
   if (p > 0 && wd > 0) {
     cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_S, k_S, p, wd, S->A, k_S, S->A, k_S, 0.0, SS, k_S);
     cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, k_T, k_S, p, wd, T->A, k_T, S->A, k_S, 1.0, rhs, k_T);
@@ -151,11 +172,65 @@ static ss_status add_block(int k_S, int k_T, size_t m, const ss_fmap_probes *S, 
     free(tmp);
     if (st) goto done;
   }
-  add_side_blocks(k_S, k_T, m, SS, nd > 0 ? ST : NULL, N);
-  if (nd > 0) st = add_cross_term(k_S, k_T, m, nd, S->P, T->P, wc, N, err);
+  if (no > 0) orientation_sides(k_S, k_T, no, S->O, T->O, wo, SS, ST);
+  add_side_blocks(k_S, k_T, m, SS, nd > 0 || no > 0 ? ST : NULL, N);
+  st = add_operator_terms(k_S, k_T, m, nd, S->P, T->P, wc, no, S->O, T->O, wo, N, err);
 done:
   free(SS);
   free(ST);
+  return st;
+}
+
+/* x = N⁻¹ b for the SPD N (m x m, lower triangle read; destroyed only by the fallback): LAPACK
+ * dsposv's scheme — Cholesky in single precision, refinement with double residuals until
+ * max|b − N x| ≤ max|x|·‖N‖∞·ε·√m, a double factorisation when the single one fails or 30 steps do
+ * not converge — without its NaN scan, its separate norm pass and its repacking of N for every
+ * residual (dsymm; dsymv reads the triangle in place). */
+static ss_status solve_spd(size_t m, double *N, const double *b, double *x, ss_error *err) {
+  float *F = malloc(sizeof(float) * m * m), *r32 = malloc(sizeof(float) * m);
+  double *r = malloc(sizeof(double) * m), *rowsum = calloc(m, sizeof(double));
+  ss_status st = SS_OK;
+  if (!F || !r32 || !r || !rowsum) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
+  int single = 1;
+  for (size_t j = 0; j < m; j++)
+    for (size_t i = j; i < m; i++) {
+      const double v = N[i + m * j], a = fabs(v);
+      if (!(a <= FLT_MAX)) single = 0; /* overflow (or NaN): the double factorisation decides */
+      F[i + m * j] = (float)v;
+      rowsum[i] += a;
+      if (i != j) rowsum[j] += a;
+    }
+  double anrm = 0;
+  for (size_t i = 0; i < m; i++) anrm = rowsum[i] > anrm ? rowsum[i] : anrm;
+  const double cte = anrm * DBL_EPSILON / 2 * sqrt((double)m); /* LAPACK's dlamch('E') is ε/2 */
+  int done = 0;
+  if (single && LAPACKE_spotrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, F, (lapack_int)m) == 0) {
+    for (size_t i = 0; i < m; i++) r32[i] = (float)b[i];
+    LAPACKE_spotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, F, (lapack_int)m, r32, (lapack_int)m);
+    for (size_t i = 0; i < m; i++) x[i] = r32[i];
+    for (int it = 0; it <= 30 && !done; it++) {
+      memcpy(r, b, sizeof(double) * m);
+      cblas_dsymv(CblasColMajor, CblasLower, (int)m, -1.0, N, (int)m, x, 1, 1.0, r, 1);
+      double rn = 0, xn = 0;
+      for (size_t i = 0; i < m; i++) {
+        rn = fabs(r[i]) > rn ? fabs(r[i]) : rn;
+        xn = fabs(x[i]) > xn ? fabs(x[i]) : xn;
+      }
+      if (rn <= xn * cte) { done = 1; break; }
+      if (it == 30 || !isfinite(rn)) break;
+      for (size_t i = 0; i < m; i++) r32[i] = (float)r[i];
+      LAPACKE_spotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, F, (lapack_int)m, r32, (lapack_int)m);
+      for (size_t i = 0; i < m; i++) x[i] += r32[i];
+    }
+  }
+  if (!done) {
+    memcpy(x, b, sizeof(double) * m);
+    lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, N, (lapack_int)m);
+    if (info == 0) info = LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)m, x, (lapack_int)m);
+    if (info != 0) st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dpotrf info %d)", (int)info);
+  }
+done:
+  free(F), free(r32), free(r), free(rowsum);
   return st;
 }
 
@@ -198,11 +273,7 @@ ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const doub
         size_t i = r + (size_t)k_T * c;
         s->N[i + m * i] += w->w_lap * d * d;
       }
-  if ((st = add_block(k_S, k_T, m, S, T, w->w_descr, w->w_dcomm, 1, s->N, s->rhs, err))) {
-    ss_fmap_system_free(s);
-    return st;
-  }
-  if (w->w_orient > 0 && S->no > 0 && (st = add_orientation(k_S, k_T, m, S->no, S->O, T->O, w->w_orient, s->N, err))) {
+  if ((st = add_block(k_S, k_T, m, S, T, w->w_descr, w->w_dcomm, 1, w->w_orient, s->N, s->rhs, err))) {
     ss_fmap_system_free(s);
     return st;
   }
@@ -232,7 +303,7 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
     memcpy(N + j + m * j, s->N + j + m * j, sizeof(double) * (m - j));
   memcpy(rhs, s->rhs, sizeof(double) * m);
   if (have_extra && S_extra->p > 0 &&
-      (st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, N, rhs, err)))
+      (st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, 0.0, N, rhs, err)))
     goto done;
   /* fixed first column: move it to the right-hand side, keep the system SPD */
   if (s->w.fix_constant) {
@@ -246,13 +317,7 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
       rhs[j] = r == 0 ? v : 0.0;
     }
   }
-  lapack_int iter = 0;
-  lapack_int info = LAPACKE_dsposv(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)m, rhs, (lapack_int)m, x,
-                                   (lapack_int)m, &iter);
-  if (info != 0) {
-    st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dsposv info %d)", (int)info);
-    goto done;
-  }
+  if ((st = solve_spd(m, N, rhs, x, err))) goto done;
   memcpy(C, x, sizeof(double) * m);
 done:
   free(N);
