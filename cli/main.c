@@ -3,6 +3,9 @@
 
 #include <cblas.h>
 #include <errno.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -121,6 +124,15 @@ static int run(int argc, char **argv) {
    * spin-wait beside it (FAUST match: 0.81 s wall / 1.04 s CPU with one BLAS thread, 0.92 s / 1.8 s
    * with two). OPENBLAS_NUM_THREADS in the environment still wins. */
   if (!getenv("OPENBLAS_NUM_THREADS")) openblas_set_num_threads(1);
+#ifdef __GLIBC__
+  /* Blocks up to 64 MB (a k = 50 functional-map system is 50 MB) come from the heap and freed memory
+   * up to 128 MB stays there: glibc would give every such block fresh pages (mmap), whose first
+   * touch costs ~10x a write on the machines we measured (FAUST match: 2.82 -> 2.63 s CPU, system
+   * time 0.23 -> 0.10 s, peak memory 134 -> 154 MB). MALLOC_MMAP_THRESHOLD_ / MALLOC_TRIM_THRESHOLD_
+   * in the environment still win. */
+  if (!getenv("MALLOC_MMAP_THRESHOLD_")) mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  if (!getenv("MALLOC_TRIM_THRESHOLD_")) mallopt(M_TRIM_THRESHOLD, 128 << 20);
+#endif
   const command *c = find_command(a);
   if (c) return c->run(argc - 1, argv + 1);
   return cli_usage("unknown command '%s' (try 'specseg help')", a);
