@@ -63,7 +63,7 @@ static ss_status sum_squares_packed(int k, int nd, const double *P, double *S, s
 
 /* N += S-side block (same for every row r: N[(r,c1),(r,c2)] += SS[c1,c2]) and T-side block (same for
  * every column c: N[(r1,c),(r2,c)] += ST[r1,r2]); either may be NULL. Like every term below, only
- * N's lower triangle (row index >= column index) is formed: the solver (dsposv 'L') reads no other. */
+ * N's lower triangle (row index >= column index) is formed: the solver (solve_spd) reads no other. */
 static void add_side_blocks(int k_S, int k_T, size_t m, const double *SS, const double *ST, double *N) {
   if (SS)
     for (int c2 = 0; c2 < k_S; c2++)
@@ -181,12 +181,12 @@ done:
   return st;
 }
 
-/* x = N⁻¹ b for the SPD N (m x m, lower triangle read; destroyed only by the fallback): LAPACK
- * dsposv's scheme — Cholesky in single precision, refinement with double residuals until
- * max|b − N x| ≤ max|x|·‖N‖∞·ε·√m, a double factorisation when the single one fails or 30 steps do
- * not converge — without its NaN scan, its separate norm pass and its repacking of N for every
- * residual (dsymm; dsymv reads the triangle in place). */
-static ss_status solve_spd(size_t m, double *N, const double *b, double *x, ss_error *err) {
+/* x = N⁻¹ b for the SPD N (m x m, leading dimension ld, lower triangle read; destroyed only by the
+ * fallback): LAPACK dsposv's scheme — Cholesky in single precision, refinement with double residuals
+ * until max|b − N x| ≤ max|x|·‖N‖∞·ε·√m, a double factorisation when the single one fails or 30
+ * steps do not converge — without its NaN scan, its separate norm pass and its repacking of N for
+ * every residual (dsymm; dsymv reads the triangle in place). */
+static ss_status solve_spd(size_t m, double *N, size_t ld, const double *b, double *x, ss_error *err) {
   float *F = malloc(sizeof(float) * m * m), *r32 = malloc(sizeof(float) * m);
   double *r = malloc(sizeof(double) * m), *rowsum = calloc(m, sizeof(double));
   ss_status st = SS_OK;
@@ -194,7 +194,7 @@ static ss_status solve_spd(size_t m, double *N, const double *b, double *x, ss_e
   int single = 1;
   for (size_t j = 0; j < m; j++)
     for (size_t i = j; i < m; i++) {
-      const double v = N[i + m * j], a = fabs(v);
+      const double v = N[i + ld * j], a = fabs(v);
       if (!(a <= FLT_MAX)) single = 0; /* overflow (or NaN): the double factorisation decides */
       F[i + m * j] = (float)v;
       rowsum[i] += a;
@@ -210,7 +210,7 @@ static ss_status solve_spd(size_t m, double *N, const double *b, double *x, ss_e
     for (size_t i = 0; i < m; i++) x[i] = r32[i];
     for (int it = 0; it <= 30 && !done; it++) {
       memcpy(r, b, sizeof(double) * m);
-      cblas_dsymv(CblasColMajor, CblasLower, (int)m, -1.0, N, (int)m, x, 1, 1.0, r, 1);
+      cblas_dsymv(CblasColMajor, CblasLower, (int)m, -1.0, N, (int)ld, x, 1, 1.0, r, 1);
       double rn = 0, xn = 0;
       for (size_t i = 0; i < m; i++) {
         rn = fabs(r[i]) > rn ? fabs(r[i]) : rn;
@@ -225,8 +225,8 @@ static ss_status solve_spd(size_t m, double *N, const double *b, double *x, ss_e
   }
   if (!done) {
     memcpy(x, b, sizeof(double) * m);
-    lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, N, (lapack_int)m);
-    if (info == 0) info = LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)m, x, (lapack_int)m);
+    lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, N, (lapack_int)ld);
+    if (info == 0) info = LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)ld, x, (lapack_int)m);
     if (info != 0) st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dpotrf info %d)", (int)info);
   }
 done:
@@ -305,19 +305,17 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
   if (have_extra && S_extra->p > 0 &&
       (st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, 0.0, N, rhs, err)))
     goto done;
-  /* fixed first column: move it to the right-hand side, keep the system SPD */
+  /* fixed first column (C[:, 0] = (v, 0, …, 0)): its terms move to the right-hand side and the
+   * system of the other columns, N's trailing block, is solved */
+  size_t f0 = 0;
   if (s->w.fix_constant) {
     const double v = s->w.const_value;
-    if (v != 0)
-      for (size_t i = 0; i < m; i++) rhs[i] -= N[i] * v; /* column j = 0 */
-    for (int r = 0; r < k_T; r++) {
-      size_t j = r;
-      for (size_t i = 0; i < m; i++) N[i + m * j] = N[j + m * i] = 0.0;
-      N[j + m * j] = 1.0;
-      rhs[j] = r == 0 ? v : 0.0;
-    }
+    f0 = (size_t)k_T;
+    for (size_t i = f0; i < m; i++) rhs[i] -= N[i] * v; /* column j = 0 */
+    memset(x, 0, sizeof(double) * f0);
+    x[0] = v;
   }
-  if ((st = solve_spd(m, N, rhs, x, err))) goto done;
+  if ((st = solve_spd(m - f0, N + f0 + m * f0, m, rhs + f0, x + f0, err))) goto done;
   memcpy(C, x, sizeof(double) * m);
 done:
   free(N);
