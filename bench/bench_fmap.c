@@ -136,7 +136,7 @@ int main(int argc, char **argv) {
     loaded[0] = 1;
     int n = S[0].m.nv, lmsw[5] = {lm[0], lm[4], lm[3], lm[2], lm[1]};
     sym = malloc(sizeof(int) * n);
-    ss_fmap_shape s0 = {&S[0].m, S[0].M, S[0].ev, S[0].phi, S[0].kev, NULL, 0};
+    ss_fmap_shape s0 = {&S[0].m, S[0].M, S[0].ev, S[0].phi, S[0].kev, NULL, 0, NULL, 0};
     ss_fmap_match_options os = o;
     os.zoomout_kmax = 100;
     ss_error e;
@@ -175,7 +175,7 @@ int main(int argc, char **argv) {
       }
     shape *X = &S[a], *Y = &S[b];
     map = realloc(map, sizeof(int) * X->m.nv);
-    ss_fmap_shape sx = {&X->m, X->M, X->ev, X->phi, X->kev, NULL, 0}, sy = {&Y->m, Y->M, Y->ev, Y->phi, Y->kev, NULL, 0};
+    ss_fmap_shape sx = {&X->m, X->M, X->ev, X->phi, X->kev, NULL, 0, NULL, 0}, sy = {&Y->m, Y->M, Y->ev, Y->phi, Y->kev, NULL, 0, NULL, 0};
     ss_error e;
     double t0 = ss_time();
     if (ss_fmap_match(&sx, &sy, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, map, NULL, &e)) {

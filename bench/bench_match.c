@@ -303,8 +303,8 @@ static int run_variants(const char *dir, unsigned seed, int npairs, int nl, cons
     const slot *X = &S[a], *Y = &S[b];
     ss_error e;
     ss_segment_pairs pr;
-    ss_fmap_shape sX = {&X->m, X->prep.M, X->prep.evals, X->prep.evecs, X->prep.kev, NULL, 0};
-    ss_fmap_shape sY = {&Y->m, Y->prep.M, Y->prep.evals, Y->prep.evecs, Y->prep.kev, NULL, 0};
+    ss_fmap_shape sX = {&X->m, X->prep.M, X->prep.evals, X->prep.evecs, X->prep.kev, NULL, 0, NULL, 0};
+    ss_fmap_shape sY = {&Y->m, Y->prep.M, Y->prep.evals, Y->prep.evecs, Y->prep.kev, NULL, 0, NULL, 0};
     ss_fmap_probes bX, bY;
     ss_fmap_weights w;
     ss_fmap_system *sys = NULL;
@@ -562,7 +562,7 @@ static int run_split(const char *dir, const char *split, const char *lmname, uns
       double E[4], best = INFINITY, R = 0;
       int ch = -1;
       const ss_fmap_match_options *fo = &cf[sel[q].c[0]].o.fmap;
-      ss_fmap_shape sX = {&S[a].m, pX->M, pX->evals, pX->evecs, pX->kev, NULL, 0}, sY = {&S[b].m, pY->M, pY->evals, pY->evecs, pY->kev, NULL, 0};
+      ss_fmap_shape sX = {&S[a].m, pX->M, pX->evals, pX->evecs, pX->kev, NULL, 0, NULL, 0}, sY = {&S[b].m, pY->M, pY->evals, pY->evecs, pY->kev, NULL, 0, NULL, 0};
       ss_fmap_probes bX = {0}, bY = {0};
       if (sel[q].wd > 0 &&
           (ss_fmap_base_probes(&sX, nl, lm, fo, 0, &bX, &e) || ss_fmap_base_probes(&sY, nl, lm, fo, 0, &bY, &e))) {

@@ -591,7 +591,7 @@ static void test_match(void) {
   double *evY = malloc(sizeof(double) * kev), *phY = malloc(sizeof(double) * n * kev), *MY = malloc(sizeof(double) * n);
   CHECK(dense_eigs(&X, kev, evX, phX, MX) == 0);
   CHECK(dense_eigs(&Y, kev, evY, phY, MY) == 0);
-  ss_fmap_shape sX = {&X, MX, evX, phX, kev, NULL, 0}, sY = {&Y, MY, evY, phY, kev, NULL, 0};
+  ss_fmap_shape sX = {&X, MX, evX, phX, kev, NULL, 0, NULL, 0}, sY = {&Y, MY, evY, phY, kev, NULL, 0, NULL, 0};
   int lm[5] = {0, 11, 100, 300, 600};
   ss_fmap_match_options o;
   ss_fmap_match_default_options(&o);
@@ -666,7 +666,7 @@ static void test_humanoid(void) {
       if (p[1] < X.V[3 * lm[3] + 1]) lm[3] = i;
       if (p[2] > X.V[3 * lm[4] + 2]) lm[4] = i;
     }
-    ss_fmap_shape sX = {&X, NULL, evX, phX, kev, NULL, 0}, sY = {&Y, NULL, evY, phY, kev, NULL, 0};
+    ss_fmap_shape sX = {&X, NULL, evX, phX, kev, NULL, 0, NULL, 0}, sY = {&Y, NULL, evY, phY, kev, NULL, 0, NULL, 0};
     ss_fmap_match_options o;
     ss_fmap_match_default_options(&o);
     o.k = 20;
@@ -701,7 +701,7 @@ static void test_faust_self(void) {
   if (st != SS_OK) {
     SKIP("ss_mesh_eigs: %s", e.msg);
   } else {
-    ss_fmap_shape s = {&m, NULL, ev, phi, k, NULL, 0};
+    ss_fmap_shape s = {&m, NULL, ev, phi, k, NULL, 0, NULL, 0};
     int lm[5] = {412, 2445, 3219, 6617, 5907};
     int *map = malloc(sizeof(int) * n);
     CHECK(ss_fmap_match(&s, &s, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, NULL, map, NULL, NULL) == SS_OK);

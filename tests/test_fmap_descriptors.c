@@ -35,7 +35,7 @@ int main(void) {
   ss_fmap_match_default_options(&o);
   o.k = kev, o.n_energies = 50;
   CHECK(o.no_wks == 0);
-  ss_fmap_shape sX = {&X, MX, evX, phX, kev, NULL, 0}, sY = {&Y, MY, evY, phY, kev, NULL, 0};
+  ss_fmap_shape sX = {&X, MX, evX, phX, kev, NULL, 0, NULL, 0}, sY = {&Y, MY, evY, phY, kev, NULL, 0, NULL, 0};
 
   /* 1. base probes with three descriptors (the coordinates): the default columns, then the three */
   double *D = malloc(sizeof(double) * (size_t)n * 3);

@@ -82,6 +82,64 @@ static void test_system_vs_solve(void) {
     }
 }
 
+/* The probe cache (ss_fmap_probe_cache_compute) changes no number of the base probes: with an
+ * entry for the call's options they are byte for byte those computed without it (WKS columns,
+ * landmark operators from the triple products, orientation operators), also when the triple products
+ * reach further than the call's basis; an entry of other options is not used. */
+static void test_probe_cache(void) {
+  ss_mesh mesh;
+  CHECK(ss_synth_icosphere(3, &mesh, NULL) == SS_OK);
+  for (int i = 0; i < mesh.nv; i++) {
+    double *v = mesh.V + 3 * i;
+    v[0] *= 1.3 + 0.2 * v[1], v[2] *= 0.85;
+  }
+  const int n = mesh.nv, kev = 30, nl = 3;
+  double *ev = malloc(sizeof(double) * kev), *phi = malloc(sizeof(double) * n * kev), *M = malloc(sizeof(double) * n);
+  CHECK(ss_mesh_eigs(&mesh, kev, ev, phi, NULL) == SS_OK);
+  CHECK(ss_mass_lumped(&mesh, SS_MASS_BARYCENTRIC, M, NULL) == SS_OK);
+  int lm[3] = {7, 150, 420};
+  ss_fmap_match_options o;
+  ss_fmap_match_default_options(&o);
+  o.k = 12, o.n_energies = 30, o.descr_step = 4, o.descr_k = 20, o.w_orient = 1e-3;
+  const size_t kk = (size_t)o.k * (o.k + 1) / 2;
+  ss_fmap_shape s = {&mesh, M, ev, phi, kev, NULL, 0, NULL, 0};
+  for (int kt = 0; kt <= 26; kt += 26) {
+    ss_fmap_probes ref = {0}, got = {0};
+    ss_fmap_probe_cache c;
+    s.cache = NULL, s.ncache = 0;
+    CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &ref, NULL) == SS_OK);
+    CHECK(ss_fmap_probe_cache_compute(&s, &o, 1, kt, &c, NULL) == SS_OK);
+    CHECK(c.nwks == 8 && c.A && c.P && c.O && c.T && c.kt == (kt > 20 ? kt : 20));
+    s.cache = &c, s.ncache = 1;
+    CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &got, NULL) == SS_OK);
+    CHECK(got.p == ref.p && got.nd == ref.nd && got.no == ref.no && ref.no == 8);
+    CHECK_MSG(got.p == ref.p && !memcmp(got.A, ref.A, sizeof(double) * o.k * ref.p) &&
+                  !memcmp(got.P, ref.P, sizeof(double) * kk * ref.nd) &&
+                  !memcmp(got.O, ref.O, sizeof(double) * o.k * o.k * ref.no),
+              "kt %d: cached base probes differ from the computed ones", kt);
+    ss_fmap_probes_free(&got);
+    /* other options: the entry is not used */
+    ss_fmap_match_options o2 = o;
+    o2.sigma_factor = 6.0;
+    ss_fmap_probes r2 = {0}, g2 = {0};
+    s.cache = NULL, s.ncache = 0;
+    CHECK(ss_fmap_base_probes(&s, nl, lm, &o2, 1, &r2, NULL) == SS_OK);
+    s.cache = &c, s.ncache = 1;
+    CHECK(ss_fmap_base_probes(&s, nl, lm, &o2, 1, &g2, NULL) == SS_OK);
+    CHECK(g2.p == r2.p && !memcmp(g2.A, r2.A, sizeof(double) * o.k * r2.p) && !memcmp(g2.P, r2.P, sizeof(double) * kk * r2.nd));
+    CHECK(memcmp(g2.A, ref.A, sizeof(double) * o.k * 8)); /* the WKS of σ 6 are other functions */
+    ss_fmap_probes_free(&r2), ss_fmap_probes_free(&g2), ss_fmap_probes_free(&ref);
+    ss_fmap_probe_cache_free(&c);
+  }
+  /* more triple products than eigenpairs: refused */
+  ss_fmap_probe_cache c;
+  ss_error e;
+  s.cache = NULL, s.ncache = 0;
+  CHECK(ss_fmap_probe_cache_compute(&s, &o, 1, kev + 1, &c, &e) == SS_ERR_INVALID);
+  free(ev), free(phi), free(M);
+  ss_mesh_free(&mesh);
+}
+
 /* A system too ill-conditioned for the single-precision Cholesky with refinement (condition ~1e13:
  * the data term has rank k_T, the Laplacian term weighs 1e-13) still gets a backward-stable
  * solution: the double factorisation takes over. */
@@ -128,7 +186,7 @@ static void test_probes_split(void) {
   ss_fmap_match_options o;
   ss_fmap_match_default_options(&o);
   o.k = k, o.n_energies = ne, o.descr_step = step;
-  ss_fmap_shape s = {&mesh, M, ev, phi, k, NULL, 0};
+  ss_fmap_shape s = {&mesh, M, ev, phi, k, NULL, 0, NULL, 0};
   ss_fmap_probes base, wave, raw;
   CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &base, NULL) == SS_OK);
   CHECK(ss_fmap_extra_probes(&s, nl, nx, X, SS_PROBE_WAVE, &o, 1, &wave, NULL) == SS_OK);
@@ -195,7 +253,7 @@ static void test_descr_k(void) {
   ss_fmap_match_options o;
   ss_fmap_match_default_options(&o);
   o.k = k, o.n_energies = ne, o.descr_step = step;
-  ss_fmap_shape s = {&mesh, M, ev, phi, kd, NULL, 0};
+  ss_fmap_shape s = {&mesh, M, ev, phi, kd, NULL, 0, NULL, 0};
   ss_fmap_probes b0, bk, w0, wk, bd, wd, bbig, wbig;
   CHECK(o.descr_k == 0);
   CHECK(ss_fmap_base_probes(&s, nl, lm, &o, 1, &b0, NULL) == SS_OK);
@@ -264,6 +322,7 @@ int main(void) {
   test_bad_input();
   test_system_vs_solve();
   test_ill_conditioned();
+  test_probe_cache();
   test_probes_split();
   test_descr_k();
   TEST_MAIN_END();

@@ -370,7 +370,7 @@ int main(void) {
           SS_ERR_INVALID);
     /* descriptor residual: 0 for the identity, large for a map onto one vertex, and it tells a
      * left-right flip of the humanoid (a near-isometry the orthonormality energy accepts) */
-    ss_fmap_shape fx = {&X, pX.M, pX.evals, pX.evecs, pX.kev, NULL, 0};
+    ss_fmap_shape fx = {&X, pX.M, pX.evals, pX.evecs, pX.kev, NULL, 0, NULL, 0};
     ss_fmap_match_options fo;
     ss_fmap_match_default_options(&fo);
     fo.k = 40;

@@ -229,7 +229,7 @@ static void test_probes_outward(void) {
   ss_fmap_match_default_options(&o);
   o.k = 12, o.n_energies = 20, o.descr_step = 4, o.w_orient = 1.0;
   int lm[2] = {0, 7};
-  ss_fmap_shape s = {&m, M, ev, phi, kev, NULL, 0};
+  ss_fmap_shape s = {&m, M, ev, phi, kev, NULL, 0, NULL, 0};
   ss_fmap_probes ref = {0}, got = {0};
   CHECK_MSG(ss_fmap_base_probes(&s, 2, lm, &o, 1, &ref, &e) == SS_OK, "%s", e.msg);
   CHECK(ref.no == 5 && ref.O != NULL);

@@ -239,7 +239,7 @@ static void test_fmap_raw(const ss_mesh *X, const ss_mesh *Y, const int lm[5]) {
     scaled(Y, sc[q], &b);
     double evX[K], evY[K], *phX = malloc(sizeof(double) * K * X->nv), *phY = malloc(sizeof(double) * K * Y->nv);
     CHECK(ss_mesh_eigs(&a, K, evX, phX, &e) == SS_OK && ss_mesh_eigs(&b, K, evY, phY, &e) == SS_OK);
-    ss_fmap_shape sX = {&a, NULL, evX, phX, K, NULL, 0}, sY = {&b, NULL, evY, phY, K, NULL, 0};
+    ss_fmap_shape sX = {&a, NULL, evX, phX, K, NULL, 0, NULL, 0}, sY = {&b, NULL, evY, phY, K, NULL, 0, NULL, 0};
     ss_status st = ss_fmap_match(&sX, &sY, 5, lm, lm, 0, NULL, NULL, SS_PROBE_RAW, &o, q ? map : ref, NULL, &e);
     CHECK_MSG(st == SS_OK, "fmap x%g: %s", sc[q], e.msg);
     if (q && !st) {

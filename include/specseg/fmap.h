@@ -268,6 +268,8 @@ SS_API ss_status ss_p2p_descr_residual(int n_S, int n_T, const double *evecs_S, 
  * be NULL with ndescr = 0): the caller's own descriptors, nv x ndescr column-major (e.g. `specseg
  * descriptors`, or any per-vertex features), column j corresponding to column j of the other shape's;
  * they join the base probes (ss_fmap_base_probes) as they are, each normalised in L²(M). */
+typedef struct ss_fmap_probe_cache ss_fmap_probe_cache;
+
 typedef struct ss_fmap_shape {
   const ss_mesh *mesh;
   const double *M;
@@ -276,7 +278,30 @@ typedef struct ss_fmap_shape {
   int kev;
   const double *descr;
   int ndescr;
+  /* Optional (NULL / 0): shape-only parts of the base probes computed once
+   * (ss_fmap_probe_cache_compute, from this shape's M, evals and evecs); ss_fmap_base_probes reads an
+   * entry whose options match instead of computing it, with the same result. */
+  const ss_fmap_probe_cache *cache;
+  int ncache;
 } ss_fmap_shape;
+
+/* What ss_fmap_base_probes computes from the shape alone, at one option set: the WKS columns
+ * (normalised in L²(M)) with their coefficients A, packed multiplication operators P and, with the
+ * orientation term, orientation operators O (all at unit area, as in the base probes); and the
+ * triple products T[(a, b), l] = Σ_x M_x φ_a φ_b φ_l (a <= b < k packed as in
+ * ss_fmap_mult_operators_packed, l < kt), the operator of every wave-filtered landmark probe being
+ * the combination of T's columns by its spectral coefficients. Either part may be absent (nwks 0,
+ * T NULL). Used when k, the descriptor basis kd (of A, P, O), n_energies, sigma_factor and
+ * descr_step match and kt >= the call's kd; the orientation operators when present. */
+struct ss_fmap_probe_cache {
+  int k, kd, n_energies, descr_step;
+  double sigma_factor;
+  int nwks;
+  double *A, *P, *O; /* k x nwks, k(k+1)/2 x nwks, k² x nwks (O NULL: none) */
+  int kt;
+  double *T;         /* k(k+1)/2 x kt (NULL: none) */
+};
+
 
 typedef enum ss_probe_filter {
   SS_PROBE_RAW = 0, /* extra probe functions used as they are (ASA) */
@@ -319,6 +344,13 @@ typedef struct ss_fmap_match_options {
    * outward (consistently per component, positive signed volume). */
   double w_orient;
 } ss_fmap_match_options;
+
+/* The cache entry of options opts (NULL: defaults) on shape s (its own cache ignored): the WKS
+ * columns (with orientation operators when opts->w_orient > 0) and, with_triple, T with kt = kt_max
+ * (>= the descriptor basis; 0: that basis). *out is zeroed first; free with ss_fmap_probe_cache_free. */
+SS_API ss_status ss_fmap_probe_cache_compute(const ss_fmap_shape *s, const ss_fmap_match_options *opts, int with_triple,
+                                             int kt_max, ss_fmap_probe_cache *out, ss_error *err);
+SS_API void ss_fmap_probe_cache_free(ss_fmap_probe_cache *c);
 
 SS_API void ss_fmap_match_default_options(ss_fmap_match_options *o);
 

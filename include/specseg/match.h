@@ -118,6 +118,11 @@ typedef struct ss_shape_prep {
    * column-major). With them the segment pairing reads every landmark-to-centre distance instead of
    * propagating a field from each landmark at every match (distances are symmetric). */
   double *crit_fields;
+  /* Optional (NULL: none; ss_shape_prep_probe_cache fills it): the shape-only parts of the base
+   * probes of a match's functional maps (ss_fmap_probe_cache), nprobe_cache entries; a match whose
+   * options they do not cover computes its own, with the same result. */
+  ss_fmap_probe_cache *probe_cache;
+  int nprobe_cache;
 } ss_shape_prep;
 
 /* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs (then
@@ -329,6 +334,12 @@ typedef struct ss_match_options {
   int ndescr;
   const double *descrX, *descrY;
 } ss_match_options;
+
+/* Fills p->probe_cache (ss_shape_prep) for matches with options opts (NULL: defaults), replacing
+ * what it held: the WKS columns of each descriptor basis the functional maps use and the triple
+ * products for the largest (none with the caller's own descriptors or no_wks). Worth it for a shape
+ * matched more than once (specseg prepare, Python Shape). */
+SS_API ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *opts, ss_error *err);
 
 SS_API void ss_match_default_options(ss_match_options *o);
 /* The paper's STD / ASA / DIFF as the paper defines them (what specseg eval's Table 1 uses): the

@@ -16,7 +16,7 @@ const int *ev_landmarks(const ev_context *ctx, const ev_shape *s, int lmset) {
 }
 
 static ss_fmap_shape fmap_shape(const ev_shape *s) {
-  ss_fmap_shape f = {&s->mesh, s->prep.M, s->prep.evals, s->prep.evecs, s->prep.kev, NULL, 0};
+  ss_fmap_shape f = {&s->mesh, s->prep.M, s->prep.evals, s->prep.evecs, s->prep.kev, NULL, 0, NULL, 0};
   return f;
 }
 

@@ -17,6 +17,9 @@ ss_status ssi_fmap_check_shape(const ss_fmap_shape *s, const char *name, int nee
 int ssi_fmap_basis_needed(const ss_fmap_match_options *o);
 /* Eigenpairs the probe functions are synthesised from: max(k, descr_k). */
 int ssi_fmap_descr_k(const ss_fmap_match_options *o);
+/* 1 when s's probe cache has every shape-only part of ss_fmap_base_probes at options o (with or
+ * without operators): its WKS entry and triple products (fmap_probes.c) */
+int ssi_fmap_cache_covers(const ss_fmap_shape *s, const ss_fmap_match_options *o, int with_operators);
 
 /* ZoomOut of a pair as the options ask (zoomout_samples): plain, or on ns samples of the target
  * against every source vertex (ss_zoomout_samples, ss_zoomout_sampled: least squares, one iteration

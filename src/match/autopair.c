@@ -154,7 +154,7 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
     ss_fmap_match_options fo;
     const int kt = o.recheck_margin > 0 && o.recheck_zoomout <= o.recheck_k && o.recheck_k > o.orient_k ? o.recheck_k : o.orient_k;
     orient_fmap_options(kt, o.orient_descr_k, p->kev, &fo);
-    ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0};
+    ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
     ss_fmap_probes pr;
     if ((st = ss_fmap_base_probes(&fs, m, out->centers, &fo, 1, &pr, err))) goto done;
     out->probe_k = fo.k, out->probe_descr_k = fo.descr_k, out->probe_p = pr.p, out->probe_A = pr.A, out->probe_P = pr.P;
@@ -490,8 +490,8 @@ static ss_status orient_score_T(const ss_centre_signature *A, const ss_centre_si
       for (int i = 0; i < na; i++) kept |= ord[i] == a;
       if (kept) lA[q] = A->centers[a], lB[q++] = B->centers[p[a]];
     }
-    ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0},
-                  sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
+    ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0, NULL, 0},
+                  sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0, NULL, 0};
     st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
   }
   if (!st && score) *score = ssi_map_orientation(A, B, T);
@@ -589,8 +589,8 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
   orient_fmap_options(k, descr_k, kmin, &c->fo);
   if (c->fo.n_energies % c->fo.descr_step) return ss_fail(err, SS_ERR_INVALID, "autopair: descr_step must divide n_energies");
   c->per = c->fo.n_energies / c->fo.descr_step;
-  c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0};
-  c->sB = (ss_fmap_shape){pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0};
+  c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0, NULL, 0};
+  c->sB = (ss_fmap_shape){pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0, NULL, 0};
   const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per;
   int *mask = malloc(sizeof(int) * (size_t)m), *lA = malloc(sizeof(int) * (size_t)m);
   c->kept = malloc(sizeof(int) * (size_t)m);

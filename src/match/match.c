@@ -71,6 +71,64 @@ static int match_kev(const ss_match_options *o) {
   return kev;
 }
 
+/* The fmap options of a match's two starts: [0] STD, [1] the segment-aided one (its own descriptor
+ * basis); returns how many differ in what a probe cache holds (1 or 2). */
+static int start_options(const ss_match_options *o, ss_fmap_match_options fo[2]) {
+  fo[0] = fo[1] = o->fmap;
+  fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0;
+  fo[1].descr_k = o->seg_descr_k;
+  const int k = o->fmap.k, kd0 = fo[0].descr_k > k ? fo[0].descr_k : k, kd1 = fo[1].descr_k > k ? fo[1].descr_k : k;
+  return o->probes != SS_PROBES_STD && kd1 != kd0 ? 2 : 1;
+}
+
+/* the probe cache entries of a match with options o on prep p (*n 0: none applies) */
+static ss_status probe_caches(const ss_shape_prep *p, const ss_match_options *o, ss_fmap_probe_cache **out, int *n,
+                              ss_error *err) {
+  *out = NULL, *n = 0;
+  if (o->ndescr > 0 || o->fmap.no_wks) return SS_OK;
+  ss_fmap_match_options fo[2];
+  const int ns = start_options(o, fo);
+  int kt = 0;
+  for (int c = 0; c < ns; c++) kt = ssi_fmap_descr_k(&fo[c]) > kt ? ssi_fmap_descr_k(&fo[c]) : kt;
+  if (kt > p->kev) return SS_OK; /* the match reports the missing eigenpairs */
+  ss_fmap_probe_cache *c = calloc((size_t)ns, sizeof *c);
+  if (!c) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  ss_fmap_shape fs = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
+  ss_status st = SS_OK;
+  for (int i = 0; i < ns && !st; i++) st = ss_fmap_probe_cache_compute(&fs, &fo[i], i == 0, kt, &c[i], err);
+  if (st) {
+    for (int i = 0; i < ns; i++) ss_fmap_probe_cache_free(&c[i]);
+    free(c);
+    return st;
+  }
+  *out = c, *n = ns;
+  return SS_OK;
+}
+
+/* do p's cache entries serve every base probe set of a match with options o? */
+static int caches_cover(const ss_shape_prep *p, const ss_match_options *o) {
+  ss_fmap_match_options fo[2];
+  const int ns = start_options(o, fo);
+  ss_fmap_shape fs = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, p->probe_cache, p->nprobe_cache};
+  for (int c = 0; c < ns; c++)
+    if (!ssi_fmap_cache_covers(&fs, &fo[c], o->fmap.w_dcomm > 0)) return 0;
+  return 1;
+}
+
+ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *opts, ss_error *err) {
+  if (!p || !p->mesh || !p->evecs) return ss_fail(err, SS_ERR_INVALID, "probe cache: shape not prepared");
+  ss_match_options d;
+  if (!opts) ss_match_default_options(&d), opts = &d;
+  ss_fmap_probe_cache *c;
+  int n;
+  ss_status st = probe_caches(p, opts, &c, &n, err);
+  if (st) return st;
+  for (int i = 0; i < p->nprobe_cache && p->probe_cache; i++) ss_fmap_probe_cache_free(&p->probe_cache[i]);
+  free(p->probe_cache);
+  p->probe_cache = c, p->nprobe_cache = n;
+  return SS_OK;
+}
+
 int ss_match_eigenpairs(const ss_match_options *opts, int nl) {
   ss_match_options d;
   if (!opts) ss_match_default_options(&d), opts = &d;
@@ -202,6 +260,8 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0}, sbX = {0}, sbY = {0}; /* sb: STD's base (selection energy) */
   ss_fmap_system *sys = NULL;
   ssi_zoomout_plan plan = {0};
+  ss_fmap_probe_cache *cacheX = NULL, *cacheY = NULL; /* this match's own, when the shapes' do not serve */
+  int ncacheX = 0, ncacheY = 0;
   out->nX = nX;
   out->t_segment = X->t_segment + Y->t_segment;
   out->t_eigs = X->t_eigs + Y->t_eigs;
@@ -238,13 +298,18 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   /* the map check of the pairing (pairing.min_map_share) needs the STD map */
   const int check = use_seg && o.pairing.min_map_share > 0;
   const int want_std = !use_seg || o.refine == SS_REFINE_BEST || check, want_seg = use_seg;
-  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr},
-                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr};
+  /* the shape-only parts of the base probes: the shapes' caches, else computed here by the same
+   * function (so a prepared shape and its mesh give the same map) */
+  if (!caches_cover(X, &o) && (st = probe_caches(X, &o, &cacheX, &ncacheX, err))) goto fail;
+  if (!caches_cover(Y, &o) && (st = probe_caches(Y, &o, &cacheY, &ncacheY, err))) goto fail;
+  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr, cacheX ? cacheX : X->probe_cache,
+                      cacheX ? ncacheX : X->nprobe_cache},
+                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr, cacheY ? cacheY : Y->probe_cache,
+                      cacheY ? ncacheY : Y->nprobe_cache};
   /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
-   * assembled system per distinct descriptor basis */
-  ss_fmap_match_options fo[2] = {o.fmap, o.fmap};
-  fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0; /* ZoomOut is run (and timed) below */
-  fo[1].descr_k = o.seg_descr_k;
+   * assembled system per distinct descriptor basis (ZoomOut is run and timed below) */
+  ss_fmap_match_options fo[2];
+  start_options(&o, fo);
   const int ops = o.fmap.w_dcomm > 0, xops = ops && o.fmap.extra_dcomm;
   const int kd0 = fo[0].descr_k > k ? fo[0].descr_k : k, kd1 = fo[1].descr_k > k ? fo[1].descr_k : k;
   const int own1 = want_seg && (!want_std || kd1 != kd0); /* the segment-aided map needs its own base */
@@ -389,6 +454,9 @@ cleanup:
   ss_fmap_probes_free(&sbX), ss_fmap_probes_free(&sbY);
   free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(zmap);
   free(smap[0]), free(smap[1]);
+  for (int i = 0; i < ncacheX; i++) ss_fmap_probe_cache_free(&cacheX[i]);
+  for (int i = 0; i < ncacheY; i++) ss_fmap_probe_cache_free(&cacheY[i]);
+  free(cacheX), free(cacheY);
   return st;
 }
 

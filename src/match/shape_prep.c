@@ -18,6 +18,8 @@ void ss_shape_prep_free(ss_shape_prep *p) {
   free(p->evecs);
   free(p->M);
   free(p->crit_fields);
+  for (int i = 0; i < p->nprobe_cache && p->probe_cache; i++) ss_fmap_probe_cache_free(&p->probe_cache[i]);
+  free(p->probe_cache);
   memset(p, 0, sizeof *p);
 }
 
