@@ -70,7 +70,7 @@ head -c $((size - 100)) "$TMP/a.sss" > "$TMP/t.sss"
 [ $rc -eq 1 ] && grep -q 'longer than' "$TMP/err" && ok || bad "extended: $(cat "$TMP/err")"
 sed '1s/^specseg-shape [0-9]* /specseg-shape 9 /' "$TMP/a.sss" > "$TMP/v.sss"
 "$BIN" match "$TMP/v.sss" "$TMP/b.sss" -o "$TMP/x.txt" > /dev/null 2> "$TMP/err"; rc=$?
-[ $rc -eq 1 ] && grep -q 'format version 9; this library .* reads version 2 only' "$TMP/err" && ok || bad "version: $(cat "$TMP/err")"
+[ $rc -eq 1 ] && grep -q 'format version 9; this library .* reads version 3 only' "$TMP/err" && ok || bad "version: $(cat "$TMP/err")"
 : > "$TMP/e.sss"
 "$BIN" segment "$TMP/e.sss" -o "$TMP/x.txt" > /dev/null 2> "$TMP/err"; rc=$?
 [ $rc -eq 1 ] && grep -q 'not a specseg prepared-shape file' "$TMP/err" && ok || bad "empty .sss: $(cat "$TMP/err")"

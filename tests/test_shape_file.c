@@ -41,7 +41,16 @@ static int same_shape(const ss_prepared_shape *a, const ss_prepared_shape *b) {
        same_bytes(g->phi, h->phi, 8 * wn) && same_bytes(g->crit, h->crit, 4 * m) &&
        same_bytes(g->crit_type, h->crit_type, m) && same_bytes(g->work_labels, h->work_labels, 4 * wn) &&
        same_bytes(g->work_dist, h->work_dist, 8 * wn) && !a->prep.crit_fields == !b->prep.crit_fields &&
-       (!a->prep.crit_fields || same_bytes(a->prep.crit_fields, b->prep.crit_fields, 8 * wn * m));
+       (!a->prep.crit_fields || same_bytes(a->prep.crit_fields, b->prep.crit_fields, 8 * wn * m)) &&
+       a->prep.nprobe_cache == b->prep.nprobe_cache;
+  for (int i = 0; ok && i < a->prep.nprobe_cache; i++) {
+    const ss_fmap_probe_cache *c = &a->prep.probe_cache[i], *d = &b->prep.probe_cache[i];
+    const size_t ck = (size_t)c->k, kk = ck * (ck + 1) / 2;
+    ok = c->k == d->k && c->kd == d->kd && c->n_energies == d->n_energies && c->descr_step == d->descr_step &&
+         c->sigma_factor == d->sigma_factor && c->nwks == d->nwks && c->kt == d->kt && !c->O == !d->O && !c->T == !d->T &&
+         same_bytes(c->A, d->A, 8 * ck * c->nwks) && same_bytes(c->P, d->P, 8 * kk * c->nwks) &&
+         (!c->O || same_bytes(c->O, d->O, 8 * ck * ck * c->nwks)) && (!c->T || same_bytes(c->T, d->T, 8 * kk * c->kt));
+  }
   if (ok && a->has_signature) {
     const ss_centre_signature *s = &a->sig, *t = &b->sig;
     ok = s->m == t->m && s->nd == t->nd && s->volume_ratio == t->volume_ratio && s->orient_sign == t->orient_sign &&
@@ -120,8 +129,8 @@ static void damage_tests(const char *good, const char *dir) {
   CHECK(read_bytes(path, b, n / 2, &e) == SS_ERR_PARSE); /* and never partly filled: checked by ASan (no leak) */
   /* another format version, another machine, not a prepared shape at all */
   CHECK(b[14] == '0' + SS_PREPARED_SHAPE_VERSION);
-  b[14] = '1'; /* version 1: before the critical points' fields */
-  CHECK(read_bytes(path, b, n, &e) == SS_ERR_PARSE && strstr(e.msg, "format version 1") && strstr(e.msg, "version 2"));
+  b[14] = '2'; /* version 2: before the probe cache */
+  CHECK(read_bytes(path, b, n, &e) == SS_ERR_PARSE && strstr(e.msg, "format version 2") && strstr(e.msg, "version 3"));
   b[14] = '0' + SS_PREPARED_SHAPE_VERSION;
   unsigned char *c = memchr(b, 'l', key_end); /* "le" -> "be" */
   if (c && c[1] == 'e') {
@@ -185,6 +194,9 @@ int main(void) {
   CHECK(ss_prepared_shape_compute(&X, NULL, kev, &o.autopair, &PX, &e) == SS_OK);
   CHECK(ss_prepared_shape_compute(&Y, NULL, kev, &o.autopair, &PY, &e) == SS_OK);
   CHECK(PX.has_signature && PY.has_signature && PX.prep.kev == kev);
+  /* the default match's probe cache: the STD start's basis (with the triple products) and the
+   * segment-aided one's */
+  CHECK(PX.prep.nprobe_cache == 2 && PX.prep.probe_cache[0].T && PX.prep.probe_cache[0].O && PX.prep.probe_cache[1].nwks > 0);
   char px[4200], py[4200];
   snprintf(px, sizeof px, "%s/x.sss", dir);
   snprintf(py, sizeof py, "%s/y.sss", dir);

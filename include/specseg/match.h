@@ -424,8 +424,9 @@ SS_API void ss_match_result_free(ss_match_result *r);
  * What a match needs from one shape, computed once (specseg prepare) and matched many times: the
  * input mesh, its ss_shape_prep (the segmentation with its streamlined work mesh, Ψ, critical
  * points, iVd labels and centre distances; K eigenpairs and masses of the input; the critical
- * points' geodesic fields, so no geodesic is propagated at match time), the options they
- * were computed with and, for one-component meshes, the landmark-free pairing's centre signature.
+ * points' geodesic fields, so no geodesic is propagated at match time, and the probe cache of the
+ * default match's functional maps), the options they were computed with and, for one-component
+ * meshes, the landmark-free pairing's centre signature.
  *
  * File format (version SS_PREPARED_SHAPE_VERSION), the design of the eval cache (util/blob.h):
  *   line 1: "specseg-shape VERSION BYTEORDER intN doubleN lib X.Y.Z mesh NV NF HASH kev K
@@ -433,12 +434,12 @@ SS_API void ss_match_result_free(ss_match_result *r);
  *            (HASH: FNV-1a 64 of the mesh's nv, nf, V, F; doubles printed exactly, %.17g);
  *   line 2: "payload BYTES fnv1a64 CHECKSUM" (of line 1 followed by the payload);
  *   then the raw native arrays: mesh, proxy flag, prep (eigenpairs, masses, segmentation, the
- *   critical points' geodesic fields), [proxy mesh, to_proxy, proxy_src, proxy prep], signature
- *   (version 2; version 1 had neither fields nor proxies).
+ *   critical points' geodesic fields, the probe cache), [proxy mesh, to_proxy, proxy_src, proxy
+ *   prep], signature (version 3; version 2 had no probe cache, version 1 neither fields nor proxies).
  * A file of another format version, byte order or type sizes, cut short, longer, with any byte
  * changed (checksum) or with contents out of range is refused with SS_ERR_PARSE and the reason; it is
  * never used partly. */
-#define SS_PREPARED_SHAPE_VERSION 2
+#define SS_PREPARED_SHAPE_VERSION 3
 
 typedef struct ss_prepared_shape {
   ss_mesh mesh;                 /* the input mesh (owned) */

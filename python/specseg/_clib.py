@@ -158,7 +158,7 @@ class ss_shape_prep(C.Structure):
     _fields_ = [("mesh", C.POINTER(ss_mesh)), ("seg", ss_segmentation), ("kev", C.c_int),
                 ("evals", C.POINTER(C.c_double)), ("evecs", C.POINTER(C.c_double)), ("M", C.POINTER(C.c_double)),
                 ("area", C.c_double), ("t_segment", C.c_double), ("t_eigs", C.c_double),
-                ("crit_fields", C.POINTER(C.c_double))]
+                ("crit_fields", C.POINTER(C.c_double)), ("probe_cache", C.c_void_p), ("nprobe_cache", C.c_int)]
 
 
 class ss_centre_signature(C.Structure):

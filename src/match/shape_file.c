@@ -60,6 +60,7 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
   ssi_proxy_free(&px);
   ss_shape_prep *mp = out->has_proxy ? &out->proxy_prep : &out->prep; /* what a match uses */
   if (!st) st = ss_shape_prep_crit_fields(mp, err); /* the landmark pairing's distances, once */
+  if (!st) st = ss_shape_prep_probe_cache(mp, NULL, err); /* the default match's shape-only probe parts */
   if (!st && autopair) {
     int *comp = malloc(sizeof(int) * (size_t)out->mesh.nv);
     int nc = comp ? ssi_mesh_components(&out->mesh, comp) : -1;
@@ -141,6 +142,48 @@ static void put_prep(ssi_blob *b, const ss_shape_prep *p, size_t nv) {
   const double t[8] = {g->t_read, g->t_smooth, g->t_remesh, g->t_psi, g->t_spectrum, g->t_critical, g->t_ivd, g->t_total};
   SSI_PUT(b, t, 8);
   put_arr(b, p->crit_fields, wn * gm, sizeof(double));
+  const int nc = p->probe_cache ? p->nprobe_cache : 0;
+  SSI_PUT(b, &nc, 1);
+  for (int i = 0; i < nc; i++) {
+    const ss_fmap_probe_cache *c = &p->probe_cache[i];
+    const int h[6] = {c->k, c->kd, c->n_energies, c->descr_step, c->nwks, c->kt};
+    const size_t k = (size_t)c->k, kk = k * (k + 1) / 2;
+    SSI_PUT(b, h, 6), SSI_PUT(b, &c->sigma_factor, 1);
+    put_arr(b, c->A, k * c->nwks, sizeof(double)), put_arr(b, c->P, kk * c->nwks, sizeof(double));
+    put_arr(b, c->O, k * k * c->nwks, sizeof(double)), put_arr(b, c->T, kk * c->kt, sizeof(double));
+  }
+}
+
+static int all_finite(const double *x, size_t n) {
+  for (size_t i = 0; x && i < n; i++)
+    if (!isfinite(x[i])) return 0;
+  return 1;
+}
+
+/* put_prep's probe cache entries (none when the prep has no spectrum), range-checked; 1: read */
+static int get_probe_cache(ssi_blob *b, ss_shape_prep *p) {
+  int nc;
+  if (!SSI_GET(b, &nc, 1) || nc < 0 || nc > 8 || (nc > 0 && p->kev < 1)) return 0;
+  if (nc == 0) return 1;
+  if (!(p->probe_cache = calloc((size_t)nc, sizeof *p->probe_cache))) return b->bad = 1, 0;
+  p->nprobe_cache = nc;
+  for (int i = 0; i < nc; i++) {
+    ss_fmap_probe_cache *c = &p->probe_cache[i];
+    int h[6];
+    if (!SSI_GET(b, h, 6) || !SSI_GET(b, &c->sigma_factor, 1)) return 0;
+    c->k = h[0], c->kd = h[1], c->n_energies = h[2], c->descr_step = h[3], c->nwks = h[4], c->kt = h[5];
+    if (c->k < 1 || c->kd < c->k || c->kd > p->kev || c->n_energies < 1 || c->descr_step < 1 || c->nwks < 0 ||
+        c->nwks > c->n_energies || c->kt < 0 || c->kt > p->kev || !(c->sigma_factor > 0) || !isfinite(c->sigma_factor))
+      return 0;
+    const size_t k = (size_t)c->k, kk = k * (k + 1) / 2;
+    if (!get_arr(b, &c->A, k * c->nwks, sizeof(double), 1) || !get_arr(b, &c->P, kk * c->nwks, sizeof(double), 1) ||
+        !get_arr(b, &c->O, k * k * c->nwks, sizeof(double), 1) || !get_arr(b, &c->T, kk * c->kt, sizeof(double), 1))
+      return 0;
+    if ((c->nwks > 0 && (!c->A || !c->P)) || !all_finite(c->A, k * c->nwks) || !all_finite(c->P, kk * c->nwks) ||
+        !all_finite(c->O, k * k * c->nwks) || !all_finite(c->T, kk * c->kt))
+      return 0;
+  }
+  return 1;
 }
 
 static void put_mesh(ssi_blob *b, const ss_mesh *m) {
@@ -238,7 +281,7 @@ static int get_prep(ssi_blob *b, ss_shape_prep *p, int nv_i, int with_spectrum) 
        get_arr(b, &g->crit_type, gm, 1, 1) && get_arr(b, &g->work_labels, wn, sizeof(int), 1) &&
        get_arr(b, &g->work_dist, wn, sizeof(double), 1);
   double t[8];
-  ok = ok && SSI_GET(b, t, 8) && get_arr(b, &p->crit_fields, wn * gm, sizeof(double), 1);
+  ok = ok && SSI_GET(b, t, 8) && get_arr(b, &p->crit_fields, wn * gm, sizeof(double), 1) && get_probe_cache(b, p);
   if (ok) {
     g->t_read = t[0], g->t_smooth = t[1], g->t_remesh = t[2], g->t_psi = t[3], g->t_spectrum = t[4];
     g->t_critical = t[5], g->t_ivd = t[6], g->t_total = t[7];
