@@ -13,9 +13,24 @@
 #include <string.h>
 #include <unistd.h>
 
+/* rprep's own parts (the rest of rprep is prep's): its eigenpairs and probe cache */
+static void rprep_free(ev_shape *s) {
+  free(s->rprep.evals), free(s->rprep.evecs);
+  for (int i = 0; i < s->rprep.nprobe_cache && s->rprep.probe_cache; i++) ss_fmap_probe_cache_free(&s->rprep.probe_cache[i]);
+  free(s->rprep.probe_cache);
+  memset(&s->rprep, 0, sizeof s->rprep);
+}
+
+/* rprep as a prepared shape of the refined method's matches: its probe cache, once per shape rather
+ * than in every match (rprep starts as a shallow copy of prep, which has none) */
+static ss_status rprep_cache(ev_shape *s, const ev_context *ctx, ss_error *err) {
+  s->rprep.probe_cache = NULL, s->rprep.nprobe_cache = 0;
+  return ss_shape_prep_probe_cache(&s->rprep, &ctx->ropt, err);
+}
+
 void ev_shape_free(ev_shape *s) {
   if (!s) return;
-  free(s->rprep.evals), free(s->rprep.evecs); /* the rest of rprep is prep's */
+  rprep_free(s);
   ss_shape_prep_free(&s->prep);
   ss_mesh_free(&s->mesh);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), ss_fmap_probes_free(&s->base[i]);
@@ -99,7 +114,8 @@ ss_status ev_shape_refined(ev_shape *s, const ev_context *ctx, ss_error *err) {
   s->rprep.mesh = &s->mesh;
   s->rprep.kev = kr, s->rprep.evals = ev, s->rprep.evecs = ph;
   s->rprep.t_segment = 0, s->rprep.t_eigs = ss_time() - t0;
-  return SS_OK;
+  if ((st = rprep_cache(s, ctx, err))) rprep_free(s);
+  return st;
 }
 
 /* ---- disk cache ---------------------------------------------------------------------------------
@@ -270,7 +286,11 @@ static ss_status shape_load(const char *path, const char *label, const char *sho
     cache_path(cache_dir, key, label, cpath, sizeof cpath);
     int r = cache_load(cpath, key, ctx, s, why, sizeof why);
     if (r > 0) {
-      if (ctx->kref <= 0 || s->rprep.evecs) return SS_OK;
+      if (ctx->kref <= 0) return SS_OK;
+      if (s->rprep.evecs) {
+        if ((st = rprep_cache(s, ctx, err))) goto fail;
+        return SS_OK;
+      }
       /* an entry without this run's refined eigenpairs: add them */
       if ((st = ev_shape_refined(s, ctx, err))) goto fail;
       cache_store(cpath, key, s);
@@ -312,8 +332,7 @@ ss_status ev_shape_prepare(ev_shape *s, const ev_context *ctx, ss_error *err) {
   if ((st = ev_shape_refined(s, ctx, err))) goto fail;
   return SS_OK;
 fail:
-  free(s->rprep.evals), free(s->rprep.evecs);
-  memset(&s->rprep, 0, sizeof s->rprep);
+  rprep_free(s);
   ss_shape_prep_free(&s->prep);
   for (int i = 0; i < 3; i++) free(s->lmd[i]), s->lmd[i] = NULL;
   return st;
