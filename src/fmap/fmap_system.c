@@ -181,12 +181,11 @@ done:
   return st;
 }
 
-/* x = N⁻¹ b for the SPD N (m x m, leading dimension ld, lower triangle read; destroyed only by the
- * fallback): LAPACK dsposv's scheme — Cholesky in single precision, refinement with double residuals
+/* x = N⁻¹ b for the SPD N (m x m, leading dimension ld, lower triangle read, not written): LAPACK dsposv's scheme — Cholesky in single precision, refinement with double residuals
  * until max|b − N x| ≤ max|x|·‖N‖∞·ε·√m, a double factorisation when the single one fails or 30
  * steps do not converge — without its NaN scan, its separate norm pass and its repacking of N for
  * every residual (dsymm; dsymv reads the triangle in place). */
-static ss_status solve_spd(size_t m, double *N, size_t ld, const double *b, double *x, ss_error *err) {
+static ss_status solve_spd(size_t m, const double *N, size_t ld, const double *b, double *x, ss_error *err) {
   float *F = malloc(sizeof(float) * m * m), *r32 = malloc(sizeof(float) * m);
   double *r = malloc(sizeof(double) * m), *rowsum = calloc(m, sizeof(double));
   ss_status st = SS_OK;
@@ -223,10 +222,15 @@ static ss_status solve_spd(size_t m, double *N, size_t ld, const double *b, doub
       for (size_t i = 0; i < m; i++) x[i] += r32[i];
     }
   }
-  if (!done) {
+  if (!done) { /* the double factorisation, of a copy (N is the caller's) */
+    free(F), F = NULL;
+    double *D = malloc(sizeof(double) * m * m);
+    if (!D) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
+    for (size_t j = 0; j < m; j++) memcpy(D + j + m * j, N + j + ld * j, sizeof(double) * (m - j));
     memcpy(x, b, sizeof(double) * m);
-    lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, N, (lapack_int)ld);
-    if (info == 0) info = LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, N, (lapack_int)ld, x, (lapack_int)m);
+    lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, D, (lapack_int)m);
+    if (info == 0) info = LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)m, 1, D, (lapack_int)m, x, (lapack_int)m);
+    free(D);
     if (info != 0) st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dpotrf info %d)", (int)info);
   }
 done:
@@ -297,14 +301,18 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
   ss_status st = SS_OK;
   if (have_extra && (st = check_probes(S_extra, T_extra, k_S, k_T, "extra", err))) return st;
   if (have_extra && !(w_extra >= 0)) return ss_fail(err, SS_ERR_INVALID, "fmap: negative extra-probe weight %g", w_extra);
-  double *N = malloc(sizeof(double) * m * m), *rhs = malloc(sizeof(double) * m), *x = malloc(sizeof(double) * m);
-  if (!N || !rhs || !x) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
-  for (size_t j = 0; j < m; j++) /* the lower triangle (all the solver reads) */
-    memcpy(N + j + m * j, s->N + j + m * j, sizeof(double) * (m - j));
+  /* the base system as it is, or a copy with the extra block's terms */
+  const int add = have_extra && S_extra->p > 0;
+  double *own = add ? malloc(sizeof(double) * m * m) : NULL, *rhs = malloc(sizeof(double) * m), *x = malloc(sizeof(double) * m);
+  const double *N = add ? own : s->N;
+  if ((add && !own) || !rhs || !x) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
   memcpy(rhs, s->rhs, sizeof(double) * m);
-  if (have_extra && S_extra->p > 0 &&
-      (st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, 0.0, N, rhs, err)))
-    goto done;
+  if (add) {
+    for (size_t j = 0; j < m; j++) /* the lower triangle (all the solver reads) */
+      memcpy(own + j + m * j, s->N + j + m * j, sizeof(double) * (m - j));
+    if ((st = add_block(k_S, k_T, m, S_extra, T_extra, s->w.w_descr * w_extra, s->w.w_dcomm, extra_dcomm, 0.0, own, rhs, err)))
+      goto done;
+  }
   /* fixed first column (C[:, 0] = (v, 0, …, 0)): its terms move to the right-hand side and the
    * system of the other columns, N's trailing block, is solved */
   size_t f0 = 0;
@@ -318,7 +326,7 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
   if ((st = solve_spd(m - f0, N + f0 + m * f0, m, rhs + f0, x + f0, err))) goto done;
   memcpy(C, x, sizeof(double) * m);
 done:
-  free(N);
+  free(own);
   free(rhs);
   free(x);
   return st;
