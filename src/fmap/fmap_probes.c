@@ -11,7 +11,12 @@
  * The filtered probes are synthesised from the first kd = max(k, descr_k) eigenpairs (the WKS
  * filters on kd eigenvalues, the filtered functions' coefficients on kd eigenfunctions) and then
  * projected onto the first k, so a larger descr_k gives probes with more detail in the same basis.
- * kd = k is the NO17 / paper construction, computed by the same operations as before the option. */
+ * kd = k is the NO17 / paper construction, computed by the same operations as before the option.
+ *
+ * The base probes are built as blocks [WKS | landmarks | own descriptors]. The WKS block depends on
+ * the shape alone (a probe cache entry holds it). A landmark probe is Φ_kd c, so its operator is
+ * Σ_l c_l T_l with the triple products T_l = Φ_kᵀ M diag(φ_l) Φ_k (also cached): one small dgemm
+ * instead of a pass over the vertices per probe. */
 #include "fmap/fmap_options.h"
 #include "specseg/laplacian.h"
 #include "mesh/mesh_topology.h"
@@ -67,24 +72,42 @@ done:
   return st;
 }
 
-/* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked).
+/* F's columns each divided by its L²(M) norm (a zero column stays); norms (may be NULL): the norms
+ * divided by (1 for a zero column) */
+static void normalise_columns(int n, const double *M, int p, double *F, double *norms) {
+  for (int c = 0; c < p; c++) {
+    double *f = F + (size_t)n * c, s = 0;
+    for (int x = 0; x < n; x++) s += M[x] * f[x] * f[x];
+    if (norms) norms[c] = s > 0 ? sqrt(s) : 1.0;
+    if (s > 0) cblas_dscal(n, 1.0 / sqrt(s), f, 1);
+  }
+}
+
+/* Σ M, which the operators need positive and finite */
+static ss_status unit_area_scale(int n, const double *M, double *area, ss_error *err) {
+  *area = 0;
+  for (int x = 0; x < n; x++) *area += M[x];
+  if (!(*area > 0 && isfinite(*area)))
+    return ss_fail(err, SS_ERR_INVALID, "probes: the shape's masses sum to %g (need a positive finite area)", *area);
+  return SS_OK;
+}
+
+/* Normalise the columns of F in L²(M), then fill out (A, and the packed operators when asked; the
+ * orientation operators of the first n_orient columns).
  * Scale: with the shape scaled by s, Φ goes as 1/s, M as s² and a unit-L²(M) function as 1/s, so the
  * coefficients A = Φᵀ M f are scale-free but D = Φᵀ M diag(f) Φ goes as 1/s: the commutativity term of
  * Eq. (1) would weigh 1/s² against the data term (x1e4 made it vanish, x1e-4 swamp the descriptors).
  * The operators are therefore those of the shape scaled to unit area, D·√area (f·√area is the
  * function normalised at unit area; Φ and M scale back); A is the same at any scale. */
 static ss_status finish(const ss_mesh *mesh, int k, const double *evecs, const double *M, double *F, int p,
-                        int with_operators, int orient_from, int n_orient, ss_fmap_probes *out, ss_error *err) {
+                        int with_operators, int n_orient, ss_fmap_probes *out, ss_error *err) {
   const int n = mesh->nv;
   double area = 0;
-  for (int x = 0; x < n; x++) area += M[x];
-  if (with_operators && !(area > 0 && isfinite(area)))
-    return ss_fail(err, SS_ERR_INVALID, "probes: the shape's masses sum to %g (need a positive finite area)", area);
-  for (int c = 0; c < p; c++) {
-    double *f = F + (size_t)n * c, s = 0;
-    for (int x = 0; x < n; x++) s += M[x] * f[x] * f[x];
-    if (s > 0) cblas_dscal(n, 1.0 / sqrt(s), f, 1);
+  if (with_operators) {
+    ss_status sa = unit_area_scale(n, M, &area, err);
+    if (sa) return sa;
   }
+  normalise_columns(n, M, p, F, NULL);
   memset(out, 0, sizeof *out);
   out->k = k, out->p = p, out->nd = with_operators ? p : 0;
   out->A = malloc(sizeof(double) * (size_t)k * (p > 0 ? p : 1));
@@ -95,9 +118,9 @@ static ss_status finish(const ss_mesh *mesh, int k, const double *evecs, const d
   if (!st && with_operators) st = ss_fmap_mult_operators_packed(n, k, evecs, M, p, F, out->P, err);
   if (!st && with_operators) cblas_dscal((int)((size_t)k * (k + 1) / 2 * p), sqrt(area), out->P, 1);
   if (!st && with_operators && n_orient > 0) {
-    /* the orientation operators of columns orient_from.. orient_from + n_orient − 1, those of the shape
+    /* the orientation operators of the first n_orient columns, those of the shape
      * at unit area (φ and the unit-L²(M) functions scale back by √area each, O is trilinear in them) */
-    out->no = n_orient < p - orient_from ? n_orient : p - orient_from;
+    out->no = n_orient < p ? n_orient : p;
     if (!(out->O = malloc(sizeof(double) * (size_t)k * k * out->no))) st = ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
     /* every face wound the same way on both shapes: each mesh's outward orientation (a scan wound
      * inward, or partly each way, gives the same operators) */
@@ -105,7 +128,7 @@ static ss_status finish(const ss_mesh *mesh, int k, const double *evecs, const d
     if (!st) st = ssi_mesh_outward_copy(mesh, &Fo, err);
     ss_mesh outward = *mesh;
     if (Fo) outward.F = Fo;
-    if (!st) st = ss_fmap_orientation_operators(&outward, k, evecs, out->no, F + (size_t)n * orient_from, out->O, err);
+    if (!st) st = ss_fmap_orientation_operators(&outward, k, evecs, out->no, F, out->O, err);
     free(Fo);
     if (!st) cblas_dscal((int)((size_t)k * k * out->no), area * sqrt(area), out->O, 1);
   }
@@ -134,22 +157,6 @@ static ss_status masses(const ss_fmap_shape *s, double **own, const double **M, 
   return st;
 }
 
-/* the L²(M) norms of F's columns, each column divided by its own (a zero column stays) */
-static void normalise_columns(int n, const double *M, int p, double *F, double *norms) {
-  for (int c = 0; c < p; c++) {
-    double *f = F + (size_t)n * c, s = 0;
-    for (int x = 0; x < n; x++) s += M[x] * f[x] * f[x];
-    norms[c] = s > 0 ? sqrt(s) : 1.0;
-    if (s > 0) cblas_dscal(n, 1.0 / sqrt(s), f, 1);
-  }
-}
-
-static double mass_sum(int n, const double *M) {
-  double area = 0;
-  for (int x = 0; x < n; x++) area += M[x];
-  return area;
-}
-
 /* T (k(k+1)/2 x kt): the packed operators of the first kt eigenfunctions */
 static ss_status triple_products(int n, int k, int kt, const double *evecs, const double *M, double **T, ss_error *err) {
   if (!(*T = malloc(sizeof(double) * (size_t)k * (k + 1) / 2 * kt))) return ss_fail(err, SS_ERR_NOMEM, "probes: out of memory");
@@ -165,7 +172,7 @@ static ss_status wks_block(const ss_fmap_shape *s, const ss_fmap_match_options *
   double *F = NULL;
   int p = 0;
   ss_status st = kept_columns(n, kd, s->evals, s->evecs, o, 1, NULL, 0, o->n_energies, &F, &p, NULL, err);
-  if (!st) st = finish(s->mesh, o->k, s->evecs, M, F, p, with_operators, 0, o->w_orient > 0 ? nwks : 0, out, err);
+  if (!st) st = finish(s->mesh, o->k, s->evecs, M, F, p, with_operators, o->w_orient > 0 ? nwks : 0, out, err);
   free(F);
   return st;
 }
@@ -266,11 +273,8 @@ static ss_status landmark_block(const ss_fmap_shape *s, const ss_fmap_match_opti
   out->k = k, out->p = p;
   if ((st = ss_fmap_project(n, k, s->evecs, M, p, F, out->A, err))) goto done;
   if (with_operators && p > 0) {
-    const double area = mass_sum(n, M);
-    if (!(area > 0 && isfinite(area))) {
-      st = ss_fail(err, SS_ERR_INVALID, "probes: the shape's masses sum to %g (need a positive finite area)", area);
-      goto done;
-    }
+    double area;
+    if ((st = unit_area_scale(n, M, &area, err))) goto done;
     const ss_fmap_probe_cache *c = cached_triple(s, k, kd);
     if (c) T = c->T;
     else if (!(st = triple_products(n, k, kd, s->evecs, M, &Tl, err))) T = Tl;
@@ -334,7 +338,7 @@ ss_status ss_fmap_base_probes(const ss_fmap_shape *s, int nl, const int *lm, con
     /* without the WKS, as many of them as the WKS columns they replace get orientation operators */
     const int nwks = (o.n_energies + o.descr_step - 1) / o.descr_step;
     const int n_orient = o.no_wks && o.w_orient > 0 ? (s->ndescr < nwks ? s->ndescr : nwks) : 0;
-    if ((st = finish(s->mesh, k, s->evecs, M, F, s->ndescr, with_operators, 0, n_orient, &blk, err))) goto done;
+    if ((st = finish(s->mesh, k, s->evecs, M, F, s->ndescr, with_operators, n_orient, &blk, err))) goto done;
     if ((st = append_block(k, out, &blk, err))) goto done;
   }
   if (out->p == 0) st = ss_fail(err, SS_ERR_INVALID, "probes: no WKS, no landmark and no descriptor");
@@ -375,7 +379,7 @@ ss_status ss_fmap_extra_probes(const ss_fmap_shape *s, int nl, int nextra, const
     memcpy(F, extra, sizeof(double) * (size_t)n * nextra);
     p = nextra;
   }
-  st = finish(s->mesh, k, s->evecs, M, F, p, with_operators, 0, 0, out, err);
+  st = finish(s->mesh, k, s->evecs, M, F, p, with_operators, 0, out, err);
 done:
   free(own), free(coef), free(F);
   return st;
