@@ -28,12 +28,18 @@ static ss_fmap_match_options fmap_options(const ev_context *ctx) {
 ss_status ev_shape_probes(ev_shape *s, const ev_context *ctx, int lm_mask, ss_error *err) {
   ss_fmap_shape f = fmap_shape(s);
   ss_fmap_match_options fo = fmap_options(ctx);
-  for (int set = 0; set < 3; set++) {
+  int todo = 0;
+  for (int set = 0; set < 3; set++) todo += (lm_mask >> set & 1) && s->base[set].p == 0;
+  /* the landmark sets share the shape-only parts (the same numbers as computed per set) */
+  ss_fmap_probe_cache c = {0};
+  ss_status st = SS_OK;
+  if (todo > 1 && !fo.no_wks && !(st = ss_fmap_probe_cache_compute(&f, &fo, 1, 0, &c, err))) f.cache = &c, f.ncache = 1;
+  for (int set = 0; set < 3 && !st; set++) {
     if (!(lm_mask >> set & 1) || s->base[set].p > 0) continue;
-    ss_status st = ss_fmap_base_probes(&f, EV_NL, ev_landmarks(ctx, s, set), &fo, fo.w_dcomm > 0, &s->base[set], err);
-    if (st) return st;
+    st = ss_fmap_base_probes(&f, EV_NL, ev_landmarks(ctx, s, set), &fo, fo.w_dcomm > 0, &s->base[set], err);
   }
-  return SS_OK;
+  ss_fmap_probe_cache_free(&c);
+  return st;
 }
 
 /* the calling thread's CPU seconds (the evaluation runs pairs in parallel) */
