@@ -77,8 +77,7 @@ static int start_options(const ss_match_options *o, ss_fmap_match_options fo[2])
   fo[0] = fo[1] = o->fmap;
   fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0;
   fo[1].descr_k = o->seg_descr_k;
-  const int k = o->fmap.k, kd0 = fo[0].descr_k > k ? fo[0].descr_k : k, kd1 = fo[1].descr_k > k ? fo[1].descr_k : k;
-  return o->probes != SS_PROBES_STD && kd1 != kd0 ? 2 : 1;
+  return o->probes != SS_PROBES_STD && ssi_fmap_descr_k(&fo[1]) != ssi_fmap_descr_k(&fo[0]) ? 2 : 1;
 }
 
 /* the probe cache entries of a match with options o on prep p (*n 0: none applies) */
@@ -311,8 +310,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   ss_fmap_match_options fo[2];
   start_options(&o, fo);
   const int ops = o.fmap.w_dcomm > 0, xops = ops && o.fmap.extra_dcomm;
-  const int kd0 = fo[0].descr_k > k ? fo[0].descr_k : k, kd1 = fo[1].descr_k > k ? fo[1].descr_k : k;
-  const int own1 = want_seg && (!want_std || kd1 != kd0); /* the segment-aided map needs its own base */
+  const int own1 = want_seg && (!want_std || ssi_fmap_descr_k(&fo[1]) != ssi_fmap_descr_k(&fo[0])); /* its own base */
   ss_fmap_weights w;
   if ((st = ss_fmap_pair_weights(&sX, &sY, &fo[0], &w, err))) goto fail;
   for (int c = 0; c < 2; c++) {
