@@ -269,7 +269,7 @@ static int stage_match(demo_ctx *c) {
       rc = cli_error("demo: match: %s", err.msg);
       goto out;
     }
-    if (v == 0) printf("%d of %d/%d segments paired\n", r[v].pairs.n, r[v].pairs.nx, r[v].pairs.ny);
+    if (v == 1) printf("%d of %d/%d segments paired\n", r[v].pairs.n, r[v].pairs.nx, r[v].pairs.ny); /* (STD pairs none) */
     printf("%-4s mean geodesic error %.4f (/sqrt(area), exact geodesics; %.2f s)\n", names[v], e[v], ss_time() - t);
     if (v == 2) {
       char file[96], path[4096];
@@ -286,7 +286,7 @@ static int stage_match(demo_ctx *c) {
   for (int i = 0; i < X->nv; i++) ident[i] = i;
   char heading[160];
   snprintf(heading, sizeof heading, "synthetic humanoid, pose %d to pose %d: 5 landmarks (head, hands, feet), %d segment pairs",
-           c->shapes[ia].humanoid_pose, c->shapes[ib].humanoid_pose, r[0].pairs.n);
+           c->shapes[ia].humanoid_pose, c->shapes[ib].humanoid_pose, r[2].pairs.n);
   ss_map_comparison fig;
   ss_map_comparison_init(&fig, X, Y);
   fig.x_name = c->shapes[ia].name, fig.y_name = c->shapes[ib].name, fig.heading = heading;
@@ -298,7 +298,7 @@ static int stage_match(demo_ctx *c) {
   fig.segments_x = pa.seg.m, fig.segments_y = pb.seg.m;
   fig.labels_x = pa.seg.labels, fig.labels_y = pb.seg.labels;
   fig.centers_x = pa.seg.centers, fig.centers_y = pb.seg.centers;
-  fig.npairs = r[0].pairs.n, fig.pair_x = r[0].pairs.sx, fig.pair_y = r[0].pairs.sy; /* same for every probe set */
+  fig.npairs = r[2].pairs.n, fig.pair_x = r[2].pairs.sx, fig.pair_y = r[2].pairs.sy; /* ASA's and DIFF's */
   ss_render_options ro;
   ss_render_default_options(&ro);
   /* the segment gallery's panels and view: the spread arms fit, the raised leg shows */

@@ -51,7 +51,8 @@ static const char USAGE[] =
     "                      paper's Eq. (1) without it)\n"
     "  --fmap FILE         the functional map (functions on Y -> functions on X, K x K, in the bases of\n"
     "                      both shapes scaled to unit area) as .npy\n"
-    "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line\n"
+    "  --pairs FILE        the paired segment centres, 'x y' (input vertices) a line (with std: the\n"
+    "                      segments are then computed and paired, though its map does not use them)\n"
     "  --descriptors DX.npy DY.npy\n"
     "                      your own per-vertex descriptors as extra probes: (vertices of X) x d and\n"
     "                      (vertices of Y) x d float64 arrays, column j of one corresponding to column j\n"
@@ -137,6 +138,7 @@ int cmd_match(int argc, char **argv) {
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
   if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
   if (o.fmap.no_wks && !dxp) return cli_bad(&A, "--no-wks needs --descriptors DX.npy DY.npy (they replace the WKS)");
+  o.std_pairs = pairsp != NULL; /* the pairs file is written for every probe set */
   const char *ins[5] = {xp, yp, lmp ? lmp : "", dxp ? dxp : "", dyp ? dyp : ""}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
   int to_stdout = cli_count_std(outs, 3);
@@ -245,6 +247,7 @@ int cmd_match(int argc, char **argv) {
   char dnote[64] = "";
   if (o.ndescr) snprintf(dnote, sizeof dnote, ", %d own descriptors%s", o.ndescr, o.fmap.no_wks ? " (no WKS)" : "");
   const char *pn = o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff";
+  const int std_only = o.probes == SS_PROBES_STD && !o.std_pairs && !res.autopair.used; /* nothing segmented */
   static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
   if (res.autopair.used && !json)
     fprintf(report, "landmark-free pairing (%s search): energy %.4g, mirror candidate %.4g, next other %.4g (gap %.3f), "
@@ -267,9 +270,12 @@ int cmd_match(int argc, char **argv) {
   cli_job_num(&J, "t_pair", res.t_pair), cli_job_num(&J, "t_fmap", res.t_fmap), cli_job_num(&J, "t_zoomout", res.t_zoomout);
   cli_job_num(&J, "t_write", t_write);
   if (!json) {
-    fprintf(report, "%d -> %d vertices, %d landmarks%s, %d of %d/%d segments paired, probes %s, k %d%s%s%s -> %s\n",
-            X->nv, Y->nv, res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", res.pairs.n, res.pairs.nx, res.pairs.ny, pn, o.fmap.k, o.refine == SS_REFINE_NONE ? "" : ", refined: ",
-            refined, dnote, cli_out_name(outp));
+    char segs[64] = "no segments (std)";
+    if (!std_only)
+      snprintf(segs, sizeof segs, "%d of %d/%d segments paired", res.pairs.n, res.pairs.nx, res.pairs.ny);
+    fprintf(report, "%d -> %d vertices, %d landmarks%s, %s, probes %s, k %d%s%s%s -> %s\n", X->nv, Y->nv,
+            res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", segs, pn, o.fmap.k,
+            o.refine == SS_REFINE_NONE ? "" : ", refined: ", refined, dnote, cli_out_name(outp));
     if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
   }
 done:

@@ -30,6 +30,11 @@ np=$(grep -c . "$TMP/pairs_diff.txt")
 awk -v n="$nv" '!(NF == 2 && $1 ~ /^[0-9]+$/ && $2 ~ /^[0-9]+$/ && $1 < n && $2 < n) { exit 1 }' "$TMP/pairs_diff.txt" && ok ||
   bad "pairs format: $(head -3 "$TMP/pairs_diff.txt")"
 cmp -s "$TMP/pairs_std.txt" "$TMP/pairs_diff.txt" && ok || bad "pairs differ between probe sets"
+# STD without --pairs: nothing segmented or paired, the same map
+"$BIN" match "$X" "$Y" --landmarks "$TMP/lm.txt" --probes std --k 30 --no-refine -o "$TMP/map_std0.txt" --timings \
+  > "$TMP/out_std0" 2> "$TMP/err_std0" && cmp -s "$TMP/map_std0.txt" "$TMP/map_std.txt" && ok || bad "std without --pairs: map differs"
+grep -q 'no segments (std)' "$TMP/out_std0" && grep -q '^timing: segment 0.000000' "$TMP/err_std0" && ok ||
+  bad "std without --pairs segmented: $(cat "$TMP/out_std0" "$TMP/err_std0")"
 for p in std diff; do eval "e_$p=\$(sed -n 's/^mean_error: //p' \"\$TMP/e_$p\")"; done
 awk -v s="${e_std:-1}" -v d="${e_diff:-1}" 'BEGIN { exit !(d < 0.1 && s < 0.1) }' && ok || bad "errors std ${e_std:-?} diff ${e_diff:-?}"
 # segment profiles: each runs and gives a valid map; the soft one differs from the default tent

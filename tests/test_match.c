@@ -225,6 +225,36 @@ int main(void) {
   }
   CHECK(err3[2] < err3[0]);
   CHECK(err3[2] < 0.1);
+
+  /* STD uses no segments: not paired by default, nor segmented from meshes; the map is the same as
+   * with the pairing asked for (std_pairs), which pairs as DIFF does */
+  {
+    CHECK(r[0].pairs.n == 0 && r[0].t_pair < 1e-3);
+    ss_match_options os = o;
+    os.probes = SS_PROBES_STD, os.std_pairs = 1;
+    ss_match_result rp, rm;
+    CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &os, &rp, &e) == SS_OK);
+    CHECK(rp.pairs.n == r[2].pairs.n && rp.pairs.n >= 2);
+    os.std_pairs = 0;
+    CHECK_MSG(ss_match(&X, &Y, 5, lm, lm, &os, &rm, &e) == SS_OK, "%s", e.msg);
+    CHECK(rm.pairs.n == 0 && rm.t_segment == 0 && rm.t_eigs > 0);
+    int same = rp.map && rm.map && r[0].map;
+    for (int x = 0; same && x < X.nv; x++) same = rp.map[x] == r[0].map[x] && rm.map[x] == r[0].map[x];
+    CHECK(same);
+    ss_match_result_free(&rp), ss_match_result_free(&rm);
+    /* a spectral-only preparation carries no segments: DIFF refuses it, STD matches with it */
+    ss_shape_prep qX;
+    CHECK(ss_shape_prep_compute_spectral(&X, 50, &qX, &e) == SS_OK && qX.seg.centers == NULL && qX.seg.m == 0);
+    os.probes = SS_PROBES_DIFF;
+    CHECK(ss_match_prepared(&qX, &pY, 5, lm, lm, &os, &rm, &e) == SS_ERR_INVALID && strstr(e.msg, "not segmented"));
+    os.probes = SS_PROBES_STD;
+    CHECK(ss_match_prepared(&qX, &pY, 5, lm, lm, &os, &rm, &e) == SS_OK);
+    same = rm.map != NULL;
+    for (int x = 0; same && x < X.nv; x++) same = rm.map[x] == r[0].map[x];
+    CHECK(same);
+    ss_match_result_free(&rm);
+    ss_shape_prep_free(&qX);
+  }
   CHECK(r[2].kc == o.fmap.k && r[2].C != NULL);
 
   /* swapping X and Y: the composition Y -> X -> Y stays near the identity on most vertices */

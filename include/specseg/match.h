@@ -131,6 +131,9 @@ typedef struct ss_shape_prep {
  * degenerate input): repair it first (its vertex indices are what landmarks and maps refer to). */
 SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                        ss_error *err);
+/* The same without the segmentation (seg left empty): what a match with STD probes and landmarks
+ * needs (ss_match_options.std_pairs), about half the cost. */
+SS_API ss_status ss_shape_prep_compute_spectral(const ss_mesh *m, int kev, ss_shape_prep *out, ss_error *err);
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
 /* Fills p->crit_fields (above) when it is NULL: seg.m exact single-source fields on seg.work
  * (ss_geodesic_fields, in parallel). Worth it for a shape matched more than once (specseg prepare,
@@ -333,6 +336,10 @@ typedef struct ss_match_options {
    * meshes' vertices (ss_match keeps the rows of the components it matches) */
   int ndescr;
   const double *descrX, *descrY;
+  /* STD probes use no segments, so by default a match with STD and landmarks neither segments its
+   * meshes (ss_match) nor pairs the segments (pairs empty); 1: segment and pair them all the same
+   * (reported in pairs and centerX / centerY, not used by the map) */
+  int std_pairs;
 } ss_match_options;
 
 /* Fills p->probe_cache (ss_shape_prep) for matches with options opts (NULL: defaults), replacing
@@ -369,8 +376,8 @@ typedef struct ss_match_result {
 
 /* Matches two prepared shapes (each with ≥ max(k, zoomout_kmax, descr_k) eigenpairs; zoomout_kmax
  * only with refinement). lmX/lmY: nl input vertices; nl = 0 (lmX, lmY may be NULL): landmark-free,
- * see ss_match_prepared_auto. With STD the pairing is still computed (and
- * reported) but not used; with fewer than pairing.min_landmarks landmarks, or no segment paired, ASA
+ * see ss_match_prepared_auto. With STD the segments are not paired (unless opts->std_pairs: then
+ * paired and reported, not used; the shapes must be segmented); with fewer than pairing.min_landmarks landmarks, or no segment paired, ASA
  * and DIFF fall back to STD and say so in notes. */
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);

@@ -546,7 +546,8 @@ C : numpy.ndarray of float64, shape (kc, kc)
     The functional map from functions on Y to functions on X (kc = k, or the ZoomOut size), in the
     eigenbases of both shapes scaled to unit area (so it does not depend on either shape's size).
 pairs_x, pairs_y : numpy.ndarray of int32, shape (p,)
-    The paired segments: segment pairs_x[i] of X with segment pairs_y[i] of Y.
+    The paired segments: segment pairs_x[i] of X with segment pairs_y[i] of Y (empty with
+    probes="std" and landmarks: its map uses no segments, so none are paired).
 centers_x, centers_y : numpy.ndarray of int32, shape (p,)
     The input vertices at the centres of the paired segments.
 notes : str

@@ -138,7 +138,8 @@ class ss_match_options(C.Structure):
                 ("segment_profile", C.c_int), ("pairing", ss_pairing_options), ("refine", C.c_int),
                 ("refine_w_lap", C.c_double), ("refine_w_descr", C.c_double),
                 ("seg_descr_k", C.c_int), ("refine_single", C.c_int), ("autopair", ss_autopair_options),
-                ("ndescr", C.c_int), ("descrX", C.POINTER(C.c_double)), ("descrY", C.POINTER(C.c_double))]
+                ("ndescr", C.c_int), ("descrX", C.POINTER(C.c_double)), ("descrY", C.POINTER(C.c_double)),
+                ("std_pairs", C.c_int)]
 
 
 class ss_segment_pairs(C.Structure):

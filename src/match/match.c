@@ -265,11 +265,19 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   out->t_segment = X->t_segment + Y->t_segment;
   out->t_eigs = X->t_eigs + Y->t_eigs;
 
-  /* 1. pairing of the segments (reported for every probe set) */
+  /* 1. pairing of the segments (with STD only when asked for: its map does not use them) */
   double t0 = ss_time();
   if (pairs_in) {
     if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
-  } else if ((st = ss_pair_segments_prepared(X, Y, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  } else if (o.probes != SS_PROBES_STD || o.std_pairs) {
+    if (!X->seg.centers || !Y->seg.centers) {
+      st = ss_fail(err, SS_ERR_INVALID, "match: %s not segmented (ss_shape_prep_compute_spectral): %s",
+                   !X->seg.centers ? "X is" : "Y is", o.probes != SS_PROBES_STD ? "ASA and DIFF pair its segments"
+                                                                                 : "std_pairs pairs its segments");
+      goto fail;
+    }
+    if ((st = ss_pair_segments_prepared(X, Y, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
+  }
   int np = out->pairs.n;
   out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
   out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
@@ -702,9 +710,13 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
     goto done;
   if (cx.active) PX = &cx.coarse;
   if (cy.active) PY = &cy.coarse;
-  if ((st = ss_shape_prep_compute(PX, &o.seg, kev, &pX, err))) { name_shape(err, "X (the first mesh)"); goto done; }
+  /* STD with landmarks uses no segments: only the spectra, unless the pairing is asked for */
+  const int segment = nl == 0 || o.probes != SS_PROBES_STD || o.std_pairs;
+  st = segment ? ss_shape_prep_compute(PX, &o.seg, kev, &pX, err) : ss_shape_prep_compute_spectral(PX, kev, &pX, err);
+  if (st) { name_shape(err, "X (the first mesh)"); goto done; }
   have_x = 1;
-  if ((st = ss_shape_prep_compute(PY, &o.seg, kev, &pY, err))) { name_shape(err, "Y (the second mesh)"); goto done; }
+  st = segment ? ss_shape_prep_compute(PY, &o.seg, kev, &pY, err) : ss_shape_prep_compute_spectral(PY, kev, &pY, err);
+  if (st) { name_shape(err, "Y (the second mesh)"); goto done; }
   have_y = 1;
   if ((st = ssi_check_landmarks_segmented(&pX, &pY, nl, lx, ly, lmX, lmY, err))) goto done;
   if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;

@@ -91,8 +91,8 @@ void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals, double
     for (int i = 0; i < nv; i++) M[i] /= area;
 }
 
-ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
-                                ss_error *err) {
+/* the checks of a mesh to prepare (out cleared) */
+static ss_status check_input(const ss_mesh *m, int kev, ss_shape_prep *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
   if (!m || !m->V || !m->F || m->nv < 1 || m->nf < 1) return ss_fail(err, SS_ERR_INVALID, "match: empty mesh (no faces)");
@@ -107,30 +107,45 @@ ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_
                    "match: the basis needs %d eigenpairs but the mesh has only %d vertices; use a basis size (k, "
                    "ZoomOut's kmax) below %d",
                    kev, m->nv, m->nv);
-  ss_status st = check_clean(m, err);
-  if (st) return st;
-  out->mesh = m;
-  double t0 = ss_time();
-  if ((st = ss_segment(m, seg_opts, &out->seg, err))) goto fail;
+  return check_clean(m, err);
+}
+
+/* the eigenpairs and masses of out->mesh, scaled to unit area */
+static ss_status compute_spectral(const ss_mesh *m, int kev, ss_shape_prep *out, ss_error *err) {
   double t1 = ss_time();
   out->kev = kev;
   out->evals = malloc(sizeof(double) * (size_t)kev);
   out->evecs = malloc(sizeof(double) * (size_t)m->nv * kev);
   out->M = malloc(sizeof(double) * (size_t)m->nv);
-  if (!out->evals || !out->evecs || !out->M) {
-    st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory for %d eigenpairs", kev);
-    goto fail;
-  }
-  if ((st = ss_mesh_eigs(m, kev, out->evals, out->evecs, err))) goto fail;
-  if ((st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, out->M, err))) goto fail;
+  if (!out->evals || !out->evecs || !out->M) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory for %d eigenpairs", kev);
+  ss_status st = ss_mesh_eigs(m, kev, out->evals, out->evecs, err);
+  if (!st) st = ss_mass_lumped(m, SS_MASS_BARYCENTRIC, out->M, err);
+  if (st) return st;
   out->area = 0;
   for (int i = 0; i < m->nv; i++) out->area += out->M[i];
   ss_shape_prep_unit_area(out->area, m->nv, kev, out->evals, out->evecs, out->M);
-  out->t_segment = t1 - t0;
   out->t_eigs = ss_time() - t1;
   return SS_OK;
-fail:
-  ss_shape_prep_free(out);
+}
+
+ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
+                                ss_error *err) {
+  ss_status st = check_input(m, kev, out, err);
+  if (st) return st;
+  out->mesh = m;
+  double t0 = ss_time();
+  if (!(st = ss_segment(m, seg_opts, &out->seg, err))) {
+    out->t_segment = ss_time() - t0;
+    st = compute_spectral(m, kev, out, err);
+  }
+  if (st) ss_shape_prep_free(out);
   return st;
 }
 
+ss_status ss_shape_prep_compute_spectral(const ss_mesh *m, int kev, ss_shape_prep *out, ss_error *err) {
+  ss_status st = check_input(m, kev, out, err);
+  if (st) return st;
+  out->mesh = m;
+  if ((st = compute_spectral(m, kev, out, err))) ss_shape_prep_free(out);
+  return st;
+}
