@@ -290,6 +290,7 @@ static void test_adapter(void) {
         CHECK(ev_match(&ctx, &X, &Y, lmset, mth, m1, &paired, &e) == SS_OK);
         ss_match_options mo = ctx.mopt;
         mo.probes = (ss_probe_set)mth;
+        mo.std_pairs = 1; /* eval reports the unit's pairing on its STD rows too */
         ss_match_result res;
         CHECK(ss_match_prepared(&X.prep, &Y.prep, EV_NL, ev_landmarks(&ctx, &X, lmset), ev_landmarks(&ctx, &Y, lmset), &mo,
                                 &res, &e) == SS_OK);

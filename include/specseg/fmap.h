@@ -280,7 +280,9 @@ typedef struct ss_fmap_shape {
   int ndescr;
   /* Optional (NULL / 0): shape-only parts of the base probes computed once
    * (ss_fmap_probe_cache_compute, from this shape's M, evals and evecs); ss_fmap_base_probes reads an
-   * entry whose options match instead of computing it, with the same result. */
+   * entry whose options match instead of computing it, with the same result (the same bits with a
+   * single-threaded BLAS, as the CLI runs it; a multithreaded OpenBLAS splits the products by
+   * columns, and may round the last bit differently). */
   const ss_fmap_probe_cache *cache;
   int ncache;
 } ss_fmap_shape;
