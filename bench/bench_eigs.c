@@ -112,7 +112,9 @@ static int ours(const ss_sparse *W, const double *M, int k, int method, double *
   return 0;
 }
 
-static const char *method_name(int m) { return m == SS_EIGS_BLOCK ? "block Lanczos" : m == SS_EIGS_ARPACK ? "ARPACK" : "-"; }
+static const char *method_name(int m) {
+  return m == SS_EIGS_BLOCK ? "block Lanczos" : m == SS_EIGS_ARPACK ? "ARPACK" : m == SS_EIGS_PRO ? "partial-reorth Lanczos" : "-";
+}
 
 static int run_case(const char *name, const ss_mesh *m, const char *outdir, const char *python, const char *script,
                     int reps, int k, const int *threads, int nthreads, int with_arpack) {

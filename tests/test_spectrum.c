@@ -256,9 +256,10 @@ static void test_subdivide(void) {
   ss_mesh_free(&a);
 }
 
-/* Block Lanczos (SS_EIGS_BLOCK) against ARPACK: same eigenvalues, same accuracy, the same eigenspaces
- * (eigenvectors up to sign, within a multiple eigenvalue up to a rotation), and which one AUTO picks. */
-static void compare_methods(const ss_mesh *m, int k, const char *what) {
+/* Block Lanczos (SS_EIGS_BLOCK) or partial reorthogonalisation (SS_EIGS_PRO) against ARPACK: same
+ * eigenvalues, same accuracy, the same eigenspaces (eigenvectors up to sign, within a multiple
+ * eigenvalue up to a rotation), and which one AUTO picks. */
+static void compare_methods(const ss_mesh *m, int k, const char *what, int method) {
   ss_sparse W;
   double *M;
   CHECK(operators(m, &W, &M) == 0);
@@ -273,15 +274,16 @@ static void compare_methods(const ss_mesh *m, int k, const char *what) {
   ss_error e;
   CHECK_MSG(ss_eigs(&W, M, k, &o, ea, Xa, &e) == SS_OK, "%s", e.msg);
   CHECK(st.method == SS_EIGS_ARPACK);
-  o.method = SS_EIGS_BLOCK;
+  o.method = method;
   double t0 = ss_time();
   CHECK_MSG(ss_eigs(&W, M, k, &o, eb, Xb, &e) == SS_OK, "%s", e.msg);
-  CHECK_MSG(st.method == SS_EIGS_BLOCK, "%s: method %d ran", what, st.method);
-  printf("%s (%d vertices): block Lanczos k=%d in %.3f s, block %d, %d restarts, %d solves\n", what, m->nv, k,
-         ss_time() - t0, st.block, st.restarts, st.operator_applications);
+  CHECK_MSG(st.method == method, "%s: method %d ran, not %d", what, st.method, method);
+  printf("%s (%d vertices): %s k=%d in %.3f s, block %d, %d restarts, %d solves, %d recovered\n", what, m->nv,
+         method == SS_EIGS_BLOCK ? "block Lanczos" : "partial reorthogonalisation", k, ss_time() - t0, st.block,
+         st.restarts, st.operator_applications, st.recovered);
   check_accuracy(&W, M, k, eb, Xb, what);
-  /* the same bits with one thread and with two (fixed row chunks summed in a fixed order) */
-  {
+  /* block: the same bits with one thread and with two (fixed row chunks summed in a fixed order) */
+  if (method == SS_EIGS_BLOCK) {
     int blas = openblas_get_num_threads(), omp = omp_get_max_threads();
     double *e1 = malloc(sizeof(double) * k), *e2 = malloc(sizeof(double) * k);
     double *X1 = malloc(sizeof(double) * n * k), *X2 = malloc(sizeof(double) * n * k);
@@ -322,7 +324,8 @@ static void test_block(void) {
   ss_mesh m;
   /* sphere: multiplicities 2l+1 up to 13 inside k = 40, more than the block of 8 */
   CHECK(ss_synth_icosphere(4, &m, NULL) == SS_OK);
-  compare_methods(&m, 40, "sphere");
+  compare_methods(&m, 40, "sphere", SS_EIGS_BLOCK);
+  compare_methods(&m, 40, "sphere", SS_EIGS_PRO); /* multiplicities: the completeness check recovers them */
   /* a Krylov size just above k (ncv = k + 10): the block method used to keep all but one block at each
    * restart and gave up after 1,000 restarts (0 of 39 pairs); it now keeps room for 4 blocks */
   {
@@ -358,12 +361,20 @@ static void test_block(void) {
       for (int d = 0; d < 3; d++) m.V[3 * (a.nv + i) + d] = 0.7 * b.V[3 * i + d] + (d == 0 ? 5.0 : 0.0);
     memcpy(m.F, a.F, sizeof(int) * 3 * a.nf);
     for (int i = 0; i < 3 * b.nf; i++) m.F[3 * a.nf + i] = b.F[i] + a.nv;
-    compare_methods(&m, 30, "two spheres");
+    compare_methods(&m, 30, "two spheres", SS_EIGS_BLOCK);
+    compare_methods(&m, 30, "two spheres", SS_EIGS_PRO);
     ss_mesh_free(&m);
     ss_mesh_free(&a);
     ss_mesh_free(&b);
   }
-  /* AUTO: ARPACK below SS_EIGS_BLOCK_MIN_N vertices or 32 pairs, the block method above */
+  /* a rectangle (simple eigenvalues), k = 100: partial reorthogonalisation against ARPACK */
+  {
+    rect_grid(1.3, 1.0, 71, 57, &m);
+    compare_methods(&m, 100, "rectangle", SS_EIGS_PRO);
+    ss_mesh_free(&m);
+  }
+  /* AUTO: partial reorthogonalisation below SS_EIGS_BLOCK_MIN_N vertices or 32 pairs, the block
+   * method above */
   {
     rect_grid(1.3, 1.0, 131, 121, &m); /* 15,851 vertices */
     CHECK(m.nv >= SS_EIGS_BLOCK_MIN_N);
@@ -378,10 +389,13 @@ static void test_block(void) {
     CHECK(ss_eigs(&W, M, 40, &o, ev, NULL, NULL) == SS_OK);
     CHECK_MSG(st.method == SS_EIGS_BLOCK, "AUTO ran method %d at n = %d, k = 40", st.method, m.nv);
     CHECK(ss_eigs(&W, M, 20, &o, ev, NULL, NULL) == SS_OK);
-    CHECK_MSG(st.method == SS_EIGS_ARPACK, "AUTO ran method %d at k = 20", st.method);
+    CHECK_MSG(st.method == SS_EIGS_PRO, "AUTO ran method %d at k = 20", st.method);
     /* interior shift: the block method needs σ <= 0, ARPACK runs */
     o.method = SS_EIGS_BLOCK;
     o.sigma = 30;
+    CHECK(ss_eigs(&W, M, 5, &o, ev, NULL, NULL) == SS_OK);
+    CHECK(st.method == SS_EIGS_ARPACK);
+    o.method = SS_EIGS_PRO; /* the same for partial reorthogonalisation */
     CHECK(ss_eigs(&W, M, 5, &o, ev, NULL, NULL) == SS_OK);
     CHECK(st.method == SS_EIGS_ARPACK);
     o.sigma = -1e-8;
@@ -458,14 +472,16 @@ static void test_faust(void) {
   ss_eigs_default_options(&o);
   o.stats = &st;
   CHECK_MSG(ss_eigs(&W, M, k, &o, ev, X, &e) == SS_OK, "%s", e.msg);
-  /* FAUST results are ARPACK's (segmentation and matching results depend on the eigenvectors) */
-  CHECK_MSG(st.method == SS_EIGS_ARPACK, "AUTO ran method %d on FAUST", st.method);
+  /* FAUST's pairs come from partial reorthogonalisation (segmentation and matching results depend
+   * on the eigenvectors: they must be ARPACK's eigenspaces, checked below) */
+  CHECK_MSG(st.method == SS_EIGS_PRO, "AUTO ran method %d on FAUST", st.method);
   printf("FAUST tr_reg_000 (%d vertices): k=100 in %.3f s\n", m.nv, ss_time() - t0);
   CHECK_MSG(fabs(ev[0]) < 1e-8, "lambda_0 = %g", ev[0]);
   CHECK(ev[1] > 1e-3);
   check_accuracy(&W, M, k, ev, X, "FAUST");
   free(ev); free(X); free(M);
   ss_sparse_free(&W);
+  compare_methods(&m, k, "FAUST tr_reg_000", SS_EIGS_PRO);
   ss_mesh_free(&m);
 }
 

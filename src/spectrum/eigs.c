@@ -8,8 +8,9 @@
  * (W − σM) is factored once with CHOLMOD (simplicial LDLᵀ).
  *
  * On large meshes (SS_EIGS_AUTO: from SS_EIGS_BLOCK_MIN_N vertices and 32 pairs) the same operator
- * is iterated by thick-restart block Lanczos instead (eigs_block.c) on a supernodal LLᵀ factor:
- * everything below (null pairs, completeness, Ritz post-processing) is shared.
+ * is iterated by thick-restart block Lanczos instead (eigs_block.c) on a supernodal LLᵀ factor, and
+ * below that by Lanczos with partial reorthogonalisation (eigs_pro.c), ARPACK being the fallback of
+ * both: everything below (null pairs, completeness, Ritz post-processing) is shared.
  *
  * Ritz vectors: instead of dseupd (which applies Householder reflectors column by column), we take
  * the final ncv x ncv Lanczos tridiagonal T from ARPACK's workspace, diagonalise it with LAPACK and
@@ -378,7 +379,7 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
   if (o.ncv != 0 && (o.ncv <= k || o.ncv > n))
     return ss_fail(err, SS_ERR_INVALID, "eigs: ncv = %d must satisfy k = %d < ncv <= n = %d", o.ncv, k, n);
   if (o.maxiter < 0) return ss_fail(err, SS_ERR_INVALID, "eigs: maxiter must be >= 0");
-  if (o.method != SS_EIGS_AUTO && o.method != SS_EIGS_ARPACK && o.method != SS_EIGS_BLOCK)
+  if (o.method != SS_EIGS_AUTO && o.method != SS_EIGS_ARPACK && o.method != SS_EIGS_BLOCK && o.method != SS_EIGS_PRO)
     return ss_fail(err, SS_ERR_INVALID, "eigs: unknown method %d", o.method);
   if (o.block < 0 || o.block >= n) return ss_fail(err, SS_ERR_INVALID, "eigs: block = %d must be in [0, n)", o.block);
   /* Scale. W is invariant under a uniform scaling of the shape by s and M scales with s², so the
@@ -475,10 +476,18 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
     tt1 = ss_time();
     if (st) goto done;
     lc.chol = chol;
+    int pro_done = 0;
     if (use_block) st = ssi_eigs_block_lanczos(&lc, kk, b, mmax, 0, X + nn * (size_t)c0, lam, err);
-    else st = arpack_run(&lc, kk, 0, X + nn * (size_t)c0, lam, err);
+    else {
+      /* partial reorthogonalisation first where it applies; ARPACK when its basis did not suffice */
+      const int pro = sigma <= 0 && (o.method == SS_EIGS_PRO || (o.method == SS_EIGS_AUTO && kk <= SS_EIGS_PRO_MAX_K));
+      int pmax = o.ncv ? o.ncv : (5 * kk > kk + 100 ? 5 * kk : kk + 100);
+      if (pmax > room - 1) pmax = room - 1;
+      if (pro) st = ssi_eigs_pro_lanczos(&lc, kk, pmax, 0, X + nn * (size_t)c0, lam, &pro_done, err);
+      if (!st && !pro_done) st = arpack_run(&lc, kk, 0, X + nn * (size_t)c0, lam, err);
+    }
     if (st) goto done;
-    method = use_block ? SS_EIGS_BLOCK : SS_EIGS_ARPACK;
+    method = use_block ? SS_EIGS_BLOCK : pro_done ? SS_EIGS_PRO : SS_EIGS_ARPACK;
     tt2 = ss_time();
     /* Completeness. Lanczos from one start vector sees a single direction of each exactly degenerate
      * eigenspace (symmetric shapes: spheres, tori) and can converge to a later eigenvalue instead of

@@ -44,4 +44,10 @@ void ssi_eigs_start_vector(double *r, int n, uint64_t seed);
 ss_status ssi_eigs_block_lanczos(ssi_lanczos_ctx *c, int nev, int block, int mmax, uint64_t seed, double *Y,
                                  double *lam, ss_error *err);
 
+/* The same nev pairs by single-vector Lanczos with partial reorthogonalisation and no restarts
+ * (eigs_pro.c): at most mmax basis columns; *converged = 0 (and SS_OK) when they did not suffice or
+ * the process broke down, for the caller to run ARPACK instead. Same convergence test. */
+ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t seed, double *Y, double *lam,
+                               int *converged, ss_error *err);
+
 #endif
