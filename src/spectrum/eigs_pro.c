@@ -68,8 +68,8 @@ static int by_theta_desc(const void *a, const void *b) {
 
 /* The nev largest eigenpairs of T (m x m: diagonal a, off-diagonal b[1..m-1]); converged when each
  * has β_{m+1}|s_{m,i}| <= tol·θ_i. The whole spectrum by MRRR (O(m²); a subset would go to bisection
- * and inverse iteration, several times slower). Fills theta (descending) and S (m x nev) when
- * converged; returns 1 converged, 0 not yet, -1 LAPACK failure. */
+ * and inverse iteration, several times slower). Fills theta (descending) and S (m x nev) when all
+ * converged; returns how many have (nev: done), -1 on LAPACK failure. */
 static int ritz_check(int m, int nev, const double *a, const double *b, double beta_next, double tol, double *d,
                       double *e, double *w, double *Z, int *isupp, ritz *rp, double *theta, double *S) {
   for (int i = 0; i < m; i++) d[i] = a[i];
@@ -78,10 +78,12 @@ static int ritz_check(int m, int nev, const double *a, const double *b, double b
   lapack_int info = LAPACKE_dstevr(LAPACK_COL_MAJOR, 'V', 'A', m, d, e, 0.0, 0.0, 0, 0, 0.0, &nfound, w, Z, m, isupp);
   if (info != 0 || nfound < m) return -1;
   const double *top = Z + (size_t)m * (m - nev), *wt = w + (m - nev); /* ascending: the nev largest last */
+  int nc = 0;
   for (int i = 0; i < nev; i++) {
     const double res = beta_next * fabs(top[(size_t)m * i + m - 1]);
-    if (!(wt[i] > 0) || res > tol * wt[i]) return 0;
+    nc += wt[i] > 0 && res <= tol * wt[i];
   }
+  if (nc < nev) return nc;
   for (int i = 0; i < nev; i++) rp[i].theta = wt[i], rp[i].col = i;
   qsort(rp, (size_t)nev, sizeof *rp, by_theta_desc);
   for (int i = 0; i < nev; i++) {
@@ -95,7 +97,7 @@ static int ritz_check(int m, int nev, const double *a, const double *b, double b
     const double sg = z[imax] < 0 ? -1.0 : 1.0;
     for (int r = 0; r < m; r++) S[(size_t)m * i + r] = sg * z[r];
   }
-  return 1;
+  return nev;
 }
 
 ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t seed, double *Y, double *lam,
@@ -139,7 +141,9 @@ ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t s
   double anorm = 0.0; /* running estimate of ‖T‖ ≈ ‖OP‖ for the rounding terms */
   int force = 0;      /* reorthogonalise the next vector too (Simon: in pairs) */
   int nreorth = 0, nint = 0;
-  const int check0 = 2 * nev > nev + 10 ? 2 * nev : nev + 10, every = 10;
+  /* the first convergence check at 2 nev (ARPACK's first basis), the next ones as far on as the
+   * pairs still missing, at about one pair per two steps (FAUST, k = 50-110), would take */
+  int next_check = 2 * nev > nev + 10 ? 2 * nev : nev + 10;
   for (int j = 0; j < mmax; j++) {
     double *vj = V + nn * (size_t)j, *r = V + nn * (size_t)(j + 1);
     if ((st = apply_op(c, vj, r, err))) goto out;
@@ -210,10 +214,11 @@ ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t s
     double *t = wprev;
     wprev = wcur, wcur = wnext, wnext = t;
     const int m = j + 1;
-    if (m >= check0 && ((m - check0) % every == 0 || m == mmax)) {
+    if (m >= next_check || m == mmax) {
       int cv = ritz_check(m, nev, a, b, b[m], c->tol * PRO_TOL_FACTOR, d, e, w, Z, isupp, rp, theta, S);
       if (cv < 0) { st = ss_fail(err, SS_ERR_NUMERIC, "eigs: tridiagonal eigensolver failed"); goto out; }
-      if (cv == 1) {
+      next_check = m + (2 * (nev - cv) > 10 ? 2 * (nev - cv) : 10);
+      if (cv == nev) {
         /* Ritz vectors, ascending λ = σ + 1/ν: the largest θ first */
         cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, nev, m, 1.0, V, n, S, m, 0.0, Y, n);
         /* a spurious copy of a converged pair (what a lapse of semi-orthogonality would leave) shows
