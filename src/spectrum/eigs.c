@@ -234,31 +234,33 @@ void ssi_eigs_project(ssi_lanczos_ctx *c, double *x) {
   }
 }
 
+ss_status ssi_eigs_apply_op(ssi_lanczos_ctx *c, const double *x, double *y, ss_error *err) {
+  const int n = c->n;
+  memcpy(y, x, sizeof(double) * (size_t)n);
+  ssi_eigs_project(c, y);
+  for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
+  double ts = ss_time();
+  ss_status st = ssi_chol_solve(c->chol, y, y, 1, err);
+  c->tsolve += ss_time() - ts;
+  c->nops++;
+  if (st) return st;
+  const double s = c->opscale; /* a power of two: sqm·s is exact */
+  for (int i = 0; i < n; i++) y[i] *= c->sqm[i] * s;
+  ssi_eigs_project(c, y);
+  return SS_OK;
+}
+
 /* The reverse-communication loop of dsaupd: OP y = M^-1/2 (W - σM)^-1 M^-1/2 x on the projected space. */
 static ss_status arpack_iterate(ssi_lanczos_ctx *c, int nev, int ncv, double *resid, double *V, a_int *iparam,
                                 a_int *ipntr, double *workd, double *workl, int lworkl, a_int *info,
                                 ss_error *err) {
   const int n = c->n;
-  const size_t nn = (size_t)n;
   a_int ido = 0;
   for (;;) {
     dsaupd_c(&ido, "I", n, "LM", nev, c->tol, resid, ncv, V, n, iparam, ipntr, workd, workl, lworkl, info);
     if (ido != -1 && ido != 1) return SS_OK;
-    const double *x = workd + ipntr[0] - 1;
-    double *y = workd + ipntr[1] - 1;
-    memcpy(y, x, sizeof(double) * nn);
-    ssi_eigs_project(c, y);
-    for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
-    double ts = ss_time();
-    ss_status st = ssi_chol_solve(c->chol, y, y, 1, err);
-    c->tsolve += ss_time() - ts;
-    c->nops++;
+    ss_status st = ssi_eigs_apply_op(c, workd + ipntr[0] - 1, workd + ipntr[1] - 1, err);
     if (st) return st;
-    if (c->opscale != 1)
-      for (int i = 0; i < n; i++) y[i] *= c->sqm[i] * c->opscale;
-    else
-      for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
-    ssi_eigs_project(c, y);
   }
 }
 

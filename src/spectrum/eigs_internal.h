@@ -30,6 +30,9 @@ typedef struct ssi_lanczos_ctx {
   int k; /* the caller's k (messages) */
 } ssi_lanczos_ctx;
 
+/* y = OP x (y must not alias x), counted in nops and timed in tsolve. */
+ss_status ssi_eigs_apply_op(ssi_lanczos_ctx *c, const double *x, double *y, ss_error *err);
+
 /* x ← P x (uses the context's scratch arrays: one caller at a time). */
 void ssi_eigs_project(ssi_lanczos_ctx *c, double *x);
 

@@ -29,23 +29,6 @@
  * rectangle, k = 8) */
 #define PRO_TOL_FACTOR 0.01
 
-/* OP x into y (y may not alias x): as ARPACK's reverse communication in eigs.c */
-static ss_status apply_op(ssi_lanczos_ctx *c, const double *x, double *y, ss_error *err) {
-  const int n = c->n;
-  memcpy(y, x, sizeof(double) * (size_t)n);
-  ssi_eigs_project(c, y);
-  for (int i = 0; i < n; i++) y[i] *= c->sqm[i];
-  double ts = ss_time();
-  ss_status st = ssi_chol_solve(c->chol, y, y, 1, err);
-  c->tsolve += ss_time() - ts;
-  c->nops++;
-  if (st) return st;
-  const double s = c->opscale;
-  for (int i = 0; i < n; i++) y[i] *= c->sqm[i] * s;
-  ssi_eigs_project(c, y);
-  return SS_OK;
-}
-
 /* w ← w − V h with h = Vᵀ w over the columns lo .. hi-1 of V (one classical Gram–Schmidt pass) */
 static double reorthogonalize(int n, int lo, int hi, const double *V, double *w, double *h) {
   if (hi > lo) {
@@ -146,7 +129,7 @@ ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t s
   int next_check = 2 * nev > nev + 10 ? 2 * nev : nev + 10;
   for (int j = 0; j < mmax; j++) {
     double *vj = V + nn * (size_t)j, *r = V + nn * (size_t)(j + 1);
-    if ((st = apply_op(c, vj, r, err))) goto out;
+    if ((st = ssi_eigs_apply_op(c, vj, r, err))) goto out;
     if (j > 0) cblas_daxpy(n, -b[j], V + nn * (size_t)(j - 1), 1, r, 1);
     double al = cblas_ddot(n, vj, 1, r, 1);
     cblas_daxpy(n, -al, vj, 1, r, 1);
