@@ -31,17 +31,17 @@ typedef struct ss_eigs_stats {
  *    LDLᵀ factor, reorthogonalising every vector against the whole basis; any shift.
  *  - SS_EIGS_PRO: Lanczos one vector at a time with partial reorthogonalisation (Simon 1984) and no
  *    restarts, on the same factor (eigs_pro.c): orthogonality loss is estimated by a recurrence and
- *    repaired only where and when it nears working precision. 1.7-2.4x ARPACK's speed at FAUST size
- *    (k = 50-110); relative residuals ~5e-10 against ARPACK's ~1e-11. Only for σ <= 0; when its
- *    basis of 3k vectors does not suffice, ARPACK runs instead.
+ *    repaired only where and when it nears working precision. 1.5-2.4x ARPACK's speed at FAUST size
+ *    (k = 50-110), relative residuals as small (ss_eigs_check: 5e-11 at k = 100). Only for σ <= 0;
+ *    when its basis of k + min(4k, 2k + 200) vectors does not suffice, ARPACK runs instead.
  *  - SS_EIGS_BLOCK: thick-restart block Lanczos on a supernodal LLᵀ factor, solving blocks of right-
  *    hand sides at once and reorthogonalising with matrix-matrix products, both shared over the
  *    OpenMP threads (eigs_block.c). Only for σ <= 0 (positive definite shifted matrix); otherwise,
  *    or when the shifted matrix is not positive definite or the mesh too small for the block basis,
  *    ARPACK runs instead.
  *  - SS_EIGS_AUTO (default): SS_EIGS_BLOCK from SS_EIGS_BLOCK_MIN_N vertices and 32 pairs on,
- *    SS_EIGS_PRO below (up to SS_EIGS_PRO_MAX_K pairs; every FAUST and TOSCA matching and
- *    segmentation computation runs there), ARPACK otherwise. */
+ *    SS_EIGS_PRO below (up to SS_EIGS_PRO_MAX_K pairs and without ncv; every FAUST and TOSCA
+ *    matching and segmentation computation runs there), ARPACK otherwise. */
 typedef enum ss_eigs_method { SS_EIGS_AUTO = 0, SS_EIGS_ARPACK = 1, SS_EIGS_BLOCK = 2, SS_EIGS_PRO = 3 } ss_eigs_method;
 #define SS_EIGS_BLOCK_MIN_N 15000
 #define SS_EIGS_PRO_MAX_K 500

@@ -482,8 +482,11 @@ ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_opti
     if (use_block) st = ssi_eigs_block_lanczos(&lc, kk, b, mmax, 0, X + nn * (size_t)c0, lam, err);
     else {
       /* partial reorthogonalisation first where it applies; ARPACK when its basis did not suffice */
-      const int pro = sigma <= 0 && (o.method == SS_EIGS_PRO || (o.method == SS_EIGS_AUTO && kk <= SS_EIGS_PRO_MAX_K));
-      int pmax = o.ncv ? o.ncv : (5 * kk > kk + 100 ? 5 * kk : kk + 100);
+      /* (ncv is ARPACK's Krylov size: given, AUTO runs ARPACK) */
+      const int pro = sigma <= 0 && (o.method == SS_EIGS_PRO || (o.method == SS_EIGS_AUTO && kk <= SS_EIGS_PRO_MAX_K && !o.ncv));
+      /* no restarts: room for the ~2.5k steps FAUST took at k = 50-110, and more (spheres: 3.8k) */
+      int pmax = kk + (4 * kk < 2 * kk + 200 ? 4 * kk : 2 * kk + 200);
+      if (pmax < kk + 100) pmax = kk + 100;
       if (pmax > room - 1) pmax = room - 1;
       if (pro) st = ssi_eigs_pro_lanczos(&lc, kk, pmax, 0, X + nn * (size_t)c0, lam, &pro_done, err);
       if (!st && !pro_done) st = arpack_run(&lc, kk, 0, X + nn * (size_t)c0, lam, err);
