@@ -141,6 +141,23 @@ static void damage_tests(const char *good, const char *dir) {
   const char *off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   CHECK(read_bytes(path, (const unsigned char *)off, strlen(off), &e) == SS_ERR_PARSE && strstr(e.msg, "not a specseg"));
   CHECK(read_bytes(path, b, n, &e) == SS_OK); /* undamaged again */
+  /* a file of the earlier checksum (byte-wise FNV-1a, "fnv1a64") is read as well, and checked */
+  {
+    CHECK(!memcmp(b + key_end + 1, "payload ", 8) && strstr((const char *)b + key_end + 1, " fnv1a64x4 "));
+    const size_t pay = head_end + 1, plen = n - pay;
+    uint64_t h = 1469598103934665603ull; /* the blob files' FNV start (blob.h) */
+    for (size_t i = 0; i < n; i++)
+      if (i <= key_end || i >= pay) h = (h ^ b[i]) * 1099511628211ull;
+    unsigned char *old = malloc(n + 64);
+    memcpy(old, b, key_end + 1);
+    int hl = snprintf((char *)old + key_end + 1, 64, "payload %zu fnv1a64 %016llx\n", plen, (unsigned long long)h);
+    memcpy(old + key_end + 1 + hl, b + pay, plen);
+    const size_t on = key_end + 1 + (size_t)hl + plen;
+    CHECK_MSG(read_bytes(path, old, on, &e) == SS_OK, "fnv1a64 file: %s", e.msg);
+    old[on - 1] ^= 0x01;
+    CHECK(read_bytes(path, old, on, &e) == SS_ERR_PARSE && strstr(e.msg, "checksum"));
+    free(old);
+  }
   ss_prepared_shape s;
   snprintf(path, sizeof path, "%s/absent.sss", dir);
   CHECK(ss_prepared_shape_read(path, &s, &e) == SS_ERR_IO);

@@ -14,6 +14,21 @@ uint64_t ssi_fnv1a(uint64_t h, const void *data, size_t n) {
   return h;
 }
 
+uint64_t ssi_fnv1a_x4(uint64_t h, const void *data, size_t n) {
+  const unsigned char *p = data;
+  uint64_t lane[4] = {h, h ^ 1, h ^ 2, h ^ 3};
+  size_t i = 0;
+  for (; i + 32 <= n; i += 32)
+    for (int l = 0; l < 4; l++) {
+      uint64_t w;
+      memcpy(&w, p + i + 8 * l, 8);
+      uint64_t x = (lane[l] ^ w) * 1099511628211ull;
+      lane[l] = x ^ (x >> 29);
+    }
+  h = ssi_fnv1a(h, lane, sizeof lane);
+  return ssi_fnv1a(h, p + i, n - i);
+}
+
 uint64_t ssi_mesh_hash(const ss_mesh *m) {
   uint64_t h = ssi_fnv1a(SSI_FNV_INIT, &m->nv, sizeof m->nv);
   h = ssi_fnv1a(h, &m->nf, sizeof m->nf);
@@ -71,8 +86,8 @@ int ssi_blob_write(const char *path, const char *key, const ssi_blob *b) {
     free(tmp);
     return errno = e, -1;
   }
-  uint64_t h = ssi_fnv1a(ssi_fnv1a(SSI_FNV_INIT, key, strlen(key)), b->p, b->n);
-  int ok = fputs(key, f) >= 0 && fprintf(f, "payload %zu fnv1a64 %016llx\n", b->n, (unsigned long long)h) > 0 &&
+  uint64_t h = ssi_fnv1a_x4(ssi_fnv1a(SSI_FNV_INIT, key, strlen(key)), b->p, b->n);
+  int ok = fputs(key, f) >= 0 && fprintf(f, "payload %zu fnv1a64x4 %016llx\n", b->n, (unsigned long long)h) > 0 &&
            (b->n == 0 || fwrite(b->p, 1, b->n, f) == b->n);
   int e = errno;
   ok = !fclose(f) && ok;
@@ -106,8 +121,9 @@ static int parse(unsigned char *buf, size_t total, const char *expect_key, char 
     const unsigned char *pl = memchr(buf + klen, '\n', total - klen < 128 ? total - klen : 128);
     size_t hlen = pl ? (size_t)(pl - (buf + klen)) + 1 : 0;
     if (pl) memcpy(head, buf + klen, hlen), head[hlen] = 0;
-    if (!pl || sscanf(head, "payload %zu fnv1a64 %16llx%c", &len, &sum, &tail) != 3 || tail != '\n' ||
-        len > ((size_t)1 << 34))
+    char kind[16] = "";
+    if (!pl || sscanf(head, "payload %zu %15s %16llx%c", &len, kind, &sum, &tail) != 4 || tail != '\n' ||
+        (strcmp(kind, "fnv1a64x4") && strcmp(kind, "fnv1a64")) || len > ((size_t)1 << 34))
       snprintf(note, nnote, "no payload line (length and checksum)");
     else {
       size_t off = klen + hlen, have = total - off;
@@ -116,7 +132,8 @@ static int parse(unsigned char *buf, size_t total, const char *expect_key, char 
       else if (have > len)
         snprintf(note, nnote, "longer than its %zu payload bytes", len);
       else {
-        uint64_t h = ssi_fnv1a(ssi_fnv1a(SSI_FNV_INIT, buf, klen), buf + off, len);
+        const uint64_t h0 = ssi_fnv1a(SSI_FNV_INIT, buf, klen); /* (fnv1a64: the byte-wise one, earlier files) */
+        const uint64_t h = strcmp(kind, "fnv1a64") ? ssi_fnv1a_x4(h0, buf + off, len) : ssi_fnv1a(h0, buf + off, len);
         if (h != sum)
           snprintf(note, nnote, "checksum mismatch (stored %016llx, contents %016llx)", sum, (unsigned long long)h);
         else {

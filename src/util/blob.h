@@ -3,8 +3,9 @@
  * A file is
  *   line 1: a key, one text line ending in '\n' (what the contents depend on: a format tag and version,
  *           the byte order and type sizes of the machine that wrote it, the input, the options);
- *   line 2: "payload BYTES fnv1a64 HASH\n": the payload's length and the 64-bit FNV-1a checksum of the
- *           key line followed by the payload;
+ *   line 2: "payload BYTES fnv1a64x4 HASH\n": the payload's length and the checksum of the key line
+ *           followed by the payload (ssi_fnv1a_x4; files of earlier versions say "fnv1a64", the
+ *           byte-wise FNV-1a, and are read as well);
  *   then BYTES bytes of payload (raw native arrays), and nothing after them.
  * ssi_blob_read refuses (with the reason) a file whose key is not the expected one, whose length is
  * not exact or whose checksum does not match; the caller range-checks the contents. */
@@ -24,6 +25,10 @@
 
 /* FNV-1a 64 of n bytes, continuing from h (SSI_FNV_INIT to start). */
 uint64_t ssi_fnv1a(uint64_t h, const void *data, size_t n);
+/* The payload checksum: FNV-1a's step over 8-byte words (native order, as the payload) in four
+ * interleaved lanes, each step followed by a xorshift so high bits reach low ones, the lanes and
+ * the tail bytes then folded by byte-wise FNV-1a; ~25x the byte-wise speed (20 MB: ~1 ms). */
+uint64_t ssi_fnv1a_x4(uint64_t h, const void *data, size_t n);
 /* FNV-1a 64 of a mesh: nv, nf, V (3 nv doubles), F (3 nf ints). */
 uint64_t ssi_mesh_hash(const ss_mesh *m);
 /* "le" or "be": this machine's byte order. */
