@@ -65,3 +65,17 @@ ss_status cli_match_shapes(cli_shape *X, cli_shape *Y, int nl, const int *lx, co
   if (!st) out->t_segment += t_seg, out->t_eigs += t_eigs, out->t_total += t_seg + t_eigs;
   return st;
 }
+
+void cli_warn_repairs(const ss_mesh *m, const char *name, int segmented, int closes_holes, int landmark_free) {
+  ss_mesh_report rep;
+  if (ss_mesh_check(m, &rep, NULL)) return;
+  if (segmented && rep.nonmanifold_vertices)
+    cli_warn("%s: %d pinched (non-manifold) vertices: split internally for the segmentation", name,
+             rep.nonmanifold_vertices);
+  if (!rep.oriented && rep.orientable)
+    cli_warn("%s: faces not consistently oriented: %d re-oriented internally%s", name, rep.reorient_faces,
+             landmark_free ? "; the landmark-free left / right decision needs consistently oriented meshes" : "");
+  if (closes_holes && rep.boundary_loops)
+    cli_warn("%s: %d hole%s (boundary loop%s) closed internally for the segmentation", name, rep.boundary_loops,
+             rep.boundary_loops > 1 ? "s" : "", rep.boundary_loops > 1 ? "s" : "");
+}

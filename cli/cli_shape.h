@@ -23,6 +23,11 @@ void cli_shape_free(cli_shape *s);
 ss_status cli_match_shapes(cli_shape *X, cli_shape *Y, int nl, const int *lx, const int *ly, const ss_match_options *o,
                            ss_match_result *out, char *warnings, size_t warnings_size, ss_error *err);
 
+/* Warnings for what the pipeline repairs internally in mesh m (its name for the messages): pinched
+ * vertices when it is segmented, holes when they are closed (segmented and streamlined), faces not
+ * consistently oriented (with a note on the landmark-free decision when landmark_free). */
+void cli_warn_repairs(const ss_mesh *m, const char *name, int segmented, int closes_holes, int landmark_free);
+
 /* The bytes of a stream input (standard input, a pipe) in *buf, *len with *is_stream 1; 0 for a regular
  * file (cli_io.c). */
 ss_status cli_read_stream(const char *path, int *is_stream, const char **buf, size_t *len, ss_error *err);

@@ -194,20 +194,11 @@ int cmd_match(int argc, char **argv) {
     }
     o.ndescr = cx, o.descrX = DX, o.descrY = DY;
   }
-  for (int s = 0; s < 2; s++) { /* what the pipeline repairs internally */
-    ss_mesh_report rep;
-    if (!ss_mesh_check(s ? Y : X, &rep, NULL)) {
-      if (rep.nonmanifold_vertices)
-        cli_warn("%s: %d pinched (non-manifold) vertices: split internally for the segmentation", s ? yn : xn,
-                 rep.nonmanifold_vertices);
-      if (!rep.oriented && rep.orientable)
-        cli_warn("%s: faces not consistently oriented: %d re-oriented internally%s", s ? yn : xn, rep.reorient_faces,
-                 nl ? "" : "; the landmark-free left / right decision needs consistently oriented meshes");
-      if (rep.boundary_loops && !o.seg.no_streamline)
-        cli_warn("%s: %d hole%s (boundary loop%s) closed internally for the segmentation", s ? yn : xn,
-                 rep.boundary_loops, rep.boundary_loops > 1 ? "s" : "", rep.boundary_loops > 1 ? "s" : "");
-    }
-  }
+  /* what the pipeline repairs internally (a prepared shape's were said by specseg prepare); STD with
+   * landmarks segments nothing */
+  const int segmented = nl == 0 || o.probes != SS_PROBES_STD || o.std_pairs;
+  if (!SX.prepared) cli_warn_repairs(X, xn, segmented, segmented && !o.seg.no_streamline, nl == 0);
+  if (!SY.prepared) cli_warn_repairs(Y, yn, segmented, segmented && !o.seg.no_streamline, nl == 0);
   char dropped[1024];
   if (SX.prepared || SY.prepared ? cli_match_shapes(&SX, &SY, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)
                                  : ss_match_warn(X, Y, nl, lx, ly, &o, &res, dropped, sizeof dropped, &err)) {

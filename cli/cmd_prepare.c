@@ -71,6 +71,7 @@ int cmd_prepare(int argc, char **argv) {
                    m.nv);
     goto done;
   }
+  cli_warn_repairs(&m, cli_in_name(in), 1, !so.no_streamline, !no_sig);
   if (ss_prepared_shape_compute(&m, &so, kev, no_sig ? NULL : &mo.autopair, &ps, &err)) {
     rc = cli_error("%s: %s", cli_in_name(in), err.msg);
     goto done;
