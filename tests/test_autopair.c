@@ -46,38 +46,8 @@ static void mirror_map(const ss_mesh *m, int *sym, double *maxd) {
   }
 }
 
-/* pairing of X and Y through their signatures; right = pairs whose X centre, carried by gt (X vertex
- * -> Y vertex), lies in the paired segment of Y */
-static int pair_and_count_opts(const ss_shape_prep *pX, const ss_shape_prep *pY, const int *gt,
-                               const ss_autopair_options *ao, ss_autopair_info *info, int *npairs) {
-  ss_centre_signature sX, sY;
-  ss_segment_pairs pr;
-  ss_error e;
-  int right = -1;
-  *npairs = 0;
-  if (ss_centre_signature_compute(pX, NULL, &sX, &e) || ss_centre_signature_compute(pY, NULL, &sY, &e)) {
-    printf("signature: %s\n", e.msg);
-    return -1;
-  }
-  if (ss_pair_centres_auto(&sX, &sY, ao, &pr, info, &e) == SS_OK) {
-    right = 0;
-    for (int p = 0; p < pr.n; p++) right += pY->seg.labels[gt[pX->seg.centers[pr.sx[p]]]] == pr.sy[p];
-    *npairs = pr.n;
-    ss_segment_pairs_free(&pr);
-  } else {
-    printf("pair: %s\n", e.msg);
-  }
-  ss_centre_signature_free(&sX);
-  ss_centre_signature_free(&sY);
-  return right;
-}
-
-static int pair_and_count(const ss_shape_prep *pX, const ss_shape_prep *pY, const int *gt, ss_autopair_info *info,
-                          int *npairs) {
-  return pair_and_count_opts(pX, pY, gt, NULL, info, npairs);
-}
-
-/* the same from signatures computed once (sY's shape is pY) */
+/* pairing of X and Y through their signatures (sY's shape is pY); right = pairs whose X centre,
+ * carried by gt (X vertex -> Y vertex), lies in the paired segment of Y */
 static int pair_sigs(const ss_centre_signature *sX, const ss_centre_signature *sY, const int *gt,
                      const ss_autopair_options *ao, ss_autopair_info *info, int *npairs) {
   ss_segment_pairs pr;
@@ -126,9 +96,13 @@ static void test_permuted_and_mirrored(void) {
   printf("segments: %d, permuted %d, reflected %d\n", pX.seg.m, pP.seg.m, pR.seg.m);
   CHECK(pX.seg.m == pP.seg.m && pX.seg.m == pR.seg.m);
 
-  /* 1. the same shape under a vertex permutation: every pair right, orientation preserved */
+  /* 1. the same shape under a vertex permutation: every pair right, orientation preserved (X's
+   * signature serves the reflection's tests below too) */
+  ss_centre_signature sX, sP, sR;
+  CHECK(ss_centre_signature_compute(&pX, NULL, &sX, &e) == SS_OK && ss_centre_signature_compute(&pP, NULL, &sP, &e) == SS_OK);
   ss_autopair_info info;
-  int np, right = pair_and_count(&pX, &pP, perm, &info, &np);
+  int np, right = pair_sigs(&sX, &sP, perm, NULL, &info, &np);
+  ss_centre_signature_free(&sP);
   printf("permuted: %d of %d pairs right, energy %.3g, mirror candidate %.3g, gap %.3f, orientation %.3f vs %.3f%s\n",
          right, np, info.energy, info.energy_mirror, info.gap, info.mirror, info.mirror_other,
          info.confident ? ", confident" : "");
@@ -137,8 +111,7 @@ static void test_permuted_and_mirrored(void) {
 
   /* 2. the reflection: the vertex-identity pairing is the orientation-REVERSING one (a mirror), as
    * intrinsic as the right answer; the right answer pairs x with the segment of its mirror vertex */
-  ss_centre_signature sX, sR;
-  CHECK(ss_centre_signature_compute(&pX, NULL, &sX, &e) == SS_OK && ss_centre_signature_compute(&pR, NULL, &sR, &e) == SS_OK);
+  CHECK(ss_centre_signature_compute(&pR, NULL, &sR, &e) == SS_OK);
   for (int i = 0; i < n; i++) gt[i] = sym[i];
   right = pair_sigs(&sX, &sR, gt, NULL, &info, &np);
   int ident = 0;
@@ -251,6 +224,40 @@ static void test_permuted_and_mirrored(void) {
   free(perm), free(sym), free(gt);
 }
 
+/* FAUST shapes, each read, prepared (100 eigenpairs) and given its signature once: the pairs below
+ * share shapes 10 and 15 */
+enum { NFAUST = 8 };
+static const int faust_ids[NFAUST] = {31, 39, 15, 45, 10, 42, 33, 48};
+static struct {
+  ss_mesh m;
+  ss_shape_prep p;
+  ss_centre_signature s;
+  int state; /* 0: not yet, 1: ready, -1: failed */
+} faust[NFAUST];
+
+static const ss_centre_signature *faust_shape(const char *d, int id) {
+  int q = 0;
+  while (q < NFAUST && faust_ids[q] != id) q++;
+  if (q == NFAUST) return NULL;
+  if (!faust[q].state) {
+    char path[4096];
+    ss_error e = {{0}};
+    snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", d, id);
+    int ok = ss_read_mesh(path, &faust[q].m, &e) == SS_OK &&
+             ss_shape_prep_compute(&faust[q].m, NULL, 100, &faust[q].p, &e) == SS_OK &&
+             ss_centre_signature_compute(&faust[q].p, NULL, &faust[q].s, &e) == SS_OK;
+    CHECK_MSG(ok, "FAUST %d: %s", id, e.msg);
+    faust[q].state = ok ? 1 : -1;
+  }
+  return faust[q].state == 1 ? &faust[q].s : NULL;
+}
+
+static void faust_free(void) {
+  for (int q = 0; q < NFAUST; q++)
+    if (faust[q].state == 1)
+      ss_centre_signature_free(&faust[q].s), ss_shape_prep_free(&faust[q].p), ss_mesh_free(&faust[q].m);
+}
+
 /* FAUST (ground truth = identity): pairs measured on the tuning split; a confident pairing must be
  * right, and most of these are right */
 static void test_faust(void) {
@@ -260,29 +267,19 @@ static void test_faust(void) {
   const int np = (int)(sizeof pairs / sizeof pairs[0]);
   int nright = 0, nconf_wrong = 0, *id = NULL;
   for (int q = 0; q < np; q++) {
-    ss_mesh m[2] = {{0}};
-    ss_shape_prep p[2];
-    ss_error e;
-    int ok = 1;
-    for (int s = 0; s < 2; s++) {
-      char path[4096];
-      snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", d, pairs[q][s]);
-      ok = ok && ss_read_mesh(path, &m[s], &e) == SS_OK && ss_shape_prep_compute(&m[s], NULL, 100, &p[s], &e) == SS_OK;
-    }
-    CHECK_MSG(ok, "%s", e.msg);
-    if (!ok) return;
+    const ss_centre_signature *sX = faust_shape(d, pairs[q][0]), *sY = faust_shape(d, pairs[q][1]);
+    if (!sX || !sY) break;
     if (!id) {
-      id = malloc(sizeof(int) * m[0].nv);
-      for (int i = 0; i < m[0].nv; i++) id[i] = i;
+      id = malloc(sizeof(int) * sX->prep->mesh->nv);
+      for (int i = 0; i < sX->prep->mesh->nv; i++) id[i] = i;
     }
     ss_autopair_info info;
-    int n, right = pair_and_count(&p[0], &p[1], id, &info, &n);
+    int n, right = pair_sigs(sX, sY, id, NULL, &info, &n);
     printf("FAUST %d -> %d: %d of %d pairs right, gap %.3f, orientation %.3f vs %.3f, %s, %.3f s CPU\n", pairs[q][0],
            pairs[q][1], right, n, info.gap, info.mirror, info.mirror_other, info.confident ? "confident" : "NOT confident",
            info.cpu);
     nright += right == n;
     nconf_wrong += info.confident && right != n;
-    for (int s = 0; s < 2; s++) ss_shape_prep_free(&p[s]), ss_mesh_free(&m[s]);
   }
   free(id);
   CHECK(nconf_wrong == 0);
@@ -294,28 +291,17 @@ static void test_faust(void) {
 static void test_faust_near_tie(void) {
   const char *d = tl_data_dir();
   if (!d) { SKIP("FAUST data not found (SS_DATA_DIR)"); return; }
-  const int ids[2] = {10, 48};
-  ss_mesh m[2] = {{0}};
-  ss_shape_prep p[2];
-  ss_centre_signature sg[2];
-  ss_error e;
-  int ok = 1;
-  for (int s = 0; s < 2; s++) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/faust/tr_reg_%03d.off", d, ids[s]);
-    ok = ok && ss_read_mesh(path, &m[s], &e) == SS_OK && ss_shape_prep_compute(&m[s], NULL, 100, &p[s], &e) == SS_OK &&
-         ss_centre_signature_compute(&p[s], NULL, &sg[s], &e) == SS_OK;
-  }
-  CHECK_MSG(ok, "%s", e.msg);
-  if (!ok) return;
-  int *id = malloc(sizeof(int) * m[0].nv);
-  for (int i = 0; i < m[0].nv; i++) id[i] = i;
+  const ss_centre_signature *sg[2] = {faust_shape(d, 10), faust_shape(d, 48)};
+  if (!sg[0] || !sg[1]) return;
+  const int nv = sg[0]->prep->mesh->nv;
+  int *id = malloc(sizeof(int) * nv);
+  for (int i = 0; i < nv; i++) id[i] = i;
   ss_autopair_options ao;
   ss_autopair_default_options(&ao);
   ss_autopair_info i0, i1;
-  int n1, r1 = pair_sigs(&sg[0], &sg[1], id, &ao, &i1, &n1);
+  int n1, r1 = pair_sigs(sg[0], sg[1], id, &ao, &i1, &n1);
   ao.alt_max = 0;
-  int n0, r0 = pair_sigs(&sg[0], &sg[1], id, &ao, &i0, &n0);
+  int n0, r0 = pair_sigs(sg[0], sg[1], id, &ao, &i0, &n0);
   printf("FAUST 10 -> 48: near-tie test %d of %d right (%d tested, chosen %d, score %.3f), without it %d of %d "
          "(score %.3f)\n", r1, n1, i1.alternatives, i1.alternative, i1.mirror_first, r0, n0, i0.mirror_first);
   CHECK(r1 == n1 && n1 == 8 && i1.alternative == 1 && i1.alternatives >= 1);
@@ -324,12 +310,12 @@ static void test_faust_near_tie(void) {
   /* the search's best is now the runner-up: the gap says the answer is not the lowest energy */
   CHECK(fabs(i1.energy_other - i0.energy) <= 1e-12 * i0.energy && i1.gap < 0);
   free(id);
-  for (int s = 0; s < 2; s++) ss_centre_signature_free(&sg[s]), ss_shape_prep_free(&p[s]), ss_mesh_free(&m[s]);
 }
 
 int main(void) {
   test_permuted_and_mirrored();
   test_faust();
   test_faust_near_tie();
+  faust_free();
   TEST_MAIN_END();
 }
