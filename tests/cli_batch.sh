@@ -11,7 +11,7 @@ set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
 
-"$BIN" demo -o "$TMP/demo" > "$TMP/demo.out" 2>&1 || bad "demo failed: $(tail -3 "$TMP/demo.out")"
+demo_outputs "$TMP/demo" "$TMP/demo.out" || bad "demo failed: $(tail -3 "$TMP/demo.out")"
 mkdir -p "$TMP/in"
 cp "$TMP/demo/torus.off" "$TMP/in/b_torus.off"
 cp "$TMP/demo/sphere.ply" "$TMP/in/a_sphere.ply"

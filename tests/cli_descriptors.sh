@@ -9,7 +9,7 @@ BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 
-"$BIN" demo -o "$TMP/demo" > "$TMP/demo.out" 2>&1 || bad "demo failed: $(tail -3 "$TMP/demo.out")"
+demo_outputs "$TMP/demo" "$TMP/demo.out" || bad "demo failed: $(tail -3 "$TMP/demo.out")"
 X="$TMP/demo/humanoid_pose0.off"
 Y="$TMP/demo/humanoid_pose2.off"
 [ -s "$X" ] && [ -s "$Y" ] || { bad "the demo wrote no humanoids"; finish; }

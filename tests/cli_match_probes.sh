@@ -5,7 +5,7 @@
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
-"$BIN" demo -o "$TMP/d" > "$TMP/demo.out" 2>&1 || { echo "demo failed"; exit 1; }
+demo_outputs "$TMP/d" "$TMP/demo.out" || { echo "demo failed"; exit 1; }
 grep -q '^DIFF mean geodesic error' "$TMP/demo.out" && grep -q '^STD  mean geodesic error' "$TMP/demo.out" && ok ||
   bad "demo has no matching stage"
 X="$TMP/d/humanoid_pose0.off"

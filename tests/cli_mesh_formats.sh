@@ -10,7 +10,7 @@ BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
 [ -n "$PY" ] || { skip "no python3 to write the files"; finish; }
 
-"$BIN" demo -o "$TMP/demo" > "$TMP/demo.out" 2>&1 || bad "demo failed: $(tail -3 "$TMP/demo.out")"
+demo_outputs "$TMP/demo" "$TMP/demo.out" || bad "demo failed: $(tail -3 "$TMP/demo.out")"
 M="$TMP/demo/humanoid_pose0.off"
 [ -s "$M" ] || { bad "the demo wrote no humanoid"; finish; }
 

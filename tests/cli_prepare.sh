@@ -7,7 +7,7 @@
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
-"$BIN" demo -o "$TMP/demo" > /dev/null 2>&1 || { bad "demo"; finish; }
+demo_outputs "$TMP/demo" || { bad "demo"; finish; }
 A="$TMP/demo/humanoid_pose0.off"
 B=$(ls "$TMP"/demo/humanoid_pose*.off | grep -v pose0 | head -1)
 "$BIN" prepare "$A" -o "$TMP/a.sss" > "$TMP/out" 2>&1 && ok || bad "prepare A: $(cat "$TMP/out")"

@@ -8,7 +8,7 @@ set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
 
-"$BIN" demo -o "$TMP/demo" > "$TMP/demo.out" 2>&1 || bad "demo failed: $(tail -3 "$TMP/demo.out")"
+demo_outputs "$TMP/demo" "$TMP/demo.out" || bad "demo failed: $(tail -3 "$TMP/demo.out")"
 M="$TMP/demo/humanoid_pose0.off"
 M2="$TMP/demo/humanoid_pose2.off"
 if [ ! -s "$M" ]; then

@@ -9,7 +9,7 @@ set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 . "$(dirname "$0")/lib_cli.sh"
 
-"$BIN" demo -o "$TMP/demo" > /dev/null 2>&1 || bad "demo failed"
+demo_outputs "$TMP/demo" || bad "demo failed"
 if [ ! -s "$TMP/demo/humanoid_pose0.off" ]; then
   skip "the demo wrote no humanoid"
   finish
