@@ -196,7 +196,7 @@ int cmd_match(int argc, char **argv) {
   }
   /* what the pipeline repairs internally (a prepared shape's were said by specseg prepare); STD with
    * landmarks segments nothing */
-  const int segmented = nl == 0 || o.probes != SS_PROBES_STD || o.std_pairs;
+  const int segmented = ss_match_segments(&o, nl);
   if (!SX.prepared) cli_warn_repairs(X, xn, segmented, segmented && !o.seg.no_streamline, nl == 0);
   if (!SY.prepared) cli_warn_repairs(Y, yn, segmented, segmented && !o.seg.no_streamline, nl == 0);
   char dropped[1024];
@@ -238,7 +238,7 @@ int cmd_match(int argc, char **argv) {
   char dnote[64] = "";
   if (o.ndescr) snprintf(dnote, sizeof dnote, ", %d own descriptors%s", o.ndescr, o.fmap.no_wks ? " (no WKS)" : "");
   const char *pn = o.probes == SS_PROBES_STD ? "std" : o.probes == SS_PROBES_ASA ? "asa" : "diff";
-  const int std_only = o.probes == SS_PROBES_STD && !o.std_pairs && !res.autopair.used; /* nothing segmented */
+  const int std_only = !ss_match_segments(&o, nl); /* nothing segmented */
   static const char *choice[4] = {"STD", "STD + ZoomOut", "segment-aided", "segment-aided + ZoomOut"};
   if (res.autopair.used && !json)
     fprintf(report, "landmark-free pairing (%s search): energy %.4g, mirror candidate %.4g, next other %.4g (gap %.3f), "

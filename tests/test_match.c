@@ -231,6 +231,10 @@ int main(void) {
   {
     CHECK(r[0].pairs.n == 0 && r[0].t_pair < 1e-3);
     ss_match_options os = o;
+    os.probes = SS_PROBES_STD, os.std_pairs = 0;
+    CHECK(ss_match_segments(NULL, 5) && !ss_match_segments(&os, 5) && ss_match_segments(&os, 0));
+    os.std_pairs = 1;
+    CHECK(ss_match_segments(&os, 5));
     os.probes = SS_PROBES_STD, os.std_pairs = 1;
     ss_match_result rp, rm;
     CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &os, &rp, &e) == SS_OK);

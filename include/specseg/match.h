@@ -496,6 +496,10 @@ SS_API ss_status ss_prepared_shape_read_memory(const void *data, size_t size, co
 SS_API int ss_is_prepared_shape(const void *head, size_t n);
 SS_API void ss_prepared_shape_free(ss_prepared_shape *s);
 
+/* 1 when a match with opts (NULL: the defaults) and nl landmarks segments its shapes (landmark-free,
+ * ASA, DIFF, or STD with std_pairs); 0 for STD with landmarks, which uses no segments. */
+SS_API int ss_match_segments(const ss_match_options *opts, int nl);
+
 /* Eigenpairs each shape needs for ss_match_prepared with opts (NULL: the defaults) and nl landmarks
  * (0: landmark-free, which adds the pairing's descr_k and orient_k): max(k, ZoomOut's kmax when
  * refining, descr_k, seg_descr_k with segment probes). 110 for the defaults. */

@@ -128,6 +128,12 @@ ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *op
   return SS_OK;
 }
 
+int ss_match_segments(const ss_match_options *opts, int nl) {
+  ss_match_options d;
+  if (!opts) ss_match_default_options(&d), opts = &d;
+  return nl == 0 || opts->probes != SS_PROBES_STD || opts->std_pairs;
+}
+
 int ss_match_eigenpairs(const ss_match_options *opts, int nl) {
   ss_match_options d;
   if (!opts) ss_match_default_options(&d), opts = &d;
@@ -269,7 +275,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   double t0 = ss_time();
   if (pairs_in) {
     if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
-  } else if (o.probes != SS_PROBES_STD || o.std_pairs) {
+  } else if (ss_match_segments(&o, nl)) {
     if (!X->seg.centers || !Y->seg.centers) {
       st = ss_fail(err, SS_ERR_INVALID, "match: %s not segmented (ss_shape_prep_compute_spectral): %s",
                    !X->seg.centers ? "X is" : "Y is", o.probes != SS_PROBES_STD ? "ASA and DIFF pair its segments"
@@ -711,7 +717,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   if (cx.active) PX = &cx.coarse;
   if (cy.active) PY = &cy.coarse;
   /* STD with landmarks uses no segments: only the spectra, unless the pairing is asked for */
-  const int segment = nl == 0 || o.probes != SS_PROBES_STD || o.std_pairs;
+  const int segment = ss_match_segments(&o, nl);
   st = segment ? ss_shape_prep_compute(PX, &o.seg, kev, &pX, err) : ss_shape_prep_compute_spectral(PX, kev, &pX, err);
   if (st) { name_shape(err, "X (the first mesh)"); goto done; }
   have_x = 1;
