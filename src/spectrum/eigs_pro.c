@@ -39,22 +39,12 @@ static double reorthogonalize(int n, int lo, int hi, const double *V, double *w,
   return cblas_dnrm2(n, w, 1);
 }
 
-typedef struct {
-  double theta;
-  int col;
-} ritz;
-
-static int by_theta_desc(const void *a, const void *b) {
-  double x = ((const ritz *)a)->theta, y = ((const ritz *)b)->theta;
-  return (x < y) - (x > y);
-}
-
 /* The nev largest eigenpairs of T (m x m: diagonal a, off-diagonal b[1..m-1]); converged when each
  * has β_{m+1}|s_{m,i}| <= tol·θ_i. The whole spectrum by MRRR (O(m²); a subset would go to bisection
  * and inverse iteration, several times slower). Fills theta (descending) and S (m x nev) when all
  * converged; returns how many have (nev: done), -1 on LAPACK failure. */
 static int ritz_check(int m, int nev, const double *a, const double *b, double beta_next, double tol, double *d,
-                      double *e, double *w, double *Z, int *isupp, ritz *rp, double *theta, double *S) {
+                      double *e, double *w, double *Z, int *isupp, double *theta, double *S) {
   for (int i = 0; i < m; i++) d[i] = a[i];
   for (int i = 0; i + 1 < m; i++) e[i] = b[i + 1];
   lapack_int nfound = 0;
@@ -67,13 +57,12 @@ static int ritz_check(int m, int nev, const double *a, const double *b, double b
     nc += wt[i] > 0 && res <= tol * wt[i];
   }
   if (nc < nev) return nc;
-  for (int i = 0; i < nev; i++) rp[i].theta = wt[i], rp[i].col = i;
-  qsort(rp, (size_t)nev, sizeof *rp, by_theta_desc);
-  for (int i = 0; i < nev; i++) {
-    theta[i] = rp[i].theta;
+  for (int i = 0; i < nev; i++) { /* descending: dstevr's ascending order reversed */
+    const int col = nev - 1 - i;
+    theta[i] = wt[col];
     /* MRRR leaves the sign to rounding: the largest entry positive (dstein's rule, so the same
      * operator scaled by a power of two gives the same vectors) */
-    const double *z = top + (size_t)m * rp[i].col;
+    const double *z = top + (size_t)m * col;
     int imax = 0;
     for (int r = 1; r < m; r++)
       if (fabs(z[r]) > fabs(z[imax])) imax = r;
@@ -103,9 +92,8 @@ ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t s
   double *S = malloc(sizeof(double) * (size_t)mmax * nev), *theta = malloc(sizeof(double) * (size_t)nev);
   int *isupp = malloc(sizeof(int) * 2 * (size_t)mmax);
   int *ilo = malloc(sizeof(int) * (size_t)(mmax + 1)), *ihi = malloc(sizeof(int) * (size_t)(mmax + 1));
-  ritz *rp = malloc(sizeof(ritz) * (size_t)nev);
   ss_status st = SS_OK;
-  if (!V || !a || !b || !om[0] || !om[1] || !om[2] || !h || !d || !Z || !S || !theta || !isupp || !rp || !ilo || !ihi) {
+  if (!V || !a || !b || !om[0] || !om[1] || !om[2] || !h || !d || !Z || !S || !theta || !isupp || !ilo || !ihi) {
     st = ss_fail(err, SS_ERR_NOMEM, "eigs: out of memory (n = %d, basis %d)", n, mmax);
     goto out;
   }
@@ -198,7 +186,7 @@ ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t s
     wprev = wcur, wcur = wnext, wnext = t;
     const int m = j + 1;
     if (m >= next_check || m == mmax) {
-      int cv = ritz_check(m, nev, a, b, b[m], c->tol * PRO_TOL_FACTOR, d, e, w, Z, isupp, rp, theta, S);
+      int cv = ritz_check(m, nev, a, b, b[m], c->tol * PRO_TOL_FACTOR, d, e, w, Z, isupp, theta, S);
       if (cv < 0) { st = ss_fail(err, SS_ERR_NUMERIC, "eigs: tridiagonal eigensolver failed"); goto out; }
       next_check = m + (2 * (nev - cv) > 10 ? 2 * (nev - cv) : 10);
       if (cv == nev) {
@@ -223,6 +211,6 @@ ss_status ssi_eigs_pro_lanczos(ssi_lanczos_ctx *c, int nev, int mmax, uint64_t s
   }
 out:
   free(V), free(a), free(b), free(om[0]), free(om[1]), free(om[2]), free(h), free(d), free(Z), free(S), free(theta);
-  free(isupp), free(rp), free(ilo), free(ihi);
+  free(isupp), free(ilo), free(ihi);
   return st;
 }
