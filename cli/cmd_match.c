@@ -60,7 +60,8 @@ static const char USAGE[] =
     "                      as they are (not sub-sampled), each normalised in L2, in the data and the\n"
     "                      commutativity terms beside the WKS and the landmarks\n"
     "  --no-wks            without the WKS: the descriptors given replace it\n"
-    "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
+    "  --timings           'timing: STAGE SECONDS' lines on stderr (segment, eigs: both shapes' added\n"
+    "                      up, prepared side by side on two threads; total: the wall time)\n"
     "  --json              a JSON summary on standard output instead of the summary line (counts,\n"
     "                      timings, warnings, errors, output paths)\n"
     "One of the output files may be - (standard output).\n";

@@ -10,6 +10,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* head, left hand, right hand, left foot, right foot of the rest pose (y up, left side on +x) */
 static void humanoid_landmarks(const ss_mesh *m, int lm[5]) {
@@ -277,6 +280,42 @@ int main(void) {
       free(comp);
     }
     ss_match_result_free(&rb);
+  }
+
+  /* from meshes, the two shapes are prepared side by side when OpenMP gives two threads: the same
+   * map, byte for byte, as one after the other; an error names the shape it comes from (X's first) */
+  {
+#ifdef _OPENMP
+    const int threads0 = omp_get_max_threads();
+#endif
+    ss_match_options om = o;
+    om.probes = SS_PROBES_DIFF;
+    om.refine = SS_REFINE_NONE;
+    ss_match_result r1 = {0}, r2 = {0};
+#ifdef _OPENMP
+    omp_set_num_threads(1);
+#endif
+    CHECK_MSG(ss_match(&X, &Y, 5, lm, lm, &om, &r1, &e) == SS_OK, "%s", e.msg);
+#ifdef _OPENMP
+    omp_set_num_threads(2);
+#endif
+    CHECK_MSG(ss_match(&X, &Y, 5, lm, lm, &om, &r2, &e) == SS_OK, "%s", e.msg);
+    int same = r1.map && r2.map && r1.pairs.n == r2.pairs.n && r1.pairs.n >= 2;
+    for (int x = 0; same && x < X.nv; x++) same = r1.map[x] == r2.map[x];
+    CHECK(same);
+    CHECK(r2.t_segment > 0 && r2.t_eigs > 0 && r2.t_total > 0);
+    ss_match_result_free(&r1), ss_match_result_free(&r2);
+    /* a 4-vertex tetrahedron is too small to match: on Y, on X, on both (X's error) */
+    const double tv[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const int tf[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    ss_mesh T = {4, 4, (double *)tv, (int *)tf};
+    int lt[5] = {0, 1, 2, 3, 0};
+    CHECK(ss_match(&X, &T, 5, lm, lt, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "Y (the second mesh)"));
+    CHECK(ss_match(&T, &Y, 5, lt, lm, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "X (the first mesh)"));
+    CHECK(ss_match(&T, &T, 5, lt, lt, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "X (the first mesh)"));
+#ifdef _OPENMP
+    omp_set_num_threads(threads0);
+#endif
   }
 
   /* a shape matched to itself: the identity */

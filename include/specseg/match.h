@@ -361,7 +361,7 @@ typedef struct ss_match_result {
                        shapes' unit-area bases (ss_shape_prep: C[0] = ±1, whatever the two sizes) */
   ss_segment_pairs pairs;
   int *centerX, *centerY; /* pairs.n: input vertices at the centres of the paired segments */
-  /* seconds per stage */
+  /* seconds per stage (t_segment, t_eigs: both shapes' added up) and of the whole call */
   double t_segment, t_eigs, t_pair, t_fmap, t_zoomout, t_total;
   /* SS_REFINE_BEST: the candidate returned (0 STD start, 1 STD refined, 2 segment-aided start,
    * 3 segment-aided refined) and the selection energies of the four (NAN: not computed); -1 and NANs
@@ -417,7 +417,11 @@ SS_API ss_status ss_pair_auto(const ss_mesh *X, const ss_mesh *Y, const ss_match
  * a dropped vertex of Y. Landmark-free (nl = 0): the largest component (by area) of each mesh
  * is kept. map, centerX and centerY refer to the input meshes' vertices; C, the basis
  * and pairs (segment indices) to the kept parts. Unreferenced vertices are refused as for one
- * component. */
+ * component.
+ * Threads: when OpenMP gives the call two or more threads and it is not made inside a parallel region,
+ * the two shapes' preparations (and their probe caches) run side by side, one thread each; the map
+ * is the same bytes as with one thread. Stage times (t_segment, t_eigs) then add up both shapes'
+ * work, while t_total is the time the call took. */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                           const ss_match_options *opts, ss_match_result *out, ss_error *err);
 /* The same, with what was dropped in `warnings` (warnings_size bytes, may be NULL; "" when nothing):

@@ -13,6 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* Defaults of what the paper leaves open (docs/tuning.md). */
 #define SS_DEFAULT_DESCR_K 100
@@ -112,6 +115,32 @@ static int caches_cover(const ss_shape_prep *p, const ss_match_options *o) {
   for (int c = 0; c < ns; c++)
     if (!ssi_fmap_cache_covers(&fs, &fo[c], o->fmap.w_dcomm > 0)) return 0;
   return 1;
+}
+
+/* The probe cache entries of both shapes that the shapes do not carry (NULL, 0 where they do), side
+ * by side when OpenMP gives this call two threads (as prepare_both); X's error first. */
+static ss_status probe_caches_both(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
+                                   ss_fmap_probe_cache **cx, int *nx, ss_fmap_probe_cache **cy, int *ny, ss_error *err) {
+  const int need_x = !caches_cover(X, o), need_y = !caches_cover(Y, o);
+  ss_error ex = {{0}}, ey = {{0}};
+  ss_status sx = SS_OK, sy = SS_OK;
+  *cx = *cy = NULL, *nx = *ny = 0;
+  int two = 0;
+#ifdef _OPENMP
+  two = need_x && need_y && omp_get_max_threads() > 1 && !omp_in_parallel();
+#endif
+#pragma omp parallel sections num_threads(2) if (two)
+  {
+#pragma omp section
+    if (need_x) sx = probe_caches(X, o, cx, nx, &ex);
+#pragma omp section
+    if (need_y) sy = probe_caches(Y, o, cy, ny, &ey);
+  }
+  if (sx || sy) {
+    if (err) *err = sx ? ex : ey;
+    return sx ? sx : sy;
+  }
+  return SS_OK;
 }
 
 ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *opts, ss_error *err) {
@@ -313,8 +342,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   const int want_std = !use_seg || o.refine == SS_REFINE_BEST || check, want_seg = use_seg;
   /* the shape-only parts of the base probes: the shapes' caches, else computed here by the same
    * function (so a prepared shape and its mesh give the same map) */
-  if (!caches_cover(X, &o) && (st = probe_caches(X, &o, &cacheX, &ncacheX, err))) goto fail;
-  if (!caches_cover(Y, &o) && (st = probe_caches(Y, &o, &cacheY, &ncacheY, err))) goto fail;
+  if ((st = probe_caches_both(X, Y, &o, &cacheX, &ncacheX, &cacheY, &ncacheY, err))) goto fail;
   ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr, cacheX ? cacheX : X->probe_cache,
                       cacheX ? ncacheX : X->nprobe_cache},
                 sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr, cacheY ? cacheY : Y->probe_cache,
@@ -480,6 +508,40 @@ static void name_shape(ss_error *err, const char *shape) {
   if (!strncmp(m, "match: ", 7)) m += 7;
   snprintf(tmp, sizeof tmp, "match: %s: %.900s", shape, m);
   memcpy(err->msg, tmp, sizeof tmp);
+}
+
+/* One shape's preparation for ss_match: segmented (ASA, DIFF, landmark-free) or spectral only. */
+static ss_status prepare_one(const ss_mesh *m, int segment, const ss_segment_options *so, int kev, ss_shape_prep *p,
+                             ss_error *err) {
+  return segment ? ss_shape_prep_compute(m, so, kev, p, err) : ss_shape_prep_compute_spectral(m, kev, p, err);
+}
+
+/* Both shapes' preparations, side by side when OpenMP gives this call two threads (outside any
+ * parallel region): each runs on one thread, the parallel regions inside it single-threaded (nested
+ * parallelism is off by default), so each result is the one it has when run alone. Errors name the
+ * shape; X's is reported when both fail. *have_x / *have_y: which preparation succeeded. */
+static ss_status prepare_both(const ss_mesh *PX, const ss_mesh *PY, int segment, const ss_segment_options *so, int kev,
+                              ss_shape_prep *pX, ss_shape_prep *pY, int *have_x, int *have_y, ss_error *err) {
+  ss_error ex = {{0}}, ey = {{0}};
+  ss_status sx = SS_OK, sy = SS_OK;
+  int two = 0;
+#ifdef _OPENMP
+  two = omp_get_max_threads() > 1 && !omp_in_parallel();
+#endif
+#pragma omp parallel sections num_threads(2) if (two)
+  {
+#pragma omp section
+    sx = prepare_one(PX, segment, so, kev, pX, &ex);
+#pragma omp section
+    sy = prepare_one(PY, segment, so, kev, pY, &ey);
+  }
+  *have_x = !sx, *have_y = !sy;
+  if (sx || sy) {
+    if (err) *err = sx ? ex : ey;
+    name_shape(err, sx ? "X (the first mesh)" : "Y (the second mesh)");
+    return sx ? sx : sy;
+  }
+  return SS_OK;
 }
 
 /* ---- meshes of several components ---------------------------------------------------------------
@@ -718,14 +780,13 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   if (cy.active) PY = &cy.coarse;
   /* STD with landmarks uses no segments: only the spectra, unless the pairing is asked for */
   const int segment = ss_match_segments(&o, nl);
-  st = segment ? ss_shape_prep_compute(PX, &o.seg, kev, &pX, err) : ss_shape_prep_compute_spectral(PX, kev, &pX, err);
-  if (st) { name_shape(err, "X (the first mesh)"); goto done; }
-  have_x = 1;
-  st = segment ? ss_shape_prep_compute(PY, &o.seg, kev, &pY, err) : ss_shape_prep_compute_spectral(PY, kev, &pY, err);
-  if (st) { name_shape(err, "Y (the second mesh)"); goto done; }
-  have_y = 1;
+  double t_prep = ss_time();
+  if ((st = prepare_both(PX, PY, segment, &o.seg, kev, &pX, &pY, &have_x, &have_y, err))) goto done;
+  t_prep = ss_time() - t_prep;
   if ((st = ssi_check_landmarks_segmented(&pX, &pY, nl, lx, ly, lmX, lmY, err))) goto done;
   if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
+  /* the stage times add up both shapes' work; the total is the time this call took */
+  out->t_total += t_prep - (pX.t_segment + pY.t_segment + pX.t_eigs + pY.t_eigs);
   if ((st = ssi_proxy_lift(&cx, &cy, FX->nv, out, err))) goto done;
   PX = FX, PY = FY;
   if (kx.active || ky.active) { /* back to the input meshes' vertices */
