@@ -305,6 +305,23 @@ int main(void) {
     CHECK(same);
     CHECK(r2.t_segment > 0 && r2.t_eigs > 0 && r2.t_total > 0);
     ss_match_result_free(&r1), ss_match_result_free(&r2);
+    /* one shape's segmentation and eigenpairs side by side (two threads) = one after the other */
+    {
+      ss_shape_prep q1, q2;
+#ifdef _OPENMP
+      omp_set_num_threads(1);
+#endif
+      CHECK(ss_shape_prep_compute(&Y, &o.seg, 30, &q1, &e) == SS_OK);
+#ifdef _OPENMP
+      omp_set_num_threads(2);
+#endif
+      CHECK(ss_shape_prep_compute(&Y, &o.seg, 30, &q2, &e) == SS_OK);
+      CHECK(q1.seg.m == q2.seg.m && q1.kev == q2.kev && q1.area == q2.area);
+      CHECK(!memcmp(q1.seg.labels, q2.seg.labels, sizeof(int) * (size_t)Y.nv));
+      CHECK(!memcmp(q1.evals, q2.evals, sizeof(double) * 30) && !memcmp(q1.evecs, q2.evecs, sizeof(double) * 30 * (size_t)Y.nv));
+      CHECK(q2.t_segment > 0 && q2.t_eigs > 0);
+      ss_shape_prep_free(&q1), ss_shape_prep_free(&q2);
+    }
     /* a 4-vertex tetrahedron is too small to match: on Y, on X, on both (X's error) */
     const double tv[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     const int tf[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};

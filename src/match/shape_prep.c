@@ -10,6 +10,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 void ss_shape_prep_free(ss_shape_prep *p) {
   if (!p) return;
@@ -133,12 +136,31 @@ ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_
   ss_status st = check_input(m, kev, out, err);
   if (st) return st;
   out->mesh = m;
-  double t0 = ss_time();
-  if (!(st = ss_segment(m, seg_opts, &out->seg, err))) {
-    out->t_segment = ss_time() - t0;
-    st = compute_spectral(m, kev, out, err);
+  /* the segmentation and the eigenpairs depend on the mesh alone: side by side when OpenMP gives
+   * this call two threads (each single-threaded inside, so each result is its one-thread result);
+   * a segmentation error is reported first, as when they run one after the other */
+  ss_error es = {{0}}, ee = {{0}};
+  ss_status ss_ = SS_OK, se = SS_OK;
+  int two = 0;
+#ifdef _OPENMP
+  two = omp_get_max_threads() > 1 && !omp_in_parallel();
+#endif
+#pragma omp parallel sections num_threads(2) if (two)
+  {
+#pragma omp section
+    {
+      double t0 = ss_time();
+      ss_ = ss_segment(m, seg_opts, &out->seg, &es);
+      out->t_segment = ss_time() - t0;
+    }
+#pragma omp section
+    se = compute_spectral(m, kev, out, &ee);
   }
-  if (st) ss_shape_prep_free(out);
+  st = ss_ ? ss_ : se;
+  if (st) {
+    if (err) *err = ss_ ? es : ee;
+    ss_shape_prep_free(out);
+  }
   return st;
 }
 
