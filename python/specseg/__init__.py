@@ -219,8 +219,9 @@ def eigs(V, F, k):
     k = _as_int32(k, "k", 1, n - 1)
     evals, evecs = np.zeros(k), np.zeros((k, n))  # column-major n x k == row-major k x n
     e = _err()
-    _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
-                           C.byref(e)), e)
+    with _clib.one_blas_thread():
+        st = lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), C.byref(e))
+    _check(st, e)
     return evals, np.ascontiguousarray(evecs.T)
 
 
@@ -234,10 +235,11 @@ def _descriptors(fn, V, F, k, n, extra):
     evals, evecs = np.zeros(k), np.zeros((k, nv))  # column-major nv x k
     M, D = np.zeros(nv), np.zeros((n, nv))
     e = _err()
-    _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), C.byref(e)), e)
-    _check(lib.ss_mass_lumped(C.byref(m), 0, _clib.ptr(M, C.c_double), C.byref(e)), e)
-    _check(fn(nv, k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), _clib.ptr(M, C.c_double), n,
-              *extra, _clib.ptr(D, C.c_double), C.byref(e)), e)
+    with _clib.one_blas_thread():
+        _check(lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), C.byref(e)), e)
+        _check(lib.ss_mass_lumped(C.byref(m), 0, _clib.ptr(M, C.c_double), C.byref(e)), e)
+        _check(fn(nv, k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), _clib.ptr(M, C.c_double), n,
+                  *extra, _clib.ptr(D, C.c_double), C.byref(e)), e)
     return np.ascontiguousarray(D.T)
 
 
@@ -345,7 +347,9 @@ def smooth(V, F, steps=None, dt=None):
     if dt is not None:
         o.dt = _as_float(dt, "dt", positive=True)
     out, e = _clib.ss_mesh(), _err()
-    _check(lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
+    with _clib.one_blas_thread():
+        st = lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e))
+    _check(st, e)
     V2, _ = _clib.take_mesh(out)
     return V2
 
@@ -383,7 +387,9 @@ def remesh(V, F, target_faces=15000):
     lib.ss_remesh_default_options(C.byref(o))
     o.target_faces = _as_int32(target_faces, "target_faces")
     out, e = _clib.ss_mesh(), _err()
-    _check(lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
+    with _clib.one_blas_thread():
+        st = lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e))
+    _check(st, e)
     return _clib.take_mesh(out)
 
 
@@ -464,7 +470,8 @@ def segment(V, F, target_faces=None, no_streamline=False, cleanup_rings=None, sa
     if sanitize is not None:
         o.sanitize = 1 if sanitize else 0
     s, e = _clib.ss_segmentation(), _err()
-    st = lib.ss_segment(C.byref(m), C.byref(o), C.byref(s), C.byref(e))
+    with _clib.one_blas_thread():
+        st = lib.ss_segment(C.byref(m), C.byref(o), C.byref(s), C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array
@@ -699,12 +706,13 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         o.ndescr = _as_int32(DX.shape[1], "descriptor columns")
         o.descrX, o.descrY = _clib.ptr(DX, C.c_double), _clib.ptr(DY, C.c_double)
     r, e = _clib.ss_match_result(), _err()
-    if shapes:
-        st = lib.ss_match_prepared_shapes(C.byref(X._s), C.byref(Y._s), lx.size, _clib.ptr(lx, C.c_int),
-                                          _clib.ptr(ly, C.c_int), C.byref(o), C.byref(r), None, 0, C.byref(e))
-    else:
-        st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
-                          C.byref(o), C.byref(r), C.byref(e))
+    with _clib.one_blas_thread():
+        if shapes:
+            st = lib.ss_match_prepared_shapes(C.byref(X._s), C.byref(Y._s), lx.size, _clib.ptr(lx, C.c_int),
+                                              _clib.ptr(ly, C.c_int), C.byref(o), C.byref(r), None, 0, C.byref(e))
+        else:
+            st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
+                              C.byref(o), C.byref(r), C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array
@@ -904,8 +912,10 @@ def prepare(V, F, k=None, target_faces=None, no_streamline=False, signature=True
     lib.ss_match_default_options(C.byref(o))
     kev = lib.ss_match_eigenpairs(C.byref(o), 0) if k is None else _as_int32(k, "k")
     sh, e = Shape(), _err()
-    _check(lib.ss_prepared_shape_compute(C.byref(m), C.byref(so), kev, C.byref(o.autopair) if signature else None,
-                                         C.byref(sh._s), C.byref(e)), e)
+    with _clib.one_blas_thread():
+        st = lib.ss_prepared_shape_compute(C.byref(m), C.byref(so), kev, C.byref(o.autopair) if signature else None,
+                                           C.byref(sh._s), C.byref(e))
+    _check(st, e)
     sh._live = True
     return sh
 
@@ -963,8 +973,9 @@ def pair(VX, FX, VY, FY):
     my, VY, FY = _clib.as_mesh(VY, FY)
     pr, info, e = _clib.ss_segment_pairs(), _clib.ss_autopair_info(), _err()
     cx, cy = C.POINTER(C.c_int)(), C.POINTER(C.c_int)()
-    st = lib.ss_pair_auto(C.byref(mx), C.byref(my), None, C.byref(pr), C.byref(cx), C.byref(cy), C.byref(info),
-                          C.byref(e))
+    with _clib.one_blas_thread():
+        st = lib.ss_pair_auto(C.byref(mx), C.byref(my), None, C.byref(pr), C.byref(cx), C.byref(cy), C.byref(info),
+                              C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array

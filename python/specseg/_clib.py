@@ -24,12 +24,14 @@ The struct mirrors below follow include/specseg/*.h field by field; at load time
 compared with the libraries' own (ss_struct_size, ss_render_struct_size), so a header change raises
 ImportError instead of corrupting memory.
 """
+import contextlib
 import ctypes as C
 import glob
 import os
 import platform
 import sys
 import sysconfig
+import threading
 import warnings
 
 import numpy as np
@@ -508,6 +510,45 @@ _sig(render_lib, "ss_write_png", _i, C.c_char_p, C.POINTER(C.c_ubyte), _i, _i, _
 _sig(render_lib, "ss_label_color", None, _i, C.c_ubyte * 3)
 _sig(render_lib, "ss_segmentation_face_colors", _i, _PM, _PI, C.POINTER(C.c_ubyte), C.POINTER(C.c_ubyte), _PE)
 _sig(render_lib, "ss_labels_align", _i, _PI, _PI, _i, _PE)
+
+
+# ---- OpenBLAS threads during calls --------------------------------------------------------------
+# The library's parallelism is OpenMP (the shapes of a match side by side, fields, queries); OpenBLAS's
+# own threads beside it only compete for the cores: a FAUST match from two meshes took 2.1-2.4 s wall /
+# 4.2-4.6 s CPU with OpenBLAS's default threads against 1.4-1.6 s / 2.3-2.6 s with one. So, as the
+# `specseg` program does, the library's compute calls run with OpenBLAS single-threaded, and the
+# caller's setting is restored afterwards (numpy may share that OpenBLAS). OPENBLAS_NUM_THREADS in the
+# environment wins; without OpenBLAS (another BLAS) nothing is changed.
+_ob_get = getattr(lib, "openblas_get_num_threads", None)
+_ob_set = getattr(lib, "openblas_set_num_threads", None)
+if _ob_get is not None and _ob_set is not None:
+    _ob_get.restype, _ob_get.argtypes = C.c_int, []
+    _ob_set.restype, _ob_set.argtypes = None, [C.c_int]
+_blas_lock = threading.Lock()
+_blas_depth = 0  # calls in progress (several Python threads may call at once)
+_blas_saved = 0  # the caller's thread count, restored when the last call ends
+
+
+@contextlib.contextmanager
+def one_blas_thread():
+    """Run the body with the library's OpenBLAS single-threaded (see above); nests and is thread-safe."""
+    global _blas_depth, _blas_saved
+    if _ob_get is None or _ob_set is None or os.environ.get("OPENBLAS_NUM_THREADS"):
+        yield
+        return
+    with _blas_lock:
+        if _blas_depth == 0:
+            _blas_saved = _ob_get()
+            if _blas_saved > 1:
+                _ob_set(1)
+        _blas_depth += 1
+    try:
+        yield
+    finally:
+        with _blas_lock:
+            _blas_depth -= 1
+            if _blas_depth == 0 and _blas_saved > 1:
+                _ob_set(_blas_saved)
 
 
 def has(name):

@@ -257,6 +257,30 @@ except specseg.SpecsegError as ex:
     check("libassimp-dev" in str(ex), "read_mesh STL without assimp names libassimp-dev: %s" % ex)
     print("SKIP: STL / glTF (%s)" % ex)
 
+# --- the library's calls run with OpenBLAS single-threaded; the caller's setting comes back ---
+from specseg import _clib  # noqa: E402
+if _clib._ob_get is not None and not os.environ.get("OPENBLAS_NUM_THREADS"):
+    _clib._ob_set(2)
+    with _clib.one_blas_thread():
+        inside = _clib._ob_get()
+        with _clib.one_blas_thread():  # nested
+            inside2 = _clib._ob_get()
+        after_nested = _clib._ob_get()
+    check(inside == 1 and inside2 == 1 and after_nested == 1, "one BLAS thread inside (got %d, %d, %d)"
+          % (inside, inside2, after_nested))
+    check(_clib._ob_get() == 2, "the caller's 2 BLAS threads restored (got %d)" % _clib._ob_get())
+    specseg.eigs(V, F, 6)
+    check(_clib._ob_get() == 2, "eigs leaves the caller's BLAS threads (got %d)" % _clib._ob_get())
+    try:
+        with _clib.one_blas_thread():  # a call that raises restores them too
+            raise specseg.SpecsegError("invalid input", "test")
+    except specseg.SpecsegError:
+        pass
+    check(_clib._ob_get() == 2, "a failed call leaves the caller's BLAS threads (got %d)" % _clib._ob_get())
+    _clib._ob_set(1)
+else:
+    print("SKIP: BLAS threads (not OpenBLAS, or OPENBLAS_NUM_THREADS set)")
+
 # --- errors come back as exceptions carrying the library message ---
 try:
     specseg.read_mesh(path("missing.off"))
