@@ -8,14 +8,12 @@
 #include "fmap/fmap_options.h"
 #include "match/proxy.h"
 #include "match/landmark_check.h"
+#include "util/side_by_side.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 /* Defaults of what the paper leaves open (docs/tuning.md). */
 #define SS_DEFAULT_DESCR_K 100
@@ -117,30 +115,25 @@ static int caches_cover(const ss_shape_prep *p, const ss_match_options *o) {
   return 1;
 }
 
+/* One shape's probe cache entries for probe_caches_both (nothing when the shape carries them). */
+typedef struct cache_task {
+  const ss_shape_prep *p;
+  const ss_match_options *o;
+  ss_fmap_probe_cache **c;
+  int *n, need;
+} cache_task;
+static ss_status cache_task_run(void *arg, ss_error *err) {
+  cache_task *t = arg;
+  return t->need ? probe_caches(t->p, t->o, t->c, t->n, err) : SS_OK;
+}
+
 /* The probe cache entries of both shapes that the shapes do not carry (NULL, 0 where they do), side
- * by side when OpenMP gives this call two threads (as prepare_both); X's error first. */
+ * by side when both need them (ssi_run_both); X's error first. */
 static ss_status probe_caches_both(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
                                    ss_fmap_probe_cache **cx, int *nx, ss_fmap_probe_cache **cy, int *ny, ss_error *err) {
-  const int need_x = !caches_cover(X, o), need_y = !caches_cover(Y, o);
-  ss_error ex = {{0}}, ey = {{0}};
-  ss_status sx = SS_OK, sy = SS_OK;
   *cx = *cy = NULL, *nx = *ny = 0;
-  int two = 0;
-#ifdef _OPENMP
-  two = need_x && need_y && omp_get_max_threads() > 1 && !omp_in_parallel();
-#endif
-#pragma omp parallel sections num_threads(2) if (two)
-  {
-#pragma omp section
-    if (need_x) sx = probe_caches(X, o, cx, nx, &ex);
-#pragma omp section
-    if (need_y) sy = probe_caches(Y, o, cy, ny, &ey);
-  }
-  if (sx || sy) {
-    if (err) *err = sx ? ex : ey;
-    return sx ? sx : sy;
-  }
-  return SS_OK;
+  cache_task tx = {X, o, cx, nx, !caches_cover(X, o)}, ty = {Y, o, cy, ny, !caches_cover(Y, o)};
+  return ssi_run_both(cache_task_run, &tx, cache_task_run, &ty, tx.need && ty.need, err);
 }
 
 ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *opts, ss_error *err) {
@@ -511,37 +504,30 @@ static void name_shape(ss_error *err, const char *shape) {
 }
 
 /* One shape's preparation for ss_match: segmented (ASA, DIFF, landmark-free) or spectral only. */
-static ss_status prepare_one(const ss_mesh *m, int segment, const ss_segment_options *so, int kev, ss_shape_prep *p,
-                             ss_error *err) {
-  return segment ? ss_shape_prep_compute(m, so, kev, p, err) : ss_shape_prep_compute_spectral(m, kev, p, err);
+typedef struct prep_task {
+  const ss_mesh *m;
+  int segment, kev;
+  const ss_segment_options *so;
+  ss_shape_prep *p;
+  int done;
+} prep_task;
+static ss_status prep_task_run(void *arg, ss_error *err) {
+  prep_task *t = arg;
+  ss_status st = t->segment ? ss_shape_prep_compute(t->m, t->so, t->kev, t->p, err)
+                            : ss_shape_prep_compute_spectral(t->m, t->kev, t->p, err);
+  t->done = !st;
+  return st;
 }
 
-/* Both shapes' preparations, side by side when OpenMP gives this call two threads (outside any
- * parallel region): each runs on one thread, the parallel regions inside it single-threaded (nested
- * parallelism is off by default), so each result is the one it has when run alone. Errors name the
- * shape; X's is reported when both fail. *have_x / *have_y: which preparation succeeded. */
+/* Both shapes' preparations, side by side (ssi_run_both). Errors name the shape, X's first;
+ * *have_x / *have_y: which preparation succeeded (to be freed). */
 static ss_status prepare_both(const ss_mesh *PX, const ss_mesh *PY, int segment, const ss_segment_options *so, int kev,
                               ss_shape_prep *pX, ss_shape_prep *pY, int *have_x, int *have_y, ss_error *err) {
-  ss_error ex = {{0}}, ey = {{0}};
-  ss_status sx = SS_OK, sy = SS_OK;
-  int two = 0;
-#ifdef _OPENMP
-  two = omp_get_max_threads() > 1 && !omp_in_parallel();
-#endif
-#pragma omp parallel sections num_threads(2) if (two)
-  {
-#pragma omp section
-    sx = prepare_one(PX, segment, so, kev, pX, &ex);
-#pragma omp section
-    sy = prepare_one(PY, segment, so, kev, pY, &ey);
-  }
-  *have_x = !sx, *have_y = !sy;
-  if (sx || sy) {
-    if (err) *err = sx ? ex : ey;
-    name_shape(err, sx ? "X (the first mesh)" : "Y (the second mesh)");
-    return sx ? sx : sy;
-  }
-  return SS_OK;
+  prep_task tx = {PX, segment, kev, so, pX, 0}, ty = {PY, segment, kev, so, pY, 0};
+  ss_status st = ssi_run_both(prep_task_run, &tx, prep_task_run, &ty, 1, err);
+  *have_x = tx.done, *have_y = ty.done;
+  if (st) name_shape(err, !tx.done ? "X (the first mesh)" : "Y (the second mesh)");
+  return st;
 }
 
 /* ---- meshes of several components ---------------------------------------------------------------

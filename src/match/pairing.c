@@ -2,13 +2,11 @@
  * exact geodesic distances to corresponding landmarks, on the streamlined (work) shapes. */
 #include "specseg/match.h"
 #include "specseg/geodesic.h"
+#include "util/side_by_side.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 void ss_segment_pairs_free(ss_segment_pairs *p) {
   if (!p) return;
@@ -213,30 +211,17 @@ done:
   return st;
 }
 
-/* landmark_fields of both shapes; when both propagate fields and OpenMP gives this call two
- * threads, side by side, one thread each (nested regions run single-threaded): the same distances
- * as one after the other, in less time than one shape's few fields spread over the threads. */
-static ss_status landmark_fields_both(const ss_segmentation *X, const double *fX, const ss_segmentation *Y,
-                                      const double *fY, int nl, const int *lmX, const int *lmY, double *dX, double *dY,
-                                      ss_error *err) {
-  ss_error ex = {{0}}, ey = {{0}};
-  ss_status sx = SS_OK, sy = SS_OK;
-  int two = 0;
-#ifdef _OPENMP
-  two = !fX && !fY && omp_get_max_threads() > 1 && !omp_in_parallel();
-#endif
-#pragma omp parallel sections num_threads(2) if (two)
-  {
-#pragma omp section
-    sx = landmark_fields(X, fX, nl, lmX, dX, &ex);
-#pragma omp section
-    sy = landmark_fields(Y, fY, nl, lmY, dY, &ey);
-  }
-  if (sx || sy) {
-    if (err) *err = sx ? ex : ey;
-    return sx ? sx : sy;
-  }
-  return SS_OK;
+/* landmark_fields of one shape, as a task of ssi_run_both */
+typedef struct fields_task {
+  const ss_segmentation *s;
+  const double *crit_fields;
+  int nl;
+  const int *lm;
+  double *d;
+} fields_task;
+static ss_status fields_task_run(void *arg, ss_error *err) {
+  fields_task *t = arg;
+  return landmark_fields(t->s, t->crit_fields, t->nl, t->lm, t->d, err);
 }
 
 ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
@@ -255,7 +240,10 @@ static ss_status pair_segments_fields(const ss_segmentation *X, const double *fX
   double *dX = malloc(sizeof(double) * (size_t)X->m * nl), *dY = malloc(sizeof(double) * (size_t)Y->m * nl);
   ss_status st = SS_OK;
   if (!dX || !dY) st = ss_fail(err, SS_ERR_NOMEM, "pairing: out of memory");
-  if (!st) st = landmark_fields_both(X, fX, Y, fY, nl, lmX, lmY, dX, dY, err);
+  /* both shapes' fields side by side, one thread each (when both propagate: a shape's few fields
+   * spread over the threads leave one idle at the end) */
+  fields_task tx = {X, fX, nl, lmX, dX}, ty = {Y, fY, nl, lmY, dY};
+  if (!st) st = ssi_run_both(fields_task_run, &tx, fields_task_run, &ty, !fX && !fY, err);
   if (!st) st = ss_pair_critical_points_conf(X->m, Y->m, nl, dX, dY, po, out, err);
   free(dX);
   free(dY);

@@ -5,14 +5,12 @@
 #include "specseg/laplacian.h"
 #include "specseg/mesh.h"
 #include "specseg/spectrum.h"
+#include "util/side_by_side.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 void ss_shape_prep_free(ss_shape_prep *p) {
   if (!p) return;
@@ -131,36 +129,34 @@ static ss_status compute_spectral(const ss_mesh *m, int kev, ss_shape_prep *out,
   return SS_OK;
 }
 
+/* The two parts of ss_shape_prep_compute, as tasks of ssi_run_both: they write different fields. */
+typedef struct prep_parts {
+  const ss_mesh *m;
+  const ss_segment_options *seg_opts;
+  int kev;
+  ss_shape_prep *out;
+} prep_parts;
+static ss_status segment_part(void *arg, ss_error *err) {
+  prep_parts *t = arg;
+  double t0 = ss_time();
+  ss_status st = ss_segment(t->m, t->seg_opts, &t->out->seg, err);
+  t->out->t_segment = ss_time() - t0;
+  return st;
+}
+static ss_status spectral_part(void *arg, ss_error *err) {
+  prep_parts *t = arg;
+  return compute_spectral(t->m, t->kev, t->out, err);
+}
+
 ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                 ss_error *err) {
   ss_status st = check_input(m, kev, out, err);
   if (st) return st;
   out->mesh = m;
-  /* the segmentation and the eigenpairs depend on the mesh alone: side by side when OpenMP gives
-   * this call two threads (each single-threaded inside, so each result is its one-thread result);
-   * a segmentation error is reported first, as when they run one after the other */
-  ss_error es = {{0}}, ee = {{0}};
-  ss_status ss_ = SS_OK, se = SS_OK;
-  int two = 0;
-#ifdef _OPENMP
-  two = omp_get_max_threads() > 1 && !omp_in_parallel();
-#endif
-#pragma omp parallel sections num_threads(2) if (two)
-  {
-#pragma omp section
-    {
-      double t0 = ss_time();
-      ss_ = ss_segment(m, seg_opts, &out->seg, &es);
-      out->t_segment = ss_time() - t0;
-    }
-#pragma omp section
-    se = compute_spectral(m, kev, out, &ee);
-  }
-  st = ss_ ? ss_ : se;
-  if (st) {
-    if (err) *err = ss_ ? es : ee;
-    ss_shape_prep_free(out);
-  }
+  /* the segmentation and the eigenpairs depend on the mesh alone: side by side (ssi_run_both; a
+   * segmentation error is reported first, as when they run one after the other) */
+  prep_parts t = {m, seg_opts, kev, out};
+  if ((st = ssi_run_both(segment_part, &t, spectral_part, &t, 1, err))) ss_shape_prep_free(out);
   return st;
 }
 
