@@ -59,9 +59,10 @@ int main(void) {
       }
       CHECK(st == SS_OK);
     }
-    /* (inside the region the tasks see its team of 2, on the one thread that called) */
+    /* (inside the region the tasks see its team of 2, on the one thread that called; with both = 0
+     * their own regions have the two threads) */
     CHECK_MSG(a.ran && b.ran && a.thread == b.thread && a.team == (mode == 2 ? 2 : 1) && b.team == a.team &&
-                  a.inner_team == 1 && a.order == 0 && b.order == 1,
+                  a.inner_team == (mode == 0 ? 2 : 1) && a.order == 0 && b.order == 1,
               "mode %d", mode);
   }
   /* errors: a's first; b's when a succeeds; one after the other, b does not run after a failed */

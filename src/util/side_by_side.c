@@ -17,12 +17,13 @@ ss_status ssi_run_both(ssi_task_fn fa, void *a, ssi_task_fn fb, void *b, int bot
   (void)both;
 #endif
   if (two) {
-#pragma omp parallel sections num_threads(2)
+    /* thread 0 runs a, thread 1 b (sections could hand both to the thread that arrives first); a
+     * team of one (a thread limit) runs both */
+#pragma omp parallel num_threads(2)
     {
-#pragma omp section
-      sa = fa(a, &ea);
-#pragma omp section
-      sb = fb(b, &eb);
+      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+      if (t == 0) sa = fa(a, &ea);
+      if (t == 1 || (nt == 1 && !sa)) sb = fb(b, &eb);
     }
   } else {
     sa = fa(a, &ea);
