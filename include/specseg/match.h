@@ -128,7 +128,9 @@ typedef struct ss_shape_prep {
 /* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs (then
  * scaled to unit area, above). The result depends only on the shape, so it can be computed once and
  * reused across pairs. Fails with SS_ERR_INVALID on a mesh the sanitizer would change (non-manifold or
- * degenerate input): repair it first (its vertex indices are what landmarks and maps refer to). */
+ * degenerate input): repair it first (its vertex indices are what landmarks and maps refer to).
+ * With two or more OpenMP threads (outside a parallel region) the segmentation and the eigenpairs
+ * run side by side, one thread each, with the same results as one after the other. */
 SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                        ss_error *err);
 /* The same without the segmentation (seg left empty): what a match with STD probes and landmarks
