@@ -219,9 +219,8 @@ def eigs(V, F, k):
     k = _as_int32(k, "k", 1, n - 1)
     evals, evecs = np.zeros(k), np.zeros((k, n))  # column-major n x k == row-major k x n
     e = _err()
-    with _clib.one_blas_thread():
-        st = lib.ss_mesh_eigs(C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double), C.byref(e))
-    _check(st, e)
+    _check(_clib.compute(lib.ss_mesh_eigs, C.byref(m), k, _clib.ptr(evals, C.c_double), _clib.ptr(evecs, C.c_double),
+                         C.byref(e)), e)
     return evals, np.ascontiguousarray(evecs.T)
 
 
@@ -347,9 +346,7 @@ def smooth(V, F, steps=None, dt=None):
     if dt is not None:
         o.dt = _as_float(dt, "dt", positive=True)
     out, e = _clib.ss_mesh(), _err()
-    with _clib.one_blas_thread():
-        st = lib.ss_cmcf_smooth(C.byref(m), C.byref(o), C.byref(out), C.byref(e))
-    _check(st, e)
+    _check(_clib.compute(lib.ss_cmcf_smooth, C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
     V2, _ = _clib.take_mesh(out)
     return V2
 
@@ -387,9 +384,7 @@ def remesh(V, F, target_faces=15000):
     lib.ss_remesh_default_options(C.byref(o))
     o.target_faces = _as_int32(target_faces, "target_faces")
     out, e = _clib.ss_mesh(), _err()
-    with _clib.one_blas_thread():
-        st = lib.ss_remesh(C.byref(m), C.byref(o), C.byref(out), C.byref(e))
-    _check(st, e)
+    _check(_clib.compute(lib.ss_remesh, C.byref(m), C.byref(o), C.byref(out), C.byref(e)), e)
     return _clib.take_mesh(out)
 
 
@@ -470,8 +465,7 @@ def segment(V, F, target_faces=None, no_streamline=False, cleanup_rings=None, sa
     if sanitize is not None:
         o.sanitize = 1 if sanitize else 0
     s, e = _clib.ss_segmentation(), _err()
-    with _clib.one_blas_thread():
-        st = lib.ss_segment(C.byref(m), C.byref(o), C.byref(s), C.byref(e))
+    st = _clib.compute(lib.ss_segment, C.byref(m), C.byref(o), C.byref(s), C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array
@@ -706,13 +700,12 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         o.ndescr = _as_int32(DX.shape[1], "descriptor columns")
         o.descrX, o.descrY = _clib.ptr(DX, C.c_double), _clib.ptr(DY, C.c_double)
     r, e = _clib.ss_match_result(), _err()
-    with _clib.one_blas_thread():
-        if shapes:
-            st = lib.ss_match_prepared_shapes(C.byref(X._s), C.byref(Y._s), lx.size, _clib.ptr(lx, C.c_int),
-                                              _clib.ptr(ly, C.c_int), C.byref(o), C.byref(r), None, 0, C.byref(e))
-        else:
-            st = lib.ss_match(C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int), _clib.ptr(ly, C.c_int),
-                              C.byref(o), C.byref(r), C.byref(e))
+    if shapes:
+        st = _clib.compute(lib.ss_match_prepared_shapes, C.byref(X._s), C.byref(Y._s), lx.size, _clib.ptr(lx, C.c_int),
+                           _clib.ptr(ly, C.c_int), C.byref(o), C.byref(r), None, 0, C.byref(e))
+    else:
+        st = _clib.compute(lib.ss_match, C.byref(mx), C.byref(my), lx.size, _clib.ptr(lx, C.c_int),
+                           _clib.ptr(ly, C.c_int), C.byref(o), C.byref(r), C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array
@@ -912,10 +905,8 @@ def prepare(V, F, k=None, target_faces=None, no_streamline=False, signature=True
     lib.ss_match_default_options(C.byref(o))
     kev = lib.ss_match_eigenpairs(C.byref(o), 0) if k is None else _as_int32(k, "k")
     sh, e = Shape(), _err()
-    with _clib.one_blas_thread():
-        st = lib.ss_prepared_shape_compute(C.byref(m), C.byref(so), kev, C.byref(o.autopair) if signature else None,
-                                           C.byref(sh._s), C.byref(e))
-    _check(st, e)
+    _check(_clib.compute(lib.ss_prepared_shape_compute, C.byref(m), C.byref(so), kev,
+                         C.byref(o.autopair) if signature else None, C.byref(sh._s), C.byref(e)), e)
     sh._live = True
     return sh
 
@@ -973,9 +964,8 @@ def pair(VX, FX, VY, FY):
     my, VY, FY = _clib.as_mesh(VY, FY)
     pr, info, e = _clib.ss_segment_pairs(), _clib.ss_autopair_info(), _err()
     cx, cy = C.POINTER(C.c_int)(), C.POINTER(C.c_int)()
-    with _clib.one_blas_thread():
-        st = lib.ss_pair_auto(C.byref(mx), C.byref(my), None, C.byref(pr), C.byref(cx), C.byref(cy), C.byref(info),
-                              C.byref(e))
+    st = _clib.compute(lib.ss_pair_auto, C.byref(mx), C.byref(my), None, C.byref(pr), C.byref(cx), C.byref(cy),
+                       C.byref(info), C.byref(e))
     try:
         _check(st, e)
         cp = _clib.copy_array

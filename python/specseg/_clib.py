@@ -551,6 +551,12 @@ def one_blas_thread():
                 _ob_set(_blas_saved)
 
 
+def compute(fn, *args):
+    """fn(*args) (a compute call of the library) with its OpenBLAS single-threaded: its status."""
+    with one_blas_thread():
+        return fn(*args)
+
+
 def has(name):
     """True when the loaded core or render library exports `name`."""
     return getattr(lib, name, None) is not None or (render_lib is not None and getattr(render_lib, name, None) is not None)
