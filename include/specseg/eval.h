@@ -501,6 +501,8 @@ typedef struct ss_benchmark_info {
   int pairs_shard;    /* of them in this shard */
   int rows_new;       /* rows computed now */
   int rows_kept;      /* scored rows found in pairs.csv (not recomputed) */
+  int rows_same_skip; /* skipped rows found there, retried and skipped again for the same reason (not
+                         written again) */
   int shapes_prepared, shapes_cached;
   double seconds;
   int nwarnings;      /* the warnings said through o->warn (malloc'd strings) */
@@ -513,7 +515,7 @@ typedef struct ss_benchmark_info {
 /* Runs (the shard of) the benchmark: reads the meshes and points the shard's pairs need, prepares
  * our shapes (o->match; in parallel, through the cache), then per pair (in parallel) our map and
  * every external map, each scored by ss_benchmark_score, one row per (method, pair) appended to
- * OUT/pairs.csv as it finishes. A mesh or .vts file that is missing or does not read, a map file that
+ * OUT/pairs.csv as it finishes (scored rows already there are kept; skipped ones are retried). A mesh or .vts file that is missing or does not read, a map file that
  * is missing, has another line count than X has vertices or a vertex outside Y, a match that fails:
  * the pairs concerned are skipped rows (warned once per file, the reason in notes), the run goes on.
  * Files of points of unequal length: the pair uses the common prefix (warned once per file whose

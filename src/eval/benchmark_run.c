@@ -369,28 +369,27 @@ static ss_status run(brun *R, ss_error *err) {
     if (o->match) mname[k++] = ours;
     for (int i = 0; i < o->nmaps; i++) mname[k++] = o->map_names[i];
   }
-  for (int i = o->match; i < NM; i++) {
-    if (!valid_method_name(mname[i])) {
-      free(mname);
-      return ss_fail(err, SS_ERR_INVALID, "benchmark: method name '%s': letters, digits, '_', '-' and '.' only, at most %d",
-                     mname[i], SS_BENCH_METHOD - 1);
-    }
-    if (!bm_is_dir(o->map_dirs[i - o->match])) {
-      free(mname);
-      return ss_fail(err, SS_ERR_IO, "benchmark: %s: maps folder %s is not a folder", mname[i], o->map_dirs[i - o->match]);
-    }
-    for (int j = 0; j < i; j++)
-      if (!strcmp(mname[i], mname[j])) {
-        free(mname);
-        return ss_fail(err, SS_ERR_INVALID, "benchmark: method '%s' given twice%s", mname[i],
-                       j == 0 && o->match ? " (our own maps' name)" : "");
-      }
+  ss_status bad = SS_OK;
+  for (int i = o->match; i < NM && !bad; i++) {
+    if (!valid_method_name(mname[i]))
+      bad = ss_fail(err, SS_ERR_INVALID, "benchmark: method name '%s': letters, digits, '_', '-' and '.' only, at most %d",
+                    mname[i], SS_BENCH_METHOD - 1);
+    else if (!bm_is_dir(o->map_dirs[i - o->match]))
+      bad = ss_fail(err, SS_ERR_IO, "benchmark: %s: maps folder %s is not a folder", mname[i], o->map_dirs[i - o->match]);
+    for (int j = 0; j < i && !bad; j++)
+      if (!strcmp(mname[i], mname[j]))
+        bad = ss_fail(err, SS_ERR_INVALID, "benchmark: method '%s' given twice%s", mname[i],
+                      j == 0 && o->match ? " (our own maps' name)" : "");
+  }
+  if (bad) {
+    free(mname);
+    return bad;
   }
   ss_status st = SS_OK;
   ss_benchmark_set B = {0};
   bshape *sh = NULL;
-  char **keys = NULL;
-  int nkeys = 0, *todo = NULL, ntodo = 0, *need_m = NULL;
+  char **keys = NULL, **skeys = NULL;
+  int nkeys = 0, nskeys = 0, *todo = NULL, ntodo = 0, *need_m = NULL;
   ss_benchmark_row *old = NULL;
   FILE *out = NULL;
   char *csv = NULL, *mapdir = NULL;
@@ -417,9 +416,18 @@ static ss_status run(brun *R, ss_error *err) {
   if (have_header) {
     if ((st = ss_benchmark_csv_read(csv, &old, &nold, err))) goto done;
     keys = malloc(sizeof *keys * (size_t)(nold > 0 ? nold : 1));
-    if (!keys) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
+    skeys = malloc(sizeof *skeys * (size_t)(nold > 0 ? nold : 1));
+    if (!keys || !skeys) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
     for (int i = 0; i < nold; i++) {
-      if (!old[i].ok) continue;
+      if (!old[i].ok) { /* retried, but not written again when skipped for the same reason */
+        char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4 + sizeof old[i].notes];
+        row_key(old[i].method, old[i].x, old[i].y, k, sizeof k);
+        size_t L = strlen(k);
+        snprintf(k + L, sizeof k - L, "\t%s", old[i].notes);
+        if (!(skeys[nskeys] = bm_strdup(k))) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
+        nskeys++;
+        continue;
+      }
       char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4];
       row_key(old[i].method, old[i].x, old[i].y, k, sizeof k);
       if (!(keys[nkeys] = bm_strdup(k))) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
@@ -427,6 +435,7 @@ static ss_status run(brun *R, ss_error *err) {
       nkeys++;
     }
     qsort(keys, (size_t)nkeys, sizeof *keys, str_cmp);
+    qsort(skeys, (size_t)nskeys, sizeof *skeys, str_cmp);
   }
   if (o->match) {
     if (mkdir(mapdir, 0755) && errno != EEXIST) {
@@ -674,6 +683,16 @@ static ss_status run(brun *R, ss_error *err) {
     lock(R);
     for (int m = 0; m < NM && !werr; m++) {
       if (!need_m[(size_t)t * NM + m]) continue;
+      if (!rows[m].ok && nskeys > 0) {
+        char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4 + sizeof rows[m].notes], *kp = k;
+        row_key(rows[m].method, rows[m].x, rows[m].y, k, sizeof k);
+        size_t L = strlen(k);
+        snprintf(k + L, sizeof k - L, "\t%s", rows[m].notes);
+        if (bsearch(&kp, skeys, (size_t)nskeys, sizeof *skeys, str_cmp)) {
+          I->rows_same_skip++;
+          continue;
+        }
+      }
       char line[SS_BENCH_CSV_LINE];
       ss_benchmark_csv_format_row(&rows[m], line, sizeof line);
       if (fprintf(out, "%s\n", line) < 0) werr = SS_ERR_IO, snprintf(wmsg.msg, sizeof wmsg.msg, "%s: write error", csv);
@@ -700,7 +719,8 @@ done:
       if (sh[s].prepared) ss_prepared_shape_free(&sh[s].ps);
     }
   for (int i = 0; i < nkeys; i++) free(keys[i]);
-  free(keys), free(sh), free(todo), free(need_m), free(old), free(csv), free(mapdir), free(mname);
+  for (int i = 0; i < nskeys; i++) free(skeys[i]);
+  free(keys), free(skeys), free(sh), free(todo), free(need_m), free(old), free(csv), free(mapdir), free(mname);
   ss_benchmark_set_free(&B);
   I->seconds = ss_time() - t0;
   return st;
