@@ -86,6 +86,13 @@ static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--qu
                                    "--pairing=", "--json", "--candidates=", NULL};
 static const char *const MERGE_OPTS[] = {"--out=", "-o=", "--manifest=", NULL};
 
+/* the help text: the paper's evaluation, then the benchmark's (cmd_eval_benchmark.h) */
+static const char *full_usage(void) {
+  static char buf[sizeof USAGE + sizeof CLI_EVAL_BENCHMARK_HELP_TEXT];
+  if (!buf[0]) snprintf(buf, sizeof buf, "%s%s", USAGE, CLI_EVAL_BENCHMARK_HELP_TEXT);
+  return buf;
+}
+
 /* "a,b,c" of names → bit set; -1 on an unknown name */
 static int parse_set(const char *s, int (*parse)(const char *)) {
   char buf[256];
@@ -273,7 +280,7 @@ static int cmd_merge(int argc, char **argv) {
   int n = 0, nin = 0;
   ss_error e;
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, MERGE_OPTS);
+  cli_args_init(&A, argc, argv, full_usage(), MERGE_OPTS);
   A.cmd = "eval merge";
   while (cli_next(&A)) {
     if (A.opt) {
@@ -695,9 +702,7 @@ int cmd_eval(int argc, char **argv) {
     return merge_is_benchmark(argc - 1, argv + 1) ? cmd_eval_benchmark_merge(argc - 1, argv + 1) : cmd_merge(argc - 1, argv + 1);
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "--benchmark") || !strncmp(argv[i], "--benchmark=", 12)) return cmd_eval_benchmark(argc, argv);
-  /* the help text: the paper's evaluation, then the benchmark's */
-  static char usage[sizeof USAGE + sizeof CLI_EVAL_BENCHMARK_HELP_TEXT];
-  snprintf(usage, sizeof usage, "%s%s", USAGE, CLI_EVAL_BENCHMARK_HELP_TEXT);
+  const char *usage = full_usage();
   ss_table1_options o;
   ss_table1_default_options(&o);
   o.out_csv = "specseg_table1.csv";
