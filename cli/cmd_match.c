@@ -6,6 +6,7 @@
 #include "specseg/match.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,6 +71,26 @@ static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap="
                                    "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
                                    "--zoomout-step=", "--zoomout-samples=", "--orient=", "--timings", "--descriptors==",
                                    "--no-wks", "--json", NULL};
+
+/* the hypotheses of a landmark-free match as a JSON array (non-finite numbers as null) */
+static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t size) {
+  size_t n = 0;
+  n += (size_t)snprintf(buf + n, size - n, "[");
+  for (int h = 0; h < a->hypotheses && h < SS_MAX_HYPOTHESES && n < size; h++) {
+    const double v[7] = {a->hyp_energy[h], a->hyp_distortion[h], a->hyp_reversed[h], a->hyp_orientation[h],
+                         a->hyp_orientation_min[h], a->hyp_pair_energy[h], a->hyp_map_energy[h]};
+    static const char *const key[7] = {"energy", "distortion", "reversed", "orientation", "orientation_min",
+                                       "pair_energy", "map_energy"};
+    n += (size_t)snprintf(buf + n, size - n, "%s{", h ? ", " : "");
+    for (int k = 0; k < 7 && n < size; k++) {
+      if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
+      else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
+    }
+    if (n < size) n += (size_t)snprintf(buf + n, size - n, "}");
+  }
+  if (n < size) snprintf(buf + n, size - n, "]");
+  return buf;
+}
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL, *dxp = NULL, *dyp = NULL;
@@ -251,7 +272,12 @@ int cmd_match(int argc, char **argv) {
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
   cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.pairs.n : nl);
   cli_job_int(&J, "landmark_free", res.autopair.used);
-  if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.confident);
+  char hbuf[SS_MAX_HYPOTHESES * 256];
+  if (res.autopair.used) {
+    cli_job_int(&J, "pairing_confident", res.autopair.confident);
+    cli_job_int(&J, "hypothesis", res.autopair.hypothesis);
+    cli_job_json(&J, "hypotheses", hypotheses_json(&res.autopair, hbuf, sizeof hbuf));
+  }
   cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);
   cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
   cli_job_int(&J, "zoomout", kz);
