@@ -266,15 +266,23 @@ int cmd_match(int argc, char **argv) {
     fprintf(report, "landmark-free pairing (%s search): energy %.4g, mirror candidate %.4g, next other %.4g (gap %.3f), "
             "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
-            res.autopair.mirror_other, res.autopair.confident ? ", confident" : ", NOT confident");
+            res.autopair.mirror_other, res.autopair.pairing_confident ? ", confident" : ", NOT confident");
+  if (res.autopair.used && !json && res.autopair.hypotheses > 1)
+    fprintf(report, "hypotheses: %d mapped, #%d kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed; "
+            "margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
+            res.autopair.hyp_energy[res.autopair.hypothesis], res.autopair.hyp_distortion[res.autopair.hypothesis],
+            100 * res.autopair.hyp_reversed[res.autopair.hypothesis], res.autopair.hyp_margin,
+            res.autopair.confident ? ", confident" : ", NOT confident");
   const char *refined = res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "";
   const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0;
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
-  cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.pairs.n : nl);
+  cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.autopair.hyp_landmarks : nl);
   cli_job_int(&J, "landmark_free", res.autopair.used);
   char hbuf[SS_MAX_HYPOTHESES * 256];
   if (res.autopair.used) {
-    cli_job_int(&J, "pairing_confident", res.autopair.confident);
+    cli_job_int(&J, "confident", res.autopair.confident);
+    cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);
+    if (res.autopair.hypotheses > 1) cli_job_num(&J, "hypothesis_margin", res.autopair.hyp_margin);
     cli_job_int(&J, "hypothesis", res.autopair.hypothesis);
     cli_job_json(&J, "hypotheses", hypotheses_json(&res.autopair, hbuf, sizeof hbuf));
   }
@@ -292,7 +300,8 @@ int cmd_match(int argc, char **argv) {
     if (!std_only)
       snprintf(segs, sizeof segs, "%d of %d/%d segments paired", res.pairs.n, res.pairs.nx, res.pairs.ny);
     fprintf(report, "%d -> %d vertices, %d landmarks%s, %s, probes %s, k %d%s%s%s -> %s\n", X->nv, Y->nv,
-            res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", segs, pn, o.fmap.k,
+            res.autopair.used ? res.autopair.hyp_landmarks : nl,
+            res.autopair.used ? " (paired protrusion centres)" : "", segs, pn, o.fmap.k,
             o.refine == SS_REFINE_NONE ? "" : ", refined: ", refined, dnote, cli_out_name(outp));
     if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
   }

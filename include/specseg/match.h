@@ -245,6 +245,9 @@ typedef struct ss_autopair_options {
    * 0.625), the segments then paired from them as with given landmarks; 1: every pair is a landmark
    * and the hypothesis is the segment pairing */
   double hyp_keep;
+  /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin below
+   * every other hypothesis's and it keeps orientation on every segment (default in docs/tuning.md) */
+  double hyp_min_margin;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -288,7 +291,9 @@ typedef struct ss_autopair_info {
                          * tie replaced the search's best: energy_other is then the search's best) */
   double mirror;        /* orientation score of the chosen pairing's map */
   double mirror_other;  /* that of the mirror candidate */
-  int confident;        /* gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror */
+  int confident;        /* the pairing: gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror; in a
+                         * match with several hypotheses: the map's (hyp_margin below) */
+  int pairing_confident; /* the pairing's own rule, as above, also in a match */
   double cpu;           /* CPU seconds of the search and the orientation test (signatures excluded) */
   int rechecked;        /* 1: the second orientation test decided (mirror / mirror_other are its scores) */
   double mirror_first, mirror_other_first; /* the first test's scores */
@@ -310,6 +315,11 @@ typedef struct ss_autopair_info {
   double hyp_map_energy[SS_MAX_HYPOTHESES]; /* the selection energy of its map (ss_match_result.refine_energy) */
   double hyp_orientation_min[SS_MAX_HYPOTHESES]; /* the least orientation score over X's segments */
   double hyp_reversed[SS_MAX_HYPOTHESES];        /* the share of X's segments below hyp_reversed_below */
+  int hyp_landmarks;  /* landmarks of the returned map (its protrusion pairs, hyp_keep) */
+  /* E of the best other hypothesis − E of the returned one (INFINITY: one hypothesis); a match's
+   * `confident` is then the map's: hyp_margin >= hyp_min_margin and no segment of the returned map
+   * below hyp_reversed_below (ss_autopair_options) */
+  double hyp_margin;
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:

@@ -42,6 +42,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_w_reversed = 0.05;
   o->hyp_reversed_below = 0.15;
   o->hyp_keep = 0.625;
+  o->hyp_min_margin = 0.003;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
@@ -1041,6 +1042,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     info->mirror_other = r2;
     info->mirror_margin = med / 2;
     info->confident = info->gap >= o.min_gap && info->mirror_margin >= o.min_mirror;
+    info->pairing_confident = info->confident;
     info->rechecked = rechecked;
     info->mirror_first = f1;
     info->mirror_other_first = f2;

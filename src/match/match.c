@@ -703,7 +703,8 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
     return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
   if (o.autopair.hypotheses < 1 || o.autopair.hypotheses > SS_MAX_HYPOTHESES || !(o.autopair.hyp_gap >= 0) ||
       !(o.autopair.hyp_w_reversed >= 0) || !isfinite(o.autopair.hyp_w_reversed) ||
-      !isfinite(o.autopair.hyp_reversed_below) || !(o.autopair.hyp_keep > 0 && o.autopair.hyp_keep <= 1))
+      !isfinite(o.autopair.hyp_reversed_below) || !(o.autopair.hyp_keep > 0 && o.autopair.hyp_keep <= 1) ||
+      !isfinite(o.autopair.hyp_min_margin))
     return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1]",
                    o.autopair.hypotheses, SS_MAX_HYPOTHESES);
   ss_centre_signature own[2];
@@ -763,20 +764,31 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
     info.hyp_map_energy[h] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     if (h == 0 || E < best) {
       if (h > 0) ss_match_result_free(out);
-      *out = r, best = E, info.hypothesis = h;
+      *out = r, best = E, info.hypothesis = h, info.hyp_landmarks = nl < pr->n ? nl : pr->n;
     } else
       ss_match_result_free(&r);
     memset(&r, 0, sizeof r);
   }
   info.hypotheses = nh;
+  info.hyp_margin = INFINITY;
+  for (int h = 0; h < nh; h++)
+    if (h != info.hypothesis && info.hyp_energy[h] - best < info.hyp_margin) info.hyp_margin = info.hyp_energy[h] - best;
+  if (nh > 1)
+    info.confident = info.hyp_margin >= o.autopair.hyp_min_margin && info.hyp_reversed[info.hypothesis] == 0;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
   out->autopair = info;
   if (!info.confident) {
-    char msg[200];
-    snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min %.2f): "
-             "the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin, o.autopair.min_mirror);
+    char msg[240];
+    if (nh > 1)
+      snprintf(msg, sizeof msg, "landmark-free map NOT confident (hypothesis margin %.3g, min %.3g; %.0f%% of the segments "
+               "reverse orientation): the map may be wrong (give landmarks)", info.hyp_margin, o.autopair.hyp_min_margin,
+               100 * info.hyp_reversed[info.hypothesis]);
+    else
+      snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
+               "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
+               o.autopair.min_mirror);
     add_note(out, msg);
   }
 done:
