@@ -245,8 +245,8 @@ typedef struct ss_autopair_options {
    * 0.625), the segments then paired from them as with given landmarks; 1: every pair is a landmark
    * and the hypothesis is the segment pairing */
   double hyp_keep;
-  /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin below
-   * every other hypothesis's and it keeps orientation on every segment (default in docs/tuning.md) */
+  /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin (default
+   * 0.003) below every other hypothesis's (docs/tuning.md) */
   double hyp_min_margin;
 } ss_autopair_options;
 
@@ -317,8 +317,7 @@ typedef struct ss_autopair_info {
   double hyp_reversed[SS_MAX_HYPOTHESES];        /* the share of X's segments below hyp_reversed_below */
   int hyp_landmarks;  /* landmarks of the returned map (its protrusion pairs, hyp_keep) */
   /* E of the best other hypothesis − E of the returned one (INFINITY: one hypothesis); a match's
-   * `confident` is then the map's: hyp_margin >= hyp_min_margin and no segment of the returned map
-   * below hyp_reversed_below (ss_autopair_options) */
+   * `confident` is then the map's: hyp_margin >= hyp_min_margin (ss_autopair_options) */
   double hyp_margin;
 } ss_autopair_info;
 

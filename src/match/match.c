@@ -774,7 +774,7 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   for (int h = 0; h < nh; h++)
     if (h != info.hypothesis && info.hyp_energy[h] - best < info.hyp_margin) info.hyp_margin = info.hyp_energy[h] - best;
   if (nh > 1)
-    info.confident = info.hyp_margin >= o.autopair.hyp_min_margin && info.hyp_reversed[info.hypothesis] == 0;
+    info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
@@ -782,9 +782,9 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   if (!info.confident) {
     char msg[240];
     if (nh > 1)
-      snprintf(msg, sizeof msg, "landmark-free map NOT confident (hypothesis margin %.3g, min %.3g; %.0f%% of the segments "
-               "reverse orientation): the map may be wrong (give landmarks)", info.hyp_margin, o.autopair.hyp_min_margin,
-               100 * info.hyp_reversed[info.hypothesis]);
+      snprintf(msg, sizeof msg, "landmark-free map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
+               "hypothesis maps almost as well; the map may be wrong (give landmarks)", info.hyp_margin,
+               o.autopair.hyp_min_margin);
     else
       snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
                "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
