@@ -1,5 +1,6 @@
 /* specseg eval: reproduce the paper's evaluation (Table 1, §5 coherency, §5 timings, Figures 3, 9–11). */
 #include "cli.h"
+#include "cmd_eval_benchmark.h"
 #include "specseg/eval.h"
 #include "specseg/io.h"
 #include "specseg/match.h"
@@ -26,6 +27,8 @@ static const char USAGE[] =
     "       specseg eval --table1 --manifest FILE [--out RESULTS.csv] [--landmarks best,gt,fps,none]\n"
     "                    [--pairing paper|confident] [--methods ...] [--cache DIR] [--shard I/N] ...\n"
     "       specseg eval merge CSV... [--out ALL.csv] [--manifest FILE]\n"
+    "       specseg eval --benchmark DIR [--out OUTDIR] [--maps NAME=MAPDIR]... [--landmarks none|gt:N] ...\n"
+    "                    (the field's benchmark, FAUST_r / TOSCA_r: options at the end)\n"
     "       specseg eval --coherency --data DIR [--jobs N]\n"
     "       specseg eval --timings --data DIR [--shapes N]\n"
     "       specseg eval --figures OUTDIR --data DIR [--landmarks best,gt,fps] [--pair X,Y | --candidates N]\n"
@@ -73,7 +76,8 @@ static const char USAGE[] =
     "                      figures with their pairs, rule and errors; output paths, seconds, errors)\n"
     "  --size WxH          --figures: panel size, 16..4096 each (default 360x720 gallery, 300x600 maps)\n"
     "  --gallery-count N   --figures: shapes in the gallery, 0..100 (default 10)\n"
-    "  --gallery-only      --figures: the gallery only, no map figures\n";
+    "  --gallery-only      --figures: the gallery only, no map figures\n"
+    "\n";
 
 static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--quiet", "--gallery-only", "--figures=",
                                    "--gallery-count=", "--pair=", "--size=", "--data=", "--out=", "-o=", "--cache=",
@@ -81,6 +85,13 @@ static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--qu
                                    "--shard=", "--policies=", "--landmarks=", "--methods=", "--manifest=",
                                    "--pairing=", "--json", "--candidates=", NULL};
 static const char *const MERGE_OPTS[] = {"--out=", "-o=", "--manifest=", NULL};
+
+/* the help text: the paper's evaluation, then the benchmark's (cmd_eval_benchmark.h) */
+static const char *full_usage(void) {
+  static char buf[sizeof USAGE + sizeof CLI_EVAL_BENCHMARK_HELP_TEXT];
+  if (!buf[0]) snprintf(buf, sizeof buf, "%s%s", USAGE, CLI_EVAL_BENCHMARK_HELP_TEXT);
+  return buf;
+}
 
 /* "a,b,c" of names → bit set; -1 on an unknown name */
 static int parse_set(const char *s, int (*parse)(const char *)) {
@@ -269,7 +280,7 @@ static int cmd_merge(int argc, char **argv) {
   int n = 0, nin = 0;
   ss_error e;
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, MERGE_OPTS);
+  cli_args_init(&A, argc, argv, full_usage(), MERGE_OPTS);
   A.cmd = "eval merge";
   while (cli_next(&A)) {
     if (A.opt) {
@@ -671,8 +682,27 @@ static int run_manifest(ss_table1_options *o, const char *path, int lm_given, in
   return rc;
 }
 
+/* eval merge of benchmark shards: a folder argument, or a CSV with the benchmark's header (option
+ * values skipped) */
+static int merge_is_benchmark(int argc, char **argv) {
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--out") || !strcmp(a, "-o") || !strcmp(a, "--manifest") || !strcmp(a, "--title")) {
+      i++;
+      continue;
+    }
+    if (a[0] == '-' && a[1]) continue;
+    if (cli_is_benchmark_csv(a)) return 1;
+  }
+  return 0;
+}
+
 int cmd_eval(int argc, char **argv) {
-  if (argc >= 2 && !strcmp(argv[1], "merge")) return cmd_merge(argc - 1, argv + 1);
+  if (argc >= 2 && !strcmp(argv[1], "merge"))
+    return merge_is_benchmark(argc - 1, argv + 1) ? cmd_eval_benchmark_merge(argc - 1, argv + 1) : cmd_merge(argc - 1, argv + 1);
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "--benchmark") || !strncmp(argv[i], "--benchmark=", 12)) return cmd_eval_benchmark(argc, argv);
+  const char *usage = full_usage();
   ss_table1_options o;
   ss_table1_default_options(&o);
   o.out_csv = "specseg_table1.csv";
@@ -681,7 +711,7 @@ int cmd_eval(int argc, char **argv) {
   int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0, ncand = 9;
   const char *mpath = NULL;
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
+  cli_args_init(&A, argc, argv, usage, OPTS);
   while (cli_next(&A)) {
     const char *v = A.val;
     if (A.pos) return cli_bad(&A, "unexpected argument '%s'", A.pos);

@@ -309,6 +309,223 @@ SS_API ss_status ss_eval_showcase_pair(const char *data_dir, const char *cache_d
                                        ss_pair_policy policy, int ncand, int *x, int *y, int *index, int *xs, int *ys,
                                        double *scores, ss_error *err);
 
+/* ---- The field's benchmarks: a folder of meshes with ground-truth points (benchmark*.c) --------
+ * The layout of the remeshed FAUST_r / TOSCA_r (the BCICP data set): meshes NAME.off (any format
+ * ss_read_mesh reads) in DIR, or in DIR/vtx_5k, DIR/off or DIR/shapes; per mesh NAME its ground-truth
+ * points corres/NAME.vts beside the meshes (or DIR/corres): one 1-based vertex index a line, line k
+ * the same point on every shape; optionally corres/NAME.sym.vts, line k the left-right mirror of point
+ * k on NAME. Pairs: a pairs file (two names a line, tab or blank separated, '#' comments), else
+ * DIR/test_pairs.txt (or one beside the meshes), else every ordered pair of distinct shapes.
+ *
+ * Protocol (as the field reports it), for a map X -> Y (line i = vertex of Y for vertex i of X,
+ * 0-based) and every point k < K = min(points of X, points of Y):
+ *   e_k = d_Y(map[vts_X[k] - 1], vts_Y[k] - 1) / sqrt(area(Y)),
+ * d_Y the exact (VTP) geodesic distance on Y, computed by ss_map_geodesic_error as `specseg error`
+ * computes it (so a pair's mean equals `specseg error` on the K-line files map[vts_X - 1] and
+ * vts_Y - 1); the symmetric error e'_k = min(d_Y(m_k, vts_Y[k] - 1), d_Y(m_k, sym_Y[k] - 1)) /
+ * sqrt(area(Y)) over the points k < min(K, points of sym_Y) (the map may send X onto Y's mirror
+ * image); a pair's mean and median over its points; x 100 as printed. */
+
+/* the cumulative curve's grid: e_j = SS_BENCH_CURVE_MAX * j / (SS_BENCH_CURVE_N - 1), j = 0..250 */
+#define SS_BENCH_CURVE_N 251
+#define SS_BENCH_CURVE_MAX 0.25
+#define SS_BENCH_NAME 96  /* longest shape or class name + 1 */
+#define SS_BENCH_METHOD 48 /* longest method name + 1 */
+
+typedef struct ss_benchmark_shape {
+  char *name;      /* the mesh file's name without folder and extension */
+  char *mesh;      /* its path; NULL: a name the pair list gives without a mesh file */
+  char *vts, *sym; /* corres/NAME.vts and corres/NAME.sym.vts when present, else NULL */
+} ss_benchmark_shape;
+
+typedef struct ss_benchmark_set {
+  char *dir;         /* the folder given */
+  char *mesh_dir;    /* the folder of the meshes (dir, or its vtx_5k/, off/ or shapes/) */
+  char *corres_dir;  /* the folder of the .vts files (NULL: none found) */
+  char *pairs_file;  /* the pairs' file (NULL: every ordered pair) */
+  int nshapes;
+  ss_benchmark_shape *shapes; /* sorted by name, numbers in names by value (cat2 < cat10) */
+  int nall;          /* pairs listed (or all ordered pairs) before sampling */
+  int npairs;
+  int *px, *py;      /* npairs pairs X -> Y (shape indices), in the list's order */
+} ss_benchmark_set;
+
+/* Opens a benchmark folder.
+ *  dir: the folder (layout above).
+ *  pairs_file: the pairs (NULL: dir's test_pairs.txt, else all ordered pairs). A line naming a shape
+ *    without a mesh file adds that name as a shape with mesh NULL (its pairs are skipped when run).
+ *  max_pairs: 0 = every pair; N > 0: N of them drawn without replacement (ss_rng from seed), kept in
+ *    the list's order.
+ * b: filled (ss_benchmark_set_free; zeroed on failure). Errors: SS_ERR_IO (no folder, no mesh in it,
+ * an unreadable pairs file), SS_ERR_PARSE "FILE:LINE: what" (a line without two names, a pair X X). */
+SS_API ss_status ss_benchmark_open(const char *dir, const char *pairs_file, int max_pairs, uint64_t seed,
+                                   ss_benchmark_set *b, ss_error *err);
+SS_API void ss_benchmark_set_free(ss_benchmark_set *b);
+/* The class of a shape name: the name without its trailing digits ("tr_reg_" for tr_reg_017, "cat"
+ * for cat10); a name of digits only is its own class. cls: n bytes. */
+SS_API void ss_benchmark_class(const char *name, char *cls, size_t n);
+/* The class of a pair: the class of X when Y's is the same, else "CLASSX/CLASSY". */
+SS_API void ss_benchmark_pair_class(const char *x, const char *y, char *cls, size_t n);
+
+/* One method's result on one pair: a row of pairs.csv. */
+typedef struct ss_benchmark_row {
+  char method[SS_BENCH_METHOD];
+  char x[SS_BENCH_NAME], y[SS_BENCH_NAME];
+  int ok;            /* 1: scored; 0: skipped (why: notes) */
+  int points;        /* ground-truth points scored (K) */
+  double mean, median; /* of e_k (NAN when skipped) */
+  double sym_mean;   /* of e'_k (NAN: no sym.vts for Y) */
+  int sym_points;
+  double seconds;    /* the method's time for the pair (NAN: not known, e.g. a maps folder) */
+  int confident;     /* 1 / 0 the method's own confidence (specseg's landmark-free pairing); -1 unknown */
+  char notes[480];   /* warnings and notes, '; ' separated ("" none) */
+  int cum[SS_BENCH_CURVE_N]; /* points with e_k <= e_j */
+} ss_benchmark_row;
+
+/* pairs.csv: the header line (no newline) and one row (reals %.17g, notes quoted, cum as blank
+ * separated counts), at most SS_BENCH_CSV_LINE bytes. */
+#define SS_BENCH_CSV_LINE 4096
+SS_API const char *ss_benchmark_csv_header(void);
+SS_API void ss_benchmark_csv_format_row(const ss_benchmark_row *r, char *buf, size_t size);
+/* Reads a pairs.csv (*rows malloc'd). A missing file is SS_ERR_IO; a cut last line (interrupted run)
+ * is dropped; another malformed line is SS_ERR_PARSE "PATH:LINE: what". */
+SS_API ss_status ss_benchmark_csv_read(const char *path, ss_benchmark_row **rows, int *n, ss_error *err);
+/* Canonical order (method, x, y by name) and one row per key: a scored row wins over skipped ones (the
+ * last skipped row is kept when none scored); two scored rows of a key must agree (points, mean,
+ * median, symmetric mean) else SS_ERR_INVALID naming the key. n is updated. */
+SS_API ss_status ss_benchmark_rows_canonical(ss_benchmark_row *rows, int *n, ss_error *err);
+
+/* Scores a map X -> Y (the protocol above).
+ *  Y: the target mesh; nx: vertices of X; map: nx vertices of Y.
+ *  npoints: K; gx, gy: K 0-based vertices of X and of Y (point k); gsym: nsym 0-based vertices of Y
+ *    (mirror of point k; NULL / nsym 0: no symmetric error; points k < min(K, nsym) are used).
+ * r: points, mean, median, sym_mean, sym_points, cum (the other fields untouched). errors (may be
+ * NULL): the K e_k. SS_ERR_INVALID on a map entry or a point outside its mesh (message says which). */
+SS_API ss_status ss_benchmark_score(const ss_mesh *Y, int nx, const int *map, int npoints, const int *gx, const int *gy,
+                                    const int *gsym, int nsym, ss_benchmark_row *r, double *errors, ss_error *err);
+
+/* A summary over pairs (all of a method's, or one class's). Means x 100. */
+typedef struct ss_benchmark_stats {
+  int pairs;          /* rows: scored + skipped */
+  int scored, skipped;
+  double mean;        /* mean of the scored pairs' means, x 100 (NAN: none scored) */
+  double median;      /* median of them (the mean of the middle two for an even count), x 100 */
+  double above5;      /* % of scored pairs whose mean x 100 > 5 */
+  int sym_pairs;      /* scored pairs with a symmetric error */
+  double sym_mean;    /* mean of their symmetric means, x 100 (NAN: none) */
+  int timed;          /* scored pairs with a time */
+  double seconds;     /* mean of those times (NAN: none) */
+  int not_confident;  /* scored pairs the method reported as not confident */
+} ss_benchmark_stats;
+
+typedef struct ss_benchmark_method {
+  char name[SS_BENCH_METHOD];
+  ss_benchmark_stats all;
+  int nclasses;
+  char (*classes)[SS_BENCH_NAME];   /* nclasses pair classes (ss_benchmark_pair_class), sorted */
+  ss_benchmark_stats *class_stats;  /* nclasses */
+  long points;                      /* ground-truth points of the scored pairs */
+  double curve[SS_BENCH_CURVE_N];   /* fraction of those points with e_k <= e_j */
+} ss_benchmark_method;
+
+typedef struct ss_benchmark_summary {
+  int nmethods;
+  ss_benchmark_method *methods; /* methods named "specseg..." first, then by name */
+} ss_benchmark_summary;
+
+/* Summarises rows (any order; a canonical copy is made, so any split of the rows into shards gives
+ * bit-identical numbers). s: ss_benchmark_summary_free. */
+SS_API ss_status ss_benchmark_summarize(const ss_benchmark_row *rows, int n, ss_benchmark_summary *s, ss_error *err);
+SS_API void ss_benchmark_summary_free(ss_benchmark_summary *s);
+/* The summary as JSON text (*json malloc'd): {"title", "pairs_listed" (when >= 0), "methods": [{"method",
+ * "pairs", "scored", "skipped", "mean_x100", "median_x100", "above5_percent", "sym_pairs",
+ * "sym_mean_x100", "timed", "seconds_mean", "not_confident", "points", "classes": [{"class", the same
+ * numbers}], "curve": {"error": [e_j], "fraction": [...]}}], "warnings": [...]}; reals %.17g, null for
+ * NAN. title and warnings may be NULL. */
+SS_API ss_status ss_benchmark_summary_json(const ss_benchmark_summary *s, const char *title, int pairs_listed, int nwarnings,
+                                           const char *const *warnings, char **json, ss_error *err);
+/* curves.png: every method's cumulative curve (fraction of its ground-truth points with error <= e,
+ * e from 0 to SS_BENCH_CURVE_MAX), labelled with its mean x 100, title above, width x height pixels
+ * (<= 0: 1600 x 1000). */
+SS_API ss_status ss_benchmark_curves_png(const ss_benchmark_summary *s, const char *title, const char *path, int width,
+                                         int height, ss_error *err);
+/* Writes summary.json and curves.png into out_dir from rows (ss_benchmark_summarize); json (may be
+ * NULL) receives the JSON text (malloc'd). */
+SS_API ss_status ss_benchmark_write_outputs(const char *out_dir, const ss_benchmark_row *rows, int n, const char *title,
+                                            int pairs_listed, int nwarnings, const char *const *warnings,
+                                            ss_benchmark_summary *s, char **json, ss_error *err);
+
+/* ---- The benchmark runner ---------------------------------------------------------------------- */
+
+typedef struct ss_benchmark_progress {
+  int shapes_done, shapes_total; /* reading and preparing shapes (first phase) */
+  int pairs_done, pairs_total;   /* pairs scored (second phase) */
+  double seconds;                /* since the phase began (wall) */
+} ss_benchmark_progress;
+
+typedef struct ss_benchmark_options {
+  const char *dir;        /* the benchmark folder (ss_benchmark_open) */
+  const char *pairs_file; /* NULL: the folder's test_pairs.txt, else all ordered pairs */
+  int max_pairs;          /* 0: all; N: N sampled from seed */
+  uint64_t seed;          /* default 1 */
+  int match;              /* 1 (default): specseg's own map per pair, written to OUT/maps/X__Y.txt */
+  /* 0 (default): landmark-free (ss_match_prepared_shapes with nl = 0, the defaults: what `specseg
+   * match X Y` gives); N > 0: N ground-truth points as landmarks, chosen by Euclidean farthest-point
+   * sampling over the points of the set's first shape (by name, of those whose mesh and points read)
+   * from its point 0; a pair uses those of them it has (k < K) */
+  int landmarks;
+  /* external methods: nmaps (name, folder) pairs; a pair's map is DIR/X__Y.txt or DIR/X__Y.npy, line
+   * i = vertex of Y for vertex i of X (0-based). Names: letters, digits, '_', '-', '.' */
+  int nmaps;
+  const char *const *map_names, *const *map_dirs;
+  const char *out_dir;    /* pairs.csv (also the resume state: its scored rows are not recomputed),
+                             maps/ (ours) */
+  const char *cache_dir;  /* NULL: prepared shapes in memory only; else DIR/NAME_<key>.sss
+                             (ss_prepared_shape files keyed by the mesh's hash and the eigenpairs; one
+                             whose mesh differs or that is damaged is recomputed and rewritten) */
+  int jobs;               /* pairs (and shapes) at once; 0: the OpenMP default */
+  int shard_i, shard_n;   /* the shard_i-th (0-based) of shard_n contiguous slices of the pairs */
+  /* messages go to the caller (the library prints nothing); any may be NULL. Called one at a time. */
+  void (*progress)(void *user, const ss_benchmark_progress *p);
+  void (*log)(void *user, const char *line);  /* stage lines */
+  void (*warn)(void *user, const char *line); /* a file skipped or used in part, once per file */
+  void *user;
+} ss_benchmark_options;
+
+SS_API void ss_benchmark_default_options(ss_benchmark_options *o);
+/* "specseg" (landmark-free) or "specseg_gtN": the method name of our own maps under o. */
+SS_API void ss_benchmark_method_name(const ss_benchmark_options *o, char *name, size_t n);
+
+typedef struct ss_benchmark_info {
+  int pairs_listed;   /* pairs of the set (after --max-pairs) */
+  int pairs_shard;    /* of them in this shard */
+  int rows_new;       /* rows computed now */
+  int rows_kept;      /* scored rows found in pairs.csv (not recomputed) */
+  int rows_same_skip; /* skipped rows found there, retried and skipped again for the same reason (not
+                         written again) */
+  int shapes_prepared, shapes_cached;
+  double seconds;
+  int nwarnings;      /* the warnings said through o->warn (malloc'd strings) */
+  char **warnings;
+  int landmarks[64];  /* --landmarks gt:N: the chosen ground-truth point indices (first min(N, 64)) */
+  int nlandmarks;
+  char landmark_shape[SS_BENCH_NAME];
+} ss_benchmark_info;
+
+/* Runs (the shard of) the benchmark: reads the meshes and points the shard's pairs need, prepares
+ * our shapes (o->match; in parallel, through the cache), then per pair (in parallel) our map and
+ * every external map, each scored by ss_benchmark_score, one row per (method, pair) appended to
+ * OUT/pairs.csv as it finishes (scored rows already there are kept; skipped ones are retried). A mesh or .vts file that is missing or does not read, a map file that
+ * is missing, has another line count than X has vertices or a vertex outside Y, a match that fails:
+ * the pairs concerned are skipped rows (warned once per file, the reason in notes), the run goes on.
+ * Files of points of unequal length: the pair uses the common prefix (warned once per file whose
+ * length differs from the most common one). A broken sym.vts: warned, no symmetric error for it.
+ * info (may be NULL; ss_benchmark_info_free): counts and warnings. Errors: ss_benchmark_open's, an
+ * unusable out_dir or pairs.csv, OUT/maps written by another method of ours (--landmarks), bad
+ * options. */
+SS_API ss_status ss_benchmark_run(const ss_benchmark_options *o, ss_benchmark_info *info, ss_error *err);
+SS_API void ss_benchmark_info_free(ss_benchmark_info *info);
+
 #ifdef __cplusplus
 }
 #endif

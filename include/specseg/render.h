@@ -114,10 +114,16 @@ SS_API void ss_image_fill(unsigned char *rgb, int w, int h, const unsigned char 
 SS_API void ss_image_blit(unsigned char *dst, int dw, int dh, const unsigned char *src, int sw, int sh, int x, int y);
 SS_API void ss_image_rect(unsigned char *rgb, int w, int h, int x, int y, int rw, int rh, const unsigned char c[3]);
 /* Text in a built-in 5x7 pixel font, each font pixel drawn as a scale x scale block; (x, y) is the
- * top-left corner. Covers digits, letters (lower case drawn as upper case), space and . , - + : / % ( ) = _ #;
- * other characters are drawn as a box. Returns the width drawn in pixels. */
+ * top-left corner. Covers digits, letters (lower case drawn as upper case), space and
+ * . , - + : / % ( ) = _ # < > * [ ] '; other characters are drawn as a box. Returns the width drawn
+ * in pixels. */
 SS_API int ss_draw_text(unsigned char *rgb, int w, int h, int x, int y, int scale, const unsigned char c[3],
                         const char *text);
+/* The same text turned a quarter counter-clockwise (reading upwards, as a y-axis label): (x, y) is
+ * the bottom-left corner of the turned text, which covers columns x .. x + 7 scale - 1 and rows
+ * y - width .. y - 1 (width = ss_text_width). Returns the width (its height on the image). */
+SS_API int ss_draw_text_up(unsigned char *rgb, int w, int h, int x, int y, int scale, const unsigned char c[3],
+                           const char *text);
 SS_API int ss_text_width(const char *text, int scale);
 /* A vertical colour bar with its range written beside it: the box (x, y, bw, bh), hi at the top,
  * tick labels lo, mid and hi (printf %.3g) in `text_rgb` to its right, and an optional title above. */
@@ -209,6 +215,46 @@ SS_API void ss_map_comparison_init(ss_map_comparison *c, const ss_mesh *x, const
  * range; ss_render_panels' errors. */
 SS_API ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_options *o, unsigned char **rgb,
                                           int *width, int *height, double *error_max, ss_error *err);
+
+/* ---- line plots (plot.c) ------------------------------------------------------------------------ */
+
+#define SS_PLOT_MAX_SERIES 16
+
+/* One curve: n points (x[i], y[i]) joined by straight segments, in colour rgb, named in the legend. */
+typedef struct ss_plot_series {
+  int n;
+  const double *x, *y;
+  const char *label; /* NULL or "": not in the legend */
+  unsigned char rgb[3];
+} ss_plot_series;
+
+/* A line plot. Start from ss_plot_init (1600 x 1000 pixels, white, no series), then set the ranges,
+ * texts and series. */
+typedef struct ss_plot {
+  int width, height;              /* image size in pixels (default 1600 x 1000) */
+  double xmin, xmax, ymin, ymax;  /* the axes' ranges (default [0, 1] each); points outside are clipped */
+  double xtick, ytick;            /* tick spacing; <= 0 (default): 1, 2 or 5 x 10^k giving 4..10 ticks */
+  double xscale, yscale;          /* tick labels show value x scale (default 1; e.g. 100 for percent) */
+  const char *title, *xlabel, *ylabel; /* NULL: none; the y label reads upwards */
+  int nseries;                    /* 0 .. SS_PLOT_MAX_SERIES */
+  const ss_plot_series *series;
+  double line_width;              /* curve width in pixels; <= 0 (default): height / 260, at least 2 */
+  int text_scale;                 /* font pixel size; <= 0 (default): height / 300, at least 1 */
+  int legend;                     /* where the legend goes: 0 none, 1 lower right (default), 2 upper left,
+                                     3 upper right, 4 lower left */
+  int grid;                       /* 1 (default): light grid lines at the ticks */
+} ss_plot;
+
+SS_API void ss_plot_init(ss_plot *p);
+/* A colour for series i that stays distinct from its neighbours for the first ~10 (then repeats
+ * darker). */
+SS_API void ss_plot_color(int i, unsigned char rgb[3]);
+/* Draws the plot: frame, ticks with labels, grid, anti-aliased curves (each of constant width, its
+ * joints without overlaps) clipped to the frame, the legend (a line sample beside each label), title
+ * and axis labels, into a malloc'd 3 x width x height RGB image *rgb. SS_ERR_INVALID on sizes outside
+ * 64..16384, an empty range, more than SS_PLOT_MAX_SERIES series or a series without points;
+ * SS_ERR_NOMEM. */
+SS_API ss_status ss_render_plot(const ss_plot *p, unsigned char **rgb, ss_error *err);
 
 #ifdef __cplusplus
 }

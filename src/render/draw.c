@@ -81,6 +81,12 @@ static const glyph FONT[] = {
     {'=', {0x00, 0x00, 0x1f, 0x00, 0x1f, 0x00, 0x00}},
     {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1f}},
     {'#', {0x0a, 0x0a, 0x1f, 0x0a, 0x1f, 0x0a, 0x0a}},
+    {'<', {0x02, 0x04, 0x08, 0x10, 0x08, 0x04, 0x02}},
+    {'>', {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08}},
+    {'*', {0x00, 0x04, 0x15, 0x0e, 0x15, 0x04, 0x00}},
+    {'[', {0x0e, 0x08, 0x08, 0x08, 0x08, 0x08, 0x0e}},
+    {']', {0x0e, 0x02, 0x02, 0x02, 0x02, 0x02, 0x0e}},
+    {'\'', {0x04, 0x04, 0x08, 0x00, 0x00, 0x00, 0x00}},
 };
 
 static const unsigned char *glyph_rows(char ch) {
@@ -106,6 +112,23 @@ int ss_draw_text(unsigned char *rgb, int w, int h, int x, int y, int scale, cons
     for (int r = 0; r < 7; r++)
       for (int col = 0; col < 5; col++)
         if (rows[r] & (0x10 >> col)) ss_image_rect(rgb, w, h, cx + col * scale, y + r * scale, scale, scale, c);
+  }
+  return ss_text_width(text, scale);
+}
+
+int ss_draw_text_up(unsigned char *rgb, int w, int h, int x, int y, int scale, const unsigned char c[3],
+                    const char *text) {
+  if (scale < 1) scale = 1;
+  /* the glyphs turned a quarter counter-clockwise: font column col of the character at offset o
+   * along the line goes to image row y - o - col, font row r to image column x + r */
+  int off = 0;
+  for (const char *p = text; *p; p++, off += 6 * scale) {
+    if (*p == ' ') continue;
+    const unsigned char *rows = glyph_rows(*p);
+    for (int r = 0; r < 7; r++)
+      for (int col = 0; col < 5; col++)
+        if (rows[r] & (0x10 >> col))
+          ss_image_rect(rgb, w, h, x + r * scale, y - off - (col + 1) * scale, scale, scale, c);
   }
   return ss_text_width(text, scale);
 }
