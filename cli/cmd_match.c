@@ -15,6 +15,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
+    "                     [--hypotheses N]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -45,6 +46,8 @@ static const char USAGE[] =
     "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 110)\n"
     "  --no-refine         the unrefined map of --probes at size K (with the library's descriptors, pairing\n"
     "                      safeguards and orientation term; specseg eval computes the paper's variants)\n"
+    "  --hypotheses N      without --landmarks: pairing hypotheses mapped, 1..8 (default 4; 1: the\n"
+    "                      pairing's answer alone)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -73,7 +76,7 @@ static const char USAGE[] =
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
                                    "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
                                    "--zoomout-step=", "--zoomout-samples=", "--orient=", "--timings", "--descriptors==",
-                                   "--no-wks", "--json", NULL};
+                                   "--no-wks", "--json", "--hypotheses=", NULL};
 
 /* the hypotheses of a landmark-free match as a JSON array (non-finite numbers as null) */
 static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t size) {
@@ -134,6 +137,9 @@ int cmd_match(int argc, char **argv) {
         return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--no-refine")) {
       o.refine = SS_REFINE_NONE;
+    } else if (cli_is(&A, "--hypotheses")) {
+      if (cli_parse_int(v, 1, SS_MAX_HYPOTHESES, &o.autopair.hypotheses))
+        return cli_bad(&A, "--hypotheses needs an integer between 1 and %d, not '%s'", SS_MAX_HYPOTHESES, v);
     } else if (cli_is(&A, "--zoomout-step")) {
       if (cli_parse_int(v, 1, 10000, &o.fmap.zoomout_step))
         return cli_bad(&A, "--zoomout-step needs an integer between 1 and 10000, not '%s'", v);
