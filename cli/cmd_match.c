@@ -6,6 +6,7 @@
 #include "specseg/match.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
+    "                     [--hypotheses N]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -23,8 +25,11 @@ static const char USAGE[] =
     "functional map + preservation of the descriptors).\n"
     "Without --landmarks the segments are paired automatically (as 'specseg pair' prints them: WKS at the\n"
     "centres, centre-to-centre geodesics, and the orientation for left / right, which needs both meshes\n"
-    "consistently oriented) and the paired centres serve as landmarks; a pairing below the confidence\n"
-    "thresholds is reported in a 'note:' line (the map may be wrong).\n"
+    "consistently oriented); up to 4 pairing hypotheses (the best, its mirror, the next ones) are each\n"
+    "mapped with their paired protrusion centres as landmarks, and the map that is closest to an\n"
+    "orientation-preserving isometry is kept (metric distortion + share of segments whose orientation\n"
+    "the map reverses); when another hypothesis maps almost as well, a 'note:' line says so (the map may\n"
+    "be wrong; --json: confident, hypothesis_margin and each hypothesis's energies).\n"
     "Prints a summary line (on stderr when an output goes to standard output).\n"
     "\n"
     "  X, Y                mesh files (OFF, OBJ, PLY, STL, glTF, ...), or prepared shapes (specseg\n"
@@ -41,6 +46,8 @@ static const char USAGE[] =
     "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 110)\n"
     "  --no-refine         the unrefined map of --probes at size K (with the library's descriptors, pairing\n"
     "                      safeguards and orientation term; specseg eval computes the paper's variants)\n"
+    "  --hypotheses N      without --landmarks: pairing hypotheses mapped, 1..8 (default 4; 1: the\n"
+    "                      pairing's answer alone)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -69,7 +76,27 @@ static const char USAGE[] =
 static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
                                    "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
                                    "--zoomout-step=", "--zoomout-samples=", "--orient=", "--timings", "--descriptors==",
-                                   "--no-wks", "--json", NULL};
+                                   "--no-wks", "--json", "--hypotheses=", NULL};
+
+/* the hypotheses of a landmark-free match as a JSON array (non-finite numbers as null) */
+static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t size) {
+  size_t n = 0;
+  n += (size_t)snprintf(buf + n, size - n, "[");
+  for (int h = 0; h < a->hypotheses && h < SS_MAX_HYPOTHESES && n < size; h++) {
+    const double v[7] = {a->hyp_energy[h], a->hyp_distortion[h], a->hyp_reversed[h], a->hyp_orientation[h],
+                         a->hyp_orientation_min[h], a->hyp_pair_energy[h], a->hyp_map_energy[h]};
+    static const char *const key[7] = {"energy", "distortion", "reversed", "orientation", "orientation_min",
+                                       "pair_energy", "map_energy"};
+    n += (size_t)snprintf(buf + n, size - n, "%s{", h ? ", " : "");
+    for (int k = 0; k < 7 && n < size; k++) {
+      if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
+      else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
+    }
+    if (n < size) n += (size_t)snprintf(buf + n, size - n, "}");
+  }
+  if (n < size) snprintf(buf + n, size - n, "]");
+  return buf;
+}
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL, *dxp = NULL, *dyp = NULL;
@@ -110,6 +137,9 @@ int cmd_match(int argc, char **argv) {
         return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
     } else if (cli_is(&A, "--no-refine")) {
       o.refine = SS_REFINE_NONE;
+    } else if (cli_is(&A, "--hypotheses")) {
+      if (cli_parse_int(v, 1, SS_MAX_HYPOTHESES, &o.autopair.hypotheses))
+        return cli_bad(&A, "--hypotheses needs an integer between 1 and %d, not '%s'", SS_MAX_HYPOTHESES, v);
     } else if (cli_is(&A, "--zoomout-step")) {
       if (cli_parse_int(v, 1, 10000, &o.fmap.zoomout_step))
         return cli_bad(&A, "--zoomout-step needs an integer between 1 and 10000, not '%s'", v);
@@ -245,13 +275,26 @@ int cmd_match(int argc, char **argv) {
     fprintf(report, "landmark-free pairing (%s search): energy %.4g, mirror candidate %.4g, next other %.4g (gap %.3f), "
             "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
-            res.autopair.mirror_other, res.autopair.confident ? ", confident" : ", NOT confident");
+            res.autopair.mirror_other, res.autopair.pairing_confident ? ", confident" : ", NOT confident");
+  if (res.autopair.used && !json && res.autopair.hypotheses > 1)
+    fprintf(report, "hypotheses: %d mapped, #%d kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed; "
+            "margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
+            res.autopair.hyp_energy[res.autopair.hypothesis], res.autopair.hyp_distortion[res.autopair.hypothesis],
+            100 * res.autopair.hyp_reversed[res.autopair.hypothesis], res.autopair.hyp_margin,
+            res.autopair.confident ? ", confident" : ", NOT confident");
   const char *refined = res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "";
   const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0;
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
-  cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.pairs.n : nl);
+  cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.autopair.hyp_landmarks : nl);
   cli_job_int(&J, "landmark_free", res.autopair.used);
-  if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.confident);
+  char hbuf[SS_MAX_HYPOTHESES * 256];
+  if (res.autopair.used) {
+    cli_job_int(&J, "confident", res.autopair.confident);
+    cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);
+    if (res.autopair.hypotheses > 1) cli_job_num(&J, "hypothesis_margin", res.autopair.hyp_margin);
+    cli_job_int(&J, "hypothesis", res.autopair.hypothesis);
+    cli_job_json(&J, "hypotheses", hypotheses_json(&res.autopair, hbuf, sizeof hbuf));
+  }
   cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);
   cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
   cli_job_int(&J, "zoomout", kz);
@@ -266,7 +309,8 @@ int cmd_match(int argc, char **argv) {
     if (!std_only)
       snprintf(segs, sizeof segs, "%d of %d/%d segments paired", res.pairs.n, res.pairs.nx, res.pairs.ny);
     fprintf(report, "%d -> %d vertices, %d landmarks%s, %s, probes %s, k %d%s%s%s -> %s\n", X->nv, Y->nv,
-            res.autopair.used ? res.pairs.n : nl, res.autopair.used ? " (the paired centres)" : "", segs, pn, o.fmap.k,
+            res.autopair.used ? res.autopair.hyp_landmarks : nl,
+            res.autopair.used ? " (paired protrusion centres)" : "", segs, pn, o.fmap.k,
             o.refine == SS_REFINE_NONE ? "" : ", refined: ", refined, dnote, cli_out_name(outp));
     if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
   }

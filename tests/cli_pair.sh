@@ -21,9 +21,26 @@ awk 'NF != 2 || $1 !~ /^[0-9]+$/ || $2 !~ /^[0-9]+$/ { exit 1 }' "$TMP/pairs.txt
   bad "match --landmarks PAIRS: $(cat "$TMP/out")"
 # landmark-free match: its pairing line and a map of the right length
 "$BIN" match "$A" "$B" --no-refine -o "$TMP/m0.txt" > "$TMP/out" 2>&1 && ok || bad "match without landmarks: $(cat "$TMP/out")"
-grep -q '^landmark-free pairing' "$TMP/out" && grep -q '(the paired centres)' "$TMP/out" && ok || bad "match summary: $(cat "$TMP/out")"
+grep -q '^landmark-free pairing' "$TMP/out" && grep -q '(paired protrusion centres)' "$TMP/out" && ok || bad "match summary: $(cat "$TMP/out")"
+grep -Eq '^hypotheses: [2-8] mapped, #[0-7] kept' "$TMP/out" && ok || bad "hypotheses line: $(cat "$TMP/out")"
 [ "$(wc -l < "$TMP/m0.txt")" -eq "$(sed -n 2p "$A" | awk '{print $1}')" ] && ok || bad "map length"
-if grep -q 'NOT confident' "$TMP/out"; then grep -q '^note: .*NOT confident' "$TMP/out" && ok || bad "no note for a pairing that is not confident"; fi
+if grep -q '^hypotheses: .*NOT confident' "$TMP/out"; then grep -q '^note: landmark-free map NOT confident' "$TMP/out" && ok || bad "no note for a map that is not confident"; fi
+# --json: the hypotheses, the one kept, the margin behind the confidence
+"$BIN" match "$A" "$B" --no-refine -o "$TMP/m0j.txt" --json > "$TMP/j.json" 2> "$TMP/err" && ok || bad "match --json: $(cat "$TMP/err")"
+cmp -s "$TMP/m0.txt" "$TMP/m0j.txt" && ok || bad "--json changed the map"
+python3 - "$TMP/j.json" <<'PY' && ok || bad "hypotheses in --json: $(cat "$TMP/j.json")"
+import json, sys
+r = json.load(open(sys.argv[1]))["results"][0]
+H, b = r["hypotheses"], r["hypothesis"]
+assert 2 <= len(H) <= 8 and 0 <= b < len(H), (len(H), b)
+E = [h["energy"] for h in H]
+assert E[b] == min(E), E
+assert abs(r["hypothesis_margin"] - min(e - E[b] for i, e in enumerate(E) if i != b)) < 1e-12
+for h in H:
+    assert 0 <= h["reversed"] <= 1 and h["distortion"] >= 0 and -1 <= h["orientation"] <= 1
+    assert abs(h["energy"] - (h["distortion"] + 0.05 * h["reversed"])) < 1e-12
+assert r["confident"] == (r["hypothesis_margin"] >= 0.003)
+PY
 # landmark-free match of meshes with a crumb (a small sphere beside the body): the largest component
 # of each is matched, the crumb dropped with a warning (was: no landmark on any component)
 S="$TMP/demo/sphere.off"

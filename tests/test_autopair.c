@@ -202,6 +202,67 @@ static void test_permuted_and_mirrored(void) {
     int np3, r3 = pair_sigs(&sX, &sRn, sym, NULL, &i3, &np3);
     CHECK(r3 == np3 && fabs(i3.mirror - i0.mirror) < 1e-6 && fabs(i3.mirror_margin - i0.mirror_margin) < 1e-6);
   }
+  /* 2b. the hypotheses: the answer first (as ss_pair_centres_auto gives it), then its mirror (the
+   * vertex-identity pairing here), all distinct; maxh 1 is the answer alone; maxh out of range refused */
+  {
+    ss_segment_pairs ans, hyp[SS_MAX_HYPOTHESES];
+    int nh = 0, nh1 = 0;
+    CHECK(ss_pair_centres_auto(&sX, &sR, NULL, &ans, NULL, &e) == SS_OK);
+    CHECK(ss_pair_centres_hypotheses(&sX, &sR, NULL, SS_MAX_HYPOTHESES, hyp, &nh, NULL, &e) == SS_OK);
+    CHECK(nh >= 2 && nh <= SS_MAX_HYPOTHESES);
+    CHECK(hyp[0].n == ans.n && !memcmp(hyp[0].sx, ans.sx, sizeof(int) * (size_t)ans.n) &&
+          !memcmp(hyp[0].sy, ans.sy, sizeof(int) * (size_t)ans.n));
+    int mirror_right = 0;
+    for (int p = 0; p < hyp[1].n; p++)
+      mirror_right += sR.prep->seg.labels[sX.prep->seg.centers[hyp[1].sx[p]]] == hyp[1].sy[p]; /* identity */
+    printf("hypotheses: %d; the second is the vertex identity on %d of %d pairs\n", nh, mirror_right, hyp[1].n);
+    CHECK(mirror_right == hyp[1].n);
+    for (int a = 0; a < nh; a++)
+      for (int b = a + 1; b < nh; b++)
+        CHECK(hyp[a].n != hyp[b].n || memcmp(hyp[a].sy, hyp[b].sy, sizeof(int) * (size_t)hyp[a].n) ||
+              memcmp(hyp[a].sx, hyp[b].sx, sizeof(int) * (size_t)hyp[a].n));
+    for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
+    CHECK(ss_pair_centres_hypotheses(&sX, &sR, NULL, 1, hyp, &nh1, NULL, &e) == SS_OK && nh1 == 1);
+    CHECK(!memcmp(hyp[0].sy, ans.sy, sizeof(int) * (size_t)ans.n));
+    ss_segment_pairs_free(&hyp[0]);
+    CHECK(ss_pair_centres_hypotheses(&sX, &sR, NULL, 0, hyp, &nh1, NULL, &e) == SS_ERR_INVALID);
+    CHECK(ss_pair_centres_hypotheses(&sX, &sR, NULL, SS_MAX_HYPOTHESES + 1, hyp, &nh1, NULL, &e) == SS_ERR_INVALID);
+    ss_segment_pairs_free(&ans);
+  }
+
+  /* 2c. the map of the reflection without landmarks: every hypothesis mapped, the one of least
+   * hypothesis energy returned, and it is the orientation-preserving one (the mirror map of the
+   * vertex identity is an isometry too: only the orientation term tells them apart) */
+  {
+    ss_match_options mo;
+    ss_match_default_options(&mo);
+    mo.fmap.zoomout_kmax = kev; /* the eigenpairs prepared */
+    ss_match_result res;
+    if (ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e)) {
+      printf("match: %s\n", e.msg);
+      CHECK(0);
+    }
+    if (res.map) {
+      const ss_autopair_info *ai = &res.autopair;
+      int right = 0;
+      for (int i = 0; i < n; i++) right += res.map[i] == sym[i];
+      printf("reflection, landmark-free map: %d hypotheses, #%d returned (energy %.4f; distortion %.4f, orientation "
+             "%.3f); %d of %d vertices on their mirror\n", ai->hypotheses, ai->hypothesis, ai->hyp_energy[ai->hypothesis],
+             ai->hyp_distortion[ai->hypothesis], ai->hyp_orientation[ai->hypothesis], right, n);
+      CHECK(ai->hypotheses >= 2 && ai->hypothesis >= 0 && ai->hypothesis < ai->hypotheses);
+      for (int h = 0; h < ai->hypotheses; h++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
+      CHECK(ai->hyp_orientation[ai->hypothesis] > 0.5);
+      CHECK(right > n / 2);
+    }
+    ss_match_result_free(&res);
+    /* one hypothesis: the pairing's answer alone, as before the hypotheses */
+    mo.autopair.hypotheses = 1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+    CHECK(res.autopair.hypotheses == 1 && res.autopair.hypothesis == 0);
+    ss_match_result_free(&res);
+    mo.autopair.hypotheses = SS_MAX_HYPOTHESES + 1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+  }
   ss_centre_signature_free(&sX), ss_centre_signature_free(&sR);
 
   /* 3. ss_match_prepared without landmarks: the map of the permuted copy is near the truth */

@@ -228,7 +228,29 @@ typedef struct ss_autopair_options {
   double alt_gap;
   double alt_margin;
   double alt_min_score;
+  /* Hypotheses carried through the map (ss_match_prepared_auto): up to `hypotheses` pairings
+   * (default 4, at most SS_MAX_HYPOTHESES; 1: the answer alone) — the answer, its mirror, then the
+   * search's next leaves whose energy is within a relative hyp_gap (default 0.5) of the best, each
+   * followed by its own mirror; each gives a refined map, and the map of lowest hypothesis energy
+   * (ss_match_result.autopair.hyp_*) is returned. */
+  int hypotheses;
+  double hyp_gap;
+  /* hypothesis energy = metric distortion + hyp_w_reversed (default 0.05) · the share of X's
+   * segments on which the map scores below hyp_reversed_below (default 0.15) in orientation
+   * (ss_autopair_info.hyp_*; a right map keeps orientation on every segment, a mirrored limb or a
+   * torso mapped front to back reverses it there; docs/tuning.md) */
+  double hyp_w_reversed;
+  double hyp_reversed_below;
+  /* the landmarks of a hypothesis's map: its round(hyp_keep · pairs) protrusion pairs (default
+   * 0.625), the segments then paired from them as with given landmarks; 1: every pair is a landmark
+   * and the hypothesis is the segment pairing */
+  double hyp_keep;
+  /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin (default
+   * 0.003) below every other hypothesis's (docs/tuning.md) */
+  double hyp_min_margin;
 } ss_autopair_options;
+
+#define SS_MAX_HYPOTHESES 8
 
 SS_API void ss_autopair_default_options(ss_autopair_options *o);
 
@@ -269,7 +291,9 @@ typedef struct ss_autopair_info {
                          * tie replaced the search's best: energy_other is then the search's best) */
   double mirror;        /* orientation score of the chosen pairing's map */
   double mirror_other;  /* that of the mirror candidate */
-  int confident;        /* gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror */
+  int confident;        /* the pairing: gap ≥ min_gap and (mirror − mirror_other) / 2 ≥ min_mirror; in a
+                         * match with several hypotheses: the map's (hyp_margin below) */
+  int pairing_confident; /* the pairing's own rule, as above, also in a match */
   double cpu;           /* CPU seconds of the search and the orientation test (signatures excluded) */
   int rechecked;        /* 1: the second orientation test decided (mirror / mirror_other are its scores) */
   double mirror_first, mirror_other_first; /* the first test's scores */
@@ -279,6 +303,22 @@ typedef struct ss_autopair_info {
   double mirror_margin;
   int alternatives;     /* near-tie pairings tested beyond the mirror pair (ss_autopair_options.alt_*) */
   int alternative;      /* 1: one of them replaced the search's best (energy: its energy) */
+  /* the hypotheses' refined maps (ss_autopair_options.hypotheses): how many were mapped, the index
+   * of the one returned (0: the pairing's own answer), and per hypothesis its pairing energy, the
+   * orientation score and the metric distortion of its map, and its hypothesis energy */
+  int hypotheses;
+  int hypothesis;
+  double hyp_pair_energy[SS_MAX_HYPOTHESES];
+  double hyp_orientation[SS_MAX_HYPOTHESES];
+  double hyp_distortion[SS_MAX_HYPOTHESES];
+  double hyp_energy[SS_MAX_HYPOTHESES];
+  double hyp_map_energy[SS_MAX_HYPOTHESES]; /* the selection energy of its map (ss_match_result.refine_energy) */
+  double hyp_orientation_min[SS_MAX_HYPOTHESES]; /* the least orientation score over X's segments */
+  double hyp_reversed[SS_MAX_HYPOTHESES];        /* the share of X's segments below hyp_reversed_below */
+  int hyp_landmarks;  /* landmarks of the returned map (its protrusion pairs, hyp_keep) */
+  /* E of the best other hypothesis − E of the returned one (INFINITY: one hypothesis); a match's
+   * `confident` is then the map's: hyp_margin >= hyp_min_margin (ss_autopair_options) */
+  double hyp_margin;
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:
@@ -287,6 +327,13 @@ typedef struct ss_autopair_info {
 SS_API ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y,
                                       const ss_autopair_options *o, ss_segment_pairs *out, ss_autopair_info *info,
                                       ss_error *err);
+
+/* The pairing hypotheses of ss_pair_centres_auto (ss_autopair_options.hypotheses): hyp[0] its
+ * answer, then distinct others (see the options). hyp: room for maxh (1..SS_MAX_HYPOTHESES) pairings,
+ * filled as ss_pair_centres_auto fills its out (free each with ss_segment_pairs_free); *nh: how many. */
+SS_API ss_status ss_pair_centres_hypotheses(const ss_centre_signature *X, const ss_centre_signature *Y,
+                                            const ss_autopair_options *o, int maxh, ss_segment_pairs *hyp, int *nh,
+                                            ss_autopair_info *info, ss_error *err);
 
 /* ---- The matching pipeline (match.c) ------------------------------------------------------------ */
 

@@ -124,15 +124,24 @@ class ss_autopair_options(C.Structure):
                 ("recheck_margin", C.c_double), ("recheck_k", C.c_int), ("orient_keep", C.c_double),
                 ("recheck_zoomout", C.c_int), ("recheck_samples", C.c_int), ("recheck_keep", C.c_double),
                 ("alt_max", C.c_int), ("alt_gap", C.c_double), ("alt_margin", C.c_double),
-                ("alt_min_score", C.c_double)]
+                ("alt_min_score", C.c_double), ("hypotheses", C.c_int), ("hyp_gap", C.c_double),
+                ("hyp_w_reversed", C.c_double),
+                ("hyp_reversed_below", C.c_double), ("hyp_keep", C.c_double),
+                ("hyp_min_margin", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):
     _fields_ = [("used", C.c_int), ("exact", C.c_int), ("energy", C.c_double), ("energy_mirror", C.c_double),
                 ("energy_other", C.c_double), ("gap", C.c_double), ("mirror", C.c_double),
-                ("mirror_other", C.c_double), ("confident", C.c_int), ("cpu", C.c_double),
+                ("mirror_other", C.c_double), ("confident", C.c_int), ("pairing_confident", C.c_int),
+                ("cpu", C.c_double),
                 ("rechecked", C.c_int), ("mirror_first", C.c_double), ("mirror_other_first", C.c_double),
-                ("mirror_margin", C.c_double), ("alternatives", C.c_int), ("alternative", C.c_int)]
+                ("mirror_margin", C.c_double), ("alternatives", C.c_int), ("alternative", C.c_int),
+                ("hypotheses", C.c_int), ("hypothesis", C.c_int), ("hyp_pair_energy", C.c_double * 8),
+                ("hyp_orientation", C.c_double * 8), ("hyp_distortion", C.c_double * 8),
+                ("hyp_energy", C.c_double * 8), ("hyp_map_energy", C.c_double * 8),
+                ("hyp_orientation_min", C.c_double * 8), ("hyp_reversed", C.c_double * 8),
+                ("hyp_landmarks", C.c_int), ("hyp_margin", C.c_double)]
 
 
 class ss_match_options(C.Structure):

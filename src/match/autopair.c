@@ -37,6 +37,12 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->alt_gap = 0.03;
   o->alt_margin = 0.05;
   o->alt_min_score = 0.35;
+  o->hypotheses = 4;
+  o->hyp_gap = 0.5;
+  o->hyp_w_reversed = 0.05;
+  o->hyp_reversed_below = 0.15;
+  o->hyp_keep = 0.625;
+  o->hyp_min_margin = 0.003;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
@@ -206,6 +212,20 @@ static double map_orientation_seg(const ss_centre_signature *A, const ss_centre_
 
 double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
   return map_orientation_seg(A, B, T, NULL, NULL);
+}
+
+double ssi_map_orientation_reversed(const ss_centre_signature *A, const ss_centre_signature *B, const int *T, double thr,
+                                    double *seg, double *smin) {
+  (void)map_orientation_seg(A, B, T, NULL, seg);
+  double mn = INFINITY;
+  int scored = 0, below = 0;
+  for (int a = 0; a < A->m; a++)
+    if (isfinite(seg[a])) {
+      scored++, below += seg[a] < thr;
+      if (seg[a] < mn) mn = seg[a];
+    }
+  if (smin) *smin = isfinite(mn) ? mn : 0.0;
+  return scored ? (double)below / scored : 1.0;
 }
 
 /* The median over A's segments of s1 − s2 (segments scored in both), 0 when none */
@@ -820,8 +840,63 @@ static ss_status decide_family(orient_ctx *oc, const search *S, const int *p, in
   return SS_OK;
 }
 
+/* The segment pairs of an assignment p (A index -> B index; swap: A is Y), sorted by sx; share
+ * (A->m, may be NULL): the per-pair energies. */
+static ss_status pairs_of_assignment(const ss_centre_signature *X, const ss_centre_signature *Y, int swap, const int *p,
+                                     const double *share, ss_segment_pairs *out, ss_error *err) {
+  const int na = swap ? Y->m : X->m, nb = swap ? X->m : Y->m;
+  memset(out, 0, sizeof *out);
+  out->nx = X->m, out->ny = Y->m, out->n = na;
+  out->sx = malloc(sizeof(int) * (size_t)na);
+  out->sy = malloc(sizeof(int) * (size_t)na);
+  out->energy = malloc(sizeof(double) * (size_t)na);
+  if (!out->sx || !out->sy || !out->energy) {
+    ss_segment_pairs_free(out);
+    return ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+  }
+  if (!swap) {
+    for (int a = 0; a < na; a++) out->sx[a] = a, out->sy[a] = p[a], out->energy[a] = share ? share[a] : NAN;
+  } else {
+    int q = 0;
+    for (int b = 0; b < nb; b++)
+      for (int a = 0; a < na; a++)
+        if (p[a] == b) out->sx[q] = b, out->sy[q] = a, out->energy[q++] = share ? share[a] : NAN;
+  }
+  return SS_OK;
+}
+
+/* Appends p to the distinct hypotheses hyp (na each, *nh of them, at most maxh) */
+static void add_hypothesis(int na, const int *p, int maxh, int *hyp, int *nh) {
+  if (*nh >= maxh) return;
+  for (int h = 0; h < *nh; h++)
+    if (same(hyp + (size_t)na * h, p, na)) return;
+  memcpy(hyp + (size_t)na * (*nh)++, p, sizeof(int) * (size_t)na);
+}
+
+static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signature *Y, const ss_autopair_options *o_in,
+                           int maxh, ss_segment_pairs *hyp_out, int *nh_out, ss_segment_pairs *out,
+                           ss_autopair_info *info, ss_error *err);
+
 ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y, const ss_autopair_options *o_in,
                                ss_segment_pairs *out, ss_autopair_info *info, ss_error *err) {
+  return pair_auto(X, Y, o_in, 0, NULL, NULL, out, info, err);
+}
+
+ss_status ss_pair_centres_hypotheses(const ss_centre_signature *X, const ss_centre_signature *Y,
+                                     const ss_autopair_options *o, int maxh, ss_segment_pairs *hyp, int *nh,
+                                     ss_autopair_info *info, ss_error *err) {
+  if (nh) *nh = 0;
+  if (!hyp || !nh || maxh < 1 || maxh > SS_MAX_HYPOTHESES) return ss_fail(err, SS_ERR_INVALID, "autopair: no room for hypotheses");
+  for (int h = 0; h < maxh; h++) memset(&hyp[h], 0, sizeof hyp[h]);
+  ss_segment_pairs answer;
+  ss_status st = pair_auto(X, Y, o, maxh, hyp, nh, &answer, info, err);
+  ss_segment_pairs_free(&answer);
+  return st;
+}
+
+static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signature *Y, const ss_autopair_options *o_in,
+                           int maxh, ss_segment_pairs *hyp_out, int *nh_out, ss_segment_pairs *out,
+                           ss_autopair_info *info, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "autopair: NULL output");
   memset(out, 0, sizeof *out);
   if (info) memset(info, 0, sizeof *info);
@@ -849,7 +924,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
   const int na = A->m, nb = B->m;
   ss_status st = SS_OK;
-  int status = 0;
+  int status = 0, nh = 0, *hyp = NULL;
   const int nbuf = TOPK + 4;
   double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
   double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
@@ -930,22 +1005,30 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
   }
   if (alt) e3 = best_other(&S, pi1, pi2, third); /* the search's best, now the runner-up */
   (void)full_energy(&S, pi1, share);
-  out->nx = X->m, out->ny = Y->m, out->n = na;
-  out->sx = malloc(sizeof(int) * (size_t)na);
-  out->sy = malloc(sizeof(int) * (size_t)na);
-  out->energy = malloc(sizeof(double) * (size_t)na);
-  if (!out->sx || !out->sy || !out->energy) {
-    ss_segment_pairs_free(out);
-    st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-    goto done;
-  }
-  if (!swap) {
-    for (int a = 0; a < na; a++) out->sx[a] = a, out->sy[a] = pi1[a], out->energy[a] = share[a];
-  } else { /* sorted by sx = the B index */
-    int q = 0;
-    for (int b = 0; b < nb; b++)
-      for (int a = 0; a < na; a++)
-        if (pi1[a] == b) out->sx[q] = b, out->sy[q] = a, out->energy[q++] = share[a];
+  if ((st = pairs_of_assignment(X, Y, swap, pi1, share, out, err))) goto done;
+  if (maxh > 0) { /* the answer, its mirror, then the search's next leaves, each followed by its mirror */
+    if (!(hyp = malloc(sizeof(int) * (size_t)na * ((size_t)maxh + 1)))) {
+      st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+      goto done;
+    }
+    int *mir = hyp + (size_t)na * maxh;
+    add_hypothesis(na, pi1, maxh, hyp, &nh);
+    add_hypothesis(na, pi2, maxh, hyp, &nh);
+    for (int k = 0; k < TOPK && nh < maxh; k++) {
+      if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.hyp_gap)) break;
+      add_hypothesis(na, S.top_p[k], maxh, hyp, &nh);
+      mirror_candidate(&S, A, B, S.top_p[k], mir, third);
+      add_hypothesis(na, mir, maxh, hyp, &nh);
+    }
+    for (int h = 0; h < nh; h++) {
+      (void)full_energy(&S, hyp + (size_t)na * h, share);
+      if ((st = pairs_of_assignment(X, Y, swap, hyp + (size_t)na * h, share, &hyp_out[h], err))) {
+        for (int g = 0; g < h; g++) ss_segment_pairs_free(&hyp_out[g]);
+        nh = 0;
+        goto done;
+      }
+    }
+    *nh_out = nh;
   }
   if (info) {
     double emin = e1 < e2 ? e1 : e2;
@@ -959,6 +1042,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
     info->mirror_other = r2;
     info->mirror_margin = med / 2;
     info->confident = info->gap >= o.min_gap && info->mirror_margin >= o.min_mirror;
+    info->pairing_confident = info->confident;
     info->rechecked = rechecked;
     info->mirror_first = f1;
     info->mirror_other_first = f2;
@@ -969,5 +1053,7 @@ ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_sig
 done:
   orient_ctx_free(&oc);
   free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf), free(alt_seen);
+  free(hyp);
+  if (st) ss_segment_pairs_free(out);
   return st;
 }

@@ -17,6 +17,12 @@ ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_cent
  * degenerate, (preserved − reversed) / count, against B's outward normals. */
 double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T);
 
+/* The share of A's segments (those with a counted face) on which T scores below thr (the orientation
+ * score of each segment's faces, as above); seg: 2·A->m scratch, on return A->m per-segment scores
+ * (NAN: none counted); *smin (may be NULL): the least segment score. 1 when no segment is scored. */
+double ssi_map_orientation_reversed(const ss_centre_signature *A, const ss_centre_signature *B, const int *T, double thr,
+                                    double *seg, double *smin);
+
 /* Both candidates' orientation scores r1, r2 (orient_k = k, orient_descr_k = descr_k, orient_keep =
  * keep) and the decision's median margin med (> 0: p1), as ss_pair_centres_auto computes them. */
 ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,

@@ -7,6 +7,8 @@
 #include "specseg/streamline.h"
 #include "fmap/fmap_options.h"
 #include "match/proxy.h"
+#include "match/hypotheses.h"
+#include "match/autopair_internal.h"
 #include "match/landmark_check.h"
 #include "util/side_by_side.h"
 
@@ -658,6 +660,37 @@ ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y
   return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
 }
 
+/* The landmarks of a hypothesis pr: the centres of its round(keep · n) (at least 3) pairs whose X
+ * centre is farthest on average from X's other centres (the protrusions), in pair order; all pairs
+ * when keep >= 1. Returns their count. */
+static int kept_pairs(const ss_centre_signature *SX, const ss_segment_pairs *pr, double keep, const ss_shape_prep *X,
+                      const ss_shape_prep *Y, int *lx, int *ly) {
+  const int n = pr->n, m = SX->m;
+  int nk = n;
+  if (keep < 1 && n > 3) {
+    nk = (int)floor(keep * n + 0.5);
+    if (nk < 3) nk = 3;
+  }
+  int q = 0;
+  for (int p = 0; p < n; p++) {
+    double ep = 0;
+    for (int c = 0; c < m; c++) ep += SX->D[pr->sx[p] + (size_t)m * c];
+    int rank = 0;
+    for (int t = 0; t < n; t++) {
+      double et = 0;
+      for (int c = 0; c < m; c++) et += SX->D[pr->sx[t] + (size_t)m * c];
+      rank += et > ep || (et == ep && t < p);
+    }
+    if (rank < nk) lx[q] = X->seg.centers[pr->sx[p]], ly[q++] = Y->seg.centers[pr->sy[p]];
+  }
+  return q;
+}
+
+/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed) */
+static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed) {
+  return distortion + o->hyp_w_reversed * reversed;
+}
+
 ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
                                  const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
                                  ss_error *err) {
@@ -668,38 +701,104 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   else ss_match_default_options(&o);
   if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
     return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
+  if (o.autopair.hypotheses < 1 || o.autopair.hypotheses > SS_MAX_HYPOTHESES || !(o.autopair.hyp_gap >= 0) ||
+      !(o.autopair.hyp_w_reversed >= 0) || !isfinite(o.autopair.hyp_w_reversed) ||
+      !isfinite(o.autopair.hyp_reversed_below) || !(o.autopair.hyp_keep > 0 && o.autopair.hyp_keep <= 1) ||
+      !isfinite(o.autopair.hyp_min_margin))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1]",
+                   o.autopair.hypotheses, SS_MAX_HYPOTHESES);
   ss_centre_signature own[2];
   memset(own, 0, sizeof own);
-  ss_segment_pairs pr = {0};
+  ss_segment_pairs hyp[SS_MAX_HYPOTHESES];
+  memset(hyp, 0, sizeof hyp);
+  int nh = 0;
   ss_autopair_info info;
+  ssi_hyp_ctx hc = {0};
+  ss_match_result r;
+  memset(&r, 0, sizeof r);
   int *lx = NULL, *ly = NULL;
+  double *segs = NULL;
   ss_status st = SS_OK;
   double t0 = ss_time();
   if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
   if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
-  if ((st = ss_pair_centres_auto(sigX ? sigX : &own[0], sigY ? sigY : &own[1], &o.autopair, &pr, &info, err))) goto done;
+  const ss_centre_signature *SX = sigX ? sigX : &own[0], *SY = sigY ? sigY : &own[1];
+  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, o.autopair.hypotheses, hyp, &nh, &info, err))) goto done;
+  if (nh > 1 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
   double t_pair = ss_time() - t0;
-  lx = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
-  ly = malloc(sizeof(int) * (size_t)(pr.n > 0 ? pr.n : 1));
-  if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  for (int p = 0; p < pr.n; p++) lx[p] = X->seg.centers[pr.sx[p]], ly[p] = Y->seg.centers[pr.sy[p]];
-  /* the paired centres are the landmarks; the pairing is the segments' */
-  o.pairing.min_landmarks = 1;
-  o.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
-  if ((st = match_core(X, Y, pr.n, lx, ly, &pr, &o, out, err))) goto done;
-  out->t_pair += t_pair;
+  int mx = 1;
+  for (int h = 0; h < nh; h++)
+    if (hyp[h].n > mx) mx = hyp[h].n;
+  lx = malloc(sizeof(int) * (size_t)mx);
+  ly = malloc(sizeof(int) * (size_t)mx);
+  segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
+  if (!lx || !ly || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  /* hyp_keep = 1: the paired centres are the landmarks and the pairing is the segments'; below 1
+   * only the protrusions' pairs are landmarks and the segments are paired from them as with given
+   * landmarks (the saddles' centres sit front or back inconsistently between shapes) */
+  ss_match_options oall = o;
+  oall.pairing.min_landmarks = 1;
+  oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
+  double best = INFINITY, t_loop = ss_time();
+  for (int h = 0; h < nh; h++) {
+    const ss_segment_pairs *pr = &hyp[h];
+    int nl = kept_pairs(SX, pr, o.autopair.hyp_keep, X, Y, lx, ly);
+    if (nl < pr->n) {
+      ss_match_options ok = o;
+      if (ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
+      if ((st = match_core(X, Y, nl, lx, ly, NULL, &ok, &r, err))) goto done;
+    } else if ((st = match_core(X, Y, pr->n, lx, ly, pr, &oall, &r, err)))
+      goto done;
+    double E = 0, dist = NAN, orient = NAN, pe = 0;
+    for (int p = 0; p < pr->n; p++) pe += pr->energy[p];
+    if (nh > 1) {
+      if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
+      orient = ssi_map_orientation(SX, SY, r.map);
+      double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
+                                                &info.hyp_orientation_min[h]);
+      info.hyp_reversed[h] = rev;
+      E = hypothesis_energy(&o.autopair, dist, rev);
+    }
+    info.hyp_pair_energy[h] = pe, info.hyp_distortion[h] = dist, info.hyp_orientation[h] = orient;
+    info.hyp_energy[h] = E;
+    info.hyp_map_energy[h] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
+    if (h == 0 || E < best) {
+      if (h > 0) ss_match_result_free(out);
+      *out = r, best = E, info.hypothesis = h, info.hyp_landmarks = nl < pr->n ? nl : pr->n;
+    } else
+      ss_match_result_free(&r);
+    memset(&r, 0, sizeof r);
+  }
+  info.hypotheses = nh;
+  info.hyp_margin = INFINITY;
+  for (int h = 0; h < nh; h++)
+    if (h != info.hypothesis && info.hyp_energy[h] - best < info.hyp_margin) info.hyp_margin = info.hyp_energy[h] - best;
+  if (nh > 1)
+    info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
+  /* the other hypotheses' maps count as pairing time */
+  out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
+  out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
   out->autopair = info;
   if (!info.confident) {
-    char msg[200];
-    snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min %.2f): "
-             "the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin, o.autopair.min_mirror);
+    char msg[240];
+    if (nh > 1)
+      snprintf(msg, sizeof msg, "landmark-free map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
+               "hypothesis maps almost as well; the map may be wrong (give landmarks)", info.hyp_margin,
+               o.autopair.hyp_min_margin);
+    else
+      snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
+               "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
+               o.autopair.min_mirror);
     add_note(out, msg);
   }
 done:
+  if (st) ss_match_result_free(out);
+  ss_match_result_free(&r);
+  ssi_hyp_ctx_free(&hc);
   ss_centre_signature_free(&own[0]);
   ss_centre_signature_free(&own[1]);
-  ss_segment_pairs_free(&pr);
-  free(lx), free(ly);
+  for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
+  free(lx), free(ly), free(segs);
   return st;
 }
 

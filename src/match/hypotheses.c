@@ -1,0 +1,87 @@
+/* The hypothesis energy of a landmark-free map (ss_match_prepared_auto): how far a point map X -> Y
+ * is from an orientation-preserving isometry, from the map alone (no ground truth). */
+#include "match/hypotheses.h"
+#include "match/autopair_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double mesh_area(const ss_mesh *m) {
+  double a = 0;
+  for (int f = 0; f < m->nf; f++) {
+    const int *t = m->F + 3 * (size_t)f;
+    const double *p = m->V + 3 * (size_t)t[0], *q = m->V + 3 * (size_t)t[1], *r = m->V + 3 * (size_t)t[2];
+    double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    double c[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  }
+  return a;
+}
+
+void ssi_hyp_ctx_free(ssi_hyp_ctx *c) {
+  if (!c) return;
+  ss_graph_free(&c->gX), ss_graph_free(&c->gY);
+  free(c->src), free(c->dX), free(c->dY);
+  memset(c, 0, sizeof *c);
+}
+
+ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_ctx *c, ss_error *err) {
+  memset(c, 0, sizeof *c);
+  const int nX = X->nv;
+  if (nsrc > nX) nsrc = nX;
+  c->X = X, c->Y = Y, c->nsrc = nsrc;
+  c->sX = sqrt(mesh_area(X)), c->sY = sqrt(mesh_area(Y));
+  if (!(c->sX > 0) || !(c->sY > 0)) return ss_fail(err, SS_ERR_INVALID, "match: a mesh of zero area");
+  ss_status st;
+  if ((st = ss_graph_edges(X, &c->gX, err)) || (st = ss_graph_edges(Y, &c->gY, err))) goto fail;
+  c->src = malloc(sizeof(int) * (size_t)nsrc);
+  c->dX = malloc(sizeof(double) * (size_t)nX * nsrc);
+  c->dY = malloc(sizeof(double) * (size_t)Y->nv);
+  double *near = malloc(sizeof(double) * (size_t)nX);
+  if (!c->src || !c->dX || !c->dY || !near) {
+    free(near);
+    st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+    goto fail;
+  }
+  /* farthest-point sources from vertex 0's farthest vertex (deterministic, spread over X) */
+  int s = 0;
+  if ((st = ss_graph_dijkstra(&c->gX, &s, 1, 0, c->dX, NULL, err))) { free(near); goto fail; }
+  for (int v = 0; v < nX; v++)
+    if (isfinite(c->dX[v]) && c->dX[v] > c->dX[s]) s = v;
+  for (int v = 0; v < nX; v++) near[v] = INFINITY;
+  for (int i = 0; i < nsrc; i++) {
+    c->src[i] = s;
+    double *d = c->dX + (size_t)nX * i;
+    if ((st = ss_graph_dijkstra(&c->gX, &s, 1, 0, d, NULL, err))) { free(near); goto fail; }
+    int far = s;
+    for (int v = 0; v < nX; v++) {
+      if (d[v] < near[v]) near[v] = d[v];
+      if (isfinite(near[v]) && near[v] > near[far]) far = v;
+    }
+    s = far;
+  }
+  free(near);
+  return SS_OK;
+fail:
+  ssi_hyp_ctx_free(c);
+  return st;
+}
+
+ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_error *err) {
+  const int nX = c->X->nv;
+  double sum = 0;
+  long cnt = 0;
+  for (int i = 0; i < c->nsrc; i++) {
+    int t = map[c->src[i]];
+    ss_status st = ss_graph_dijkstra(&c->gY, &t, 1, 0, c->dY, NULL, err);
+    if (st) return st;
+    const double *d = c->dX + (size_t)nX * i;
+    for (int v = 0; v < nX; v++) {
+      double a = d[v] / c->sX, b = c->dY[map[v]] / c->sY;
+      if (isfinite(a) && isfinite(b)) sum += fabs(a - b), cnt++;
+    }
+  }
+  *out = cnt ? sum / (double)cnt : INFINITY;
+  return SS_OK;
+}

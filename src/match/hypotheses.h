@@ -1,0 +1,25 @@
+/* The hypothesis energy of a landmark-free map (hypotheses.c). */
+#ifndef SS_MATCH_HYPOTHESES_H
+#define SS_MATCH_HYPOTHESES_H
+
+#include "specseg/geodesic.h"
+#include "specseg/match.h"
+
+/* X's sources and their distance fields, computed once per match; Y's graph */
+typedef struct ssi_hyp_ctx {
+  const ss_mesh *X, *Y;
+  ss_graph gX, gY;
+  int nsrc;
+  int *src;           /* nsrc farthest-point sources on X */
+  double *dX;         /* nX x nsrc edge-graph distances from them */
+  double *dY;         /* scratch, nY */
+  double sX, sY;      /* √area of each mesh */
+} ssi_hyp_ctx;
+
+ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_ctx *c, ss_error *err);
+void ssi_hyp_ctx_free(ssi_hyp_ctx *c);
+
+/* Metric distortion of map (X's nv entries, vertices of Y): mean over the sources s and X's vertices
+ * v of |d_X(s, v)/√area_X − d_Y(map s, map v)/√area_Y| (edge-graph distances). */
+ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_error *err);
+#endif
