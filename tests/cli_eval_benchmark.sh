@@ -13,6 +13,7 @@ set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 HERE=$(cd "$(dirname "$0")" && pwd)
 . "$HERE/lib_cli.sh"
+. "$HERE/lib_bench.sh"
 [ -n "$PY" ] || { skip "no python3 for the checks"; finish; }
 check() { PYTHONDONTWRITEBYTECODE=1 "$PY" "$HERE/python/bench_check.py" "$@"; }
 
@@ -84,29 +85,9 @@ grep -q "warning: ext: 1 of the 6 pairs have no map file (.*hum2__hum10.txt" "$T
 # the recomputation: each scored map's K-point files through specseg error
 REC=$TMP/rec.txt
 : > "$REC"
-mkdir -p "$TMP/rec"
-recompute() { # METHOD X Y MAP
-  local m=$1 x=$2 y=$3 map=$4 d=$TMP/rec/$1.$2.$3
-  local vx=$B/corres/$x.vts vy=$B/corres/$y.vts sy=$B/corres/$y.sym.vts
-  local nx ny K KS=0 e2=-
-  nx=$(wc -l < "$vx") ny=$(wc -l < "$vy")
-  K=$((nx < ny ? nx : ny))
-  head -n "$K" "$vx" | awk 'NR == FNR { m[NR - 1] = $1; next } { print m[$1 - 1] }' "$map" - > "$d.mk"
-  head -n "$K" "$vy" | awk '{ print $1 - 1 }' > "$d.gk"
-  "$BIN" error "$d.mk" "$B/$y.off" --gt "$d.gk" -o "$d.e1" --json > "$d.json" || bad "specseg error $m $x $y"
-  if [ -f "$sy" ]; then
-    KS=$(wc -l < "$sy")
-    KS=$((KS < K ? KS : K))
-    head -n "$KS" "$sy" | awk '{ print $1 - 1 }' > "$d.sk"
-    head -n "$KS" "$d.mk" > "$d.mks"
-    "$BIN" error "$d.mks" "$B/$y.off" --gt "$d.sk" -o "$d.e2" > /dev/null || bad "specseg error --sym $m $x $y"
-    e2=$d.e2
-  fi
-  echo "$m $x $y $K $KS $d.e1 $e2 $d.json" >> "$REC"
-}
-for p in hum0__hum2 hum0__hum10 hum10__hum0 hum2__hum10; do recompute specseg "${p%%__*}" "${p##*__}" "$O/maps/$p.txt"; done
-recompute ext hum0 hum2 "$TMP/hum0__hum2.txt"
-recompute ext hum0 hum10 "$E/hum0__hum10.txt"
+for p in hum0__hum2 hum0__hum10 hum10__hum0 hum2__hum10; do recompute specseg "${p%%__*}" "${p##*__}" "$O/maps/$p.txt" "$B"; done
+recompute ext hum0 hum2 "$TMP/hum0__hum2.txt" "$B"
+recompute ext hum0 hum10 "$E/hum0__hum10.txt" "$B"
 check "$O" "$REC" specseg:6:4:2,ext:6:2:4 > "$TMP/c2" && ok || bad "run 2 summary: $(cat "$TMP/c2")"
 # scored by the same code: ext's copy of our map has our numbers; the perturbed one is worse
 a=$(grep '^specseg,hum0,hum2,' "$O/pairs.csv" | cut -d, -f4-6) b=$(grep '^ext,hum0,hum2,' "$O/pairs.csv" | cut -d, -f4-6)

@@ -11,31 +11,12 @@ set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
 HERE=$(cd "$(dirname "$0")" && pwd)
 . "$HERE/lib_cli.sh"
+. "$HERE/lib_bench.sh"
 D=${SS_DATA_DIR:-$HERE/../../shared/data}/bcicp_tune
 [ -d "$D/TOSCA_Isometric/vtx_5k" ] || { skip "no $D (the remeshed benchmarks' tuning split)"; finish; }
 [ -n "$PY" ] || { skip "no python3 for the checks"; finish; }
 check() { PYTHONDONTWRITEBYTECODE=1 "$PY" "$HERE/python/bench_check.py" "$@"; }
 REC=$TMP/rec.txt
-mkdir -p "$TMP/rec"
-recompute() { # METHOD X Y MAP DATASET
-  local m=$1 x=$2 y=$3 map=$4 S=$5 d=$TMP/rec/$1.$2.$3
-  local vx=$S/corres/$x.vts vy=$S/corres/$y.vts sy=$S/corres/$y.sym.vts
-  local nx ny K KS=0 e2=-
-  nx=$(wc -l < "$vx") ny=$(wc -l < "$vy")
-  K=$((nx < ny ? nx : ny))
-  head -n "$K" "$vx" | awk 'NR == FNR { m[NR - 1] = $1; next } { print m[$1 - 1] }' "$map" - > "$d.mk"
-  head -n "$K" "$vy" | awk '{ print $1 - 1 }' > "$d.gk"
-  "$BIN" error "$d.mk" "$S/$y.off" --gt "$d.gk" -o "$d.e1" --json > "$d.json" || bad "specseg error $m $x $y"
-  if [ -f "$sy" ]; then
-    KS=$(wc -l < "$sy")
-    KS=$((KS < K ? KS : K))
-    head -n "$KS" "$sy" | awk '{ print $1 - 1 }' > "$d.sk"
-    head -n "$KS" "$d.mk" > "$d.mks"
-    "$BIN" error "$d.mks" "$S/$y.off" --gt "$d.sk" -o "$d.e2" > /dev/null || bad "specseg error --sym $m $x $y"
-    e2=$d.e2
-  fi
-  echo "$m $x $y $K $KS $d.e1 $e2 $d.json" >> "$REC"
-}
 
 # TOSCA_r: a pair with the broken horse7 and a cat pair
 T=$D/TOSCA_Isometric

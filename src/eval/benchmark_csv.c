@@ -1,6 +1,7 @@
 /* pairs.csv of `specseg eval --benchmark`: one row per (method, pair), written as it finishes, read
  * back for resume, merge and the summary. */
 #include "benchmark_internal.h"
+#include "csv_file.h"
 
 #include <errno.h>
 #include <math.h>
@@ -129,20 +130,8 @@ static int split_csv(char *line, char **f, int max) {
   }
 }
 
-static int parse_int(const char *s, int *v) {
-  char *end;
-  errno = 0;
-  long x = strtol(s, &end, 10);
-  if (end == s || *end || errno || x < -2147483647L || x > 2147483647L) return 1;
-  *v = (int)x;
-  return 0;
-}
-static int parse_real(const char *s, double *v) { /* "" = NAN */
-  if (!*s) { *v = NAN; return 0; }
-  char *end;
-  *v = strtod(s, &end);
-  return end == s || *end;
-}
+static int parse_int(const char *s, int *v) { return ssi_csv_parse_int(s, v); }
+static int parse_real(const char *s, double *v) { return ssi_csv_parse_real(s, 1, v); } /* "" = NAN */
 
 ss_status ss_benchmark_csv_read(const char *path, ss_benchmark_row **rows, int *nrows, ss_error *err) {
   *rows = NULL, *nrows = 0;
@@ -166,12 +155,8 @@ ss_status ss_benchmark_csv_read(const char *path, ss_benchmark_row **rows, int *
       goto done;
     }
   }
-  while (fgets(line, 2 * SS_BENCH_CSV_LINE, f)) {
-    ln++;
-    size_t len = strlen(line);
-    int complete = len > 0 && line[len - 1] == '\n';
-    line[strcspn(line, "\r\n")] = 0;
-    if (!line[0]) continue;
+  int complete;
+  while (ssi_csv_next_line(f, line, (int)(2 * SS_BENCH_CSV_LINE), &complete, &ln)) {
     int nf = split_csv(line, fld, 64);
     ss_benchmark_row r;
     memset(&r, 0, sizeof r);

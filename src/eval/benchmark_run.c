@@ -8,6 +8,7 @@
  * writes) and each external map, scored, one row per (method, pair) appended to OUT/pairs.csv and
  * flushed as it finishes; scored rows already there are not recomputed (resume). */
 #include "benchmark_internal.h"
+#include "csv_file.h"
 #include "specseg/io.h"
 #include "specseg/match.h"
 #include "specseg/version.h"
@@ -265,20 +266,6 @@ static int is_done(char **keys, int n, const char *m, const char *x, const char 
   return bsearch(&kp, keys, (size_t)n, sizeof *keys, str_cmp) != NULL;
 }
 
-/* drops a partial last line (an interrupted run); 1 when the file holds at least a header */
-static int repair_tail(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return 0;
-  fseek(f, 0, SEEK_END);
-  long size = ftell(f), keep = 0;
-  for (long pos = size - 1; pos >= 0; pos--) {
-    fseek(f, pos, SEEK_SET);
-    if (fgetc(f) == '\n') { keep = pos + 1; break; }
-  }
-  fclose(f);
-  if (keep < size && truncate(path, keep)) return keep > 0;
-  return keep > 0;
-}
 
 static int valid_method_name(const char *s) {
   if (!*s || strlen(s) >= SS_BENCH_METHOD) return 0;
@@ -414,7 +401,7 @@ static ss_status run(brun *R, ss_error *err) {
   if (!bm_is_dir(o->out_dir)) { st = ss_fail(err, SS_ERR_IO, "%s: not a folder", o->out_dir); goto done; }
   csv = bm_join(o->out_dir, "pairs.csv"), mapdir = bm_join(o->out_dir, "maps");
   if (!csv || !mapdir) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-  int have_header = repair_tail(csv), nold = 0;
+  int have_header = ssi_csv_repair_tail(csv), nold = 0;
   if (have_header) {
     if ((st = ss_benchmark_csv_read(csv, &old, &nold, err))) goto done;
     keys = malloc(sizeof *keys * (size_t)(nold > 0 ? nold : 1));
@@ -517,12 +504,7 @@ static ss_status run(brun *R, ss_error *err) {
       warn(R, "--landmarks gt:%d: %s has only %d points: %d landmarks", o->landmarks, I->landmark_shape, nlm, nlm);
   }
   /* phase 1: read (and prepare) every needed shape, in parallel */
-  int nthreads = o->jobs > 0 ? o->jobs : 0;
-#ifdef _OPENMP
-  if (!nthreads) nthreads = omp_get_max_threads();
-#else
-  nthreads = 1;
-#endif
+  int nthreads = ssi_eval_threads(o->jobs);
   int *list = malloc(sizeof(int) * (size_t)B.nshapes), nlist = 0;
   if (!list) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
   for (int s = 0; s < B.nshapes; s++)

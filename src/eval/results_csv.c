@@ -1,5 +1,6 @@
 /* The results CSV of `specseg eval --table1` and the Table 1 aggregation. */
 #include "specseg/eval.h"
+#include "csv_file.h"
 
 #include <errno.h>
 #include <math.h>
@@ -61,19 +62,8 @@ static int split(char *line, char **f, int max) {
   return n;
 }
 
-static int parse_int(const char *s, int *v) {
-  char *end;
-  errno = 0;
-  long x = strtol(s, &end, 10);
-  if (end == s || *end || errno || x < -2147483647L || x > 2147483647L) return 1;
-  *v = (int)x;
-  return 0;
-}
-static int parse_dbl(const char *s, double *v) {
-  char *end;
-  *v = strtod(s, &end);
-  return end == s || *end;
-}
+static int parse_int(const char *s, int *v) { return ssi_csv_parse_int(s, v); }
+static int parse_dbl(const char *s, double *v) { return ssi_csv_parse_real(s, 0, v); }
 
 ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_error *err) {
   *rows = NULL;
@@ -99,12 +89,8 @@ ss_status ss_eval_csv_read(const char *path, ss_eval_row **rows, int *nrows, ss_
     if (!strcmp(fld[h], "cpu_seconds")) icpu = h;
     if (!strcmp(fld[h], "pairing")) ipair = h;
   }
-  while (fgets(line, sizeof line, f)) {
-    lineno++;
-    size_t len = strlen(line);
-    int complete = len > 0 && line[len - 1] == '\n';
-    line[strcspn(line, "\r\n")] = 0;
-    if (!line[0]) continue;
+  int complete;
+  while (ssi_csv_next_line(f, line, (int)(sizeof line), &complete, &lineno)) {
     int nf = split(line, fld, 64);
     ss_eval_row r;
     memset(&r, 0, sizeof r);

@@ -5,6 +5,7 @@
  * rarely share a target) and stays the same across resumed runs. Each needed shape is prepared once
  * (in parallel); then units run in parallel grouped by target shape, whose exact error fields are
  * computed once per group. Rows are appended (and flushed) as they finish. */
+#include "csv_file.h"
 #include "eval_internal.h"
 #include "specseg/io.h"
 
@@ -66,21 +67,6 @@ static int is_done(const done_set *d, int policy, int lm, int method, int x, int
   return d->n > 0 && bsearch(&key, d->k, (size_t)d->n, sizeof key, u64_cmp) != NULL;
 }
 
-/* Drops a partial last line left by an interrupted run, so appended rows start on a fresh line.
- * Returns 1 when the file holds at least a header. */
-static int repair_tail(const char *path) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return 0;
-  fseek(f, 0, SEEK_END);
-  long size = ftell(f), keep = 0;
-  for (long pos = size - 1; pos >= 0; pos--) {
-    fseek(f, pos, SEEK_SET);
-    if (fgetc(f) == '\n') { keep = pos + 1; break; }
-  }
-  fclose(f);
-  if (keep < size && truncate(path, keep)) return keep > 0;
-  return keep > 0;
-}
 
 /* The caller's progress callback, if any (called inside a critical section: one call at a time). */
 static void report(const ss_table1_options *o, double t0, long done, long total, int shapes_done, int shapes_total) {
@@ -212,7 +198,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   int u0 = (int)((long)nu * o->shard_i / o->shard_n), u1 = (int)((long)nu * (o->shard_i + 1) / o->shard_n);
 
   /* 2. resume: rows already in the output are skipped */
-  int have_header = repair_tail(o->out_csv);
+  int have_header = ssi_csv_repair_tail(o->out_csv);
   if (have_header) {
     if ((st = ss_eval_csv_read(o->out_csv, &old, &nold, err))) goto done;
     done.k = malloc(sizeof(uint64_t) * (size_t)(nold > 0 ? nold : 1));
@@ -282,12 +268,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
    * pthreads would oversubscribe the cores) */
   int failed = 0, prepared = 0;
   ss_error perr = {{0}};
-  int nthreads = o->jobs > 0 ? o->jobs : 0;
-#ifdef _OPENMP
-  if (!nthreads) nthreads = omp_get_max_threads();
-#else
-  nthreads = 1;
-#endif
+  int nthreads = ssi_eval_threads(o->jobs);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
   for (int i = 0; i < nneed; i++) {
     if (failed) continue;
