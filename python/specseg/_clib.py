@@ -127,7 +127,8 @@ class ss_autopair_options(C.Structure):
                 ("alt_min_score", C.c_double), ("hypotheses", C.c_int), ("hyp_gap", C.c_double),
                 ("hyp_w_reversed", C.c_double),
                 ("hyp_reversed_below", C.c_double), ("hyp_keep", C.c_double),
-                ("hyp_min_margin", C.c_double)]
+                ("hyp_min_margin", C.c_double), ("hyp_landmarks", C.c_int),
+                ("hyp_landmark_tol", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):

@@ -43,6 +43,8 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_reversed_below = 0.15;
   o->hyp_keep = 0.625;
   o->hyp_min_margin = 0.003;
+  o->hyp_landmarks = 1;
+  o->hyp_landmark_tol = 0.1;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {

@@ -22,4 +22,11 @@ void ssi_hyp_ctx_free(ssi_hyp_ctx *c);
 /* Metric distortion of map (X's nv entries, vertices of Y): mean over the sources s and X's vertices
  * v of |d_X(s, v)/√area_X − d_Y(map s, map v)/√area_Y| (edge-graph distances). */
 ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_error *err);
+
+/* ss_match_prepared with the shapes' centre signatures when the caller has them (NULL: computed):
+ * landmark-free, the hypotheses' map; with landmarks and ss_autopair_options.hyp_landmarks, the
+ * given landmarks' map against the pairing hypotheses that agree with them (match.c). */
+ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                    const ss_centre_signature *sigY, int nl, const int *lmX, const int *lmY,
+                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);
 #endif

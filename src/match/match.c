@@ -644,9 +644,7 @@ static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int 
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                             const ss_match_options *opts, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
-  if (nl == 0) return ss_match_prepared_auto(X, Y, NULL, NULL, opts, out, err);
-  memset(out, 0, sizeof *out);
-  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+  return ssi_match_prepared_signed(X, Y, NULL, NULL, nl, lmX, lmY, opts, out, err);
 }
 
 
@@ -691,9 +689,38 @@ static double hypothesis_energy(const ss_autopair_options *o, double distortion,
   return distortion + o->hyp_w_reversed * reversed;
 }
 
-ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
-                                 const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
-                                 ss_error *err) {
+/* With given landmarks, the kept pairs (kx, ky; nk) of a hypothesis that agree with them: neither
+ * centre within tol of a given landmark (that one anchors the place already), and every given
+ * landmark as far from one centre as from the other within tol (edge-graph geodesics over √area;
+ * gdX, gdY: nX x nlg and nY x nlg distances from the given landmarks). Returns their count. */
+static int agreeing_pairs(const ssi_hyp_ctx *hc, int nlg, const double *gdX, const double *gdY, int nk, const int *kx,
+                          const int *ky, double tol, int *ex, int *ey) {
+  const size_t nX = (size_t)hc->X->nv, nY = (size_t)hc->Y->nv;
+  int q = 0;
+  for (int p = 0; p < nk; p++) {
+    int keep = 1;
+    for (int i = 0; i < nlg && keep; i++) {
+      const double dx = gdX[nX * i + kx[p]] / hc->sX, dy = gdY[nY * i + ky[p]] / hc->sY;
+      keep = isfinite(dx) && isfinite(dy) && dx > tol && dy > tol && fabs(dx - dy) <= tol;
+    }
+    if (keep) ex[q] = kx[p], ey[q++] = ky[p];
+  }
+  return q;
+}
+
+static int same_set(int n, const int *a, const int *b, int m, const int *c, const int *d) {
+  if (n != m) return 0;
+  for (int i = 0; i < n; i++)
+    if (a[i] != c[i] || b[i] != d[i]) return 0;
+  return 1;
+}
+
+/* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
+ * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
+ * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
+static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                  const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
+                                  const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
   ss_match_options o;
@@ -704,8 +731,8 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   if (o.autopair.hypotheses < 1 || o.autopair.hypotheses > SS_MAX_HYPOTHESES || !(o.autopair.hyp_gap >= 0) ||
       !(o.autopair.hyp_w_reversed >= 0) || !isfinite(o.autopair.hyp_w_reversed) ||
       !isfinite(o.autopair.hyp_reversed_below) || !(o.autopair.hyp_keep > 0 && o.autopair.hyp_keep <= 1) ||
-      !isfinite(o.autopair.hyp_min_margin))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1]",
+      !isfinite(o.autopair.hyp_min_margin) || !(o.autopair.hyp_landmark_tol >= 0))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0",
                    o.autopair.hypotheses, SS_MAX_HYPOTHESES);
   ss_centre_signature own[2];
   memset(own, 0, sizeof own);
@@ -716,75 +743,116 @@ ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y,
   ssi_hyp_ctx hc = {0};
   ss_match_result r;
   memset(&r, 0, sizeof r);
-  int *lx = NULL, *ly = NULL;
-  double *segs = NULL;
+  int *lx = NULL, *ly = NULL, *cand = NULL;
+  double *segs = NULL, *gdX = NULL, *gdY = NULL;
   ss_status st = SS_OK;
   double t0 = ss_time();
   if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
   if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
   const ss_centre_signature *SX = sigX ? sigX : &own[0], *SY = sigY ? sigY : &own[1];
-  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, o.autopair.hypotheses, hyp, &nh, &info, err))) goto done;
-  if (nh > 1 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+  /* with given landmarks, one candidate slot is theirs alone */
+  const int want = nlg > 0 && o.autopair.hypotheses >= SS_MAX_HYPOTHESES ? SS_MAX_HYPOTHESES - 1 : o.autopair.hypotheses;
+  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, want, hyp, &nh, &info, err))) goto done;
+  if (nlg > 0) info.used = 0;
+  if ((nh > 1 || nlg > 0) && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
   double t_pair = ss_time() - t0;
   int mx = 1;
   for (int h = 0; h < nh; h++)
     if (hyp[h].n > mx) mx = hyp[h].n;
-  lx = malloc(sizeof(int) * (size_t)mx);
-  ly = malloc(sizeof(int) * (size_t)mx);
+  /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
+  const int stride = nlg + mx, ncap = nh + 1;
+  lx = malloc(sizeof(int) * (size_t)stride * ncap);
+  ly = malloc(sizeof(int) * (size_t)stride * ncap);
+  cand = malloc(sizeof(int) * (size_t)ncap);
   segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
-  if (!lx || !ly || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  /* hyp_keep = 1: the paired centres are the landmarks and the pairing is the segments'; below 1
-   * only the protrusions' pairs are landmarks and the segments are paired from them as with given
-   * landmarks (the saddles' centres sit front or back inconsistently between shapes) */
+  if (!lx || !ly || !cand || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  int nc = 0, from_pairs[SS_MAX_HYPOTHESES]; /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none) */
+  if (nlg == 0) {
+    for (int h = 0; h < nh; h++) {
+      cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
+      from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
+      nc++;
+    }
+  } else {
+    gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
+    gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
+    if (!gdX || !gdY) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+    for (int i = 0; i < nlg; i++)
+      if ((st = ss_graph_dijkstra(&hc.gX, &lgX[i], 1, 0, gdX + (size_t)X->mesh->nv * i, NULL, err)) ||
+          (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
+        goto done;
+    memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
+    cand[0] = nlg, from_pairs[0] = -1, nc = 1;
+    int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
+    if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+    for (int h = 0; h < nh; h++) {
+      int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
+      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
+      memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
+      int ne = agreeing_pairs(&hc, nlg, gdX, gdY, nk, kx, ky, o.autopair.hyp_landmark_tol, cx + nlg, cy + nlg);
+      int dup = ne == 0;
+      for (int c = 1; c < nc && !dup; c++)
+        dup = same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
+      if (!dup) cand[nc] = nlg + ne, from_pairs[nc++] = -1;
+    }
+    free(kx), free(ky);
+  }
+  /* hyp_keep = 1 (landmark-free): the paired centres are the landmarks and the pairing is the
+   * segments'; otherwise the segments are paired from the landmarks as with given landmarks (the
+   * saddles' centres sit front or back inconsistently between shapes) */
   ss_match_options oall = o;
   oall.pairing.min_landmarks = 1;
   oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
   double best = INFINITY, t_loop = ss_time();
-  for (int h = 0; h < nh; h++) {
-    const ss_segment_pairs *pr = &hyp[h];
-    int nl = kept_pairs(SX, pr, o.autopair.hyp_keep, X, Y, lx, ly);
-    if (nl < pr->n) {
+  for (int c = 0; c < nc; c++) {
+    const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
+    if (from_pairs[c] >= 0) {
+      if ((st = match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
+    } else {
       ss_match_options ok = o;
-      if (ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
-      if ((st = match_core(X, Y, nl, lx, ly, NULL, &ok, &r, err))) goto done;
-    } else if ((st = match_core(X, Y, pr->n, lx, ly, pr, &oall, &r, err)))
-      goto done;
-    double E = 0, dist = NAN, orient = NAN, pe = 0;
-    for (int p = 0; p < pr->n; p++) pe += pr->energy[p];
-    if (nh > 1) {
+      if (nlg == 0 && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
+      if ((st = match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
+    }
+    double E = 0, dist = NAN, orient = NAN, pe = NAN;
+    const int h = nlg == 0 ? c : -1; /* the pairing hypothesis behind it (landmark-free) */
+    if (h >= 0) {
+      pe = 0;
+      for (int p = 0; p < hyp[h].n; p++) pe += hyp[h].energy[p];
+    }
+    if (nc > 1) {
       if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
       orient = ssi_map_orientation(SX, SY, r.map);
       double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
-                                                &info.hyp_orientation_min[h]);
-      info.hyp_reversed[h] = rev;
+                                                &info.hyp_orientation_min[c]);
+      info.hyp_reversed[c] = rev;
       E = hypothesis_energy(&o.autopair, dist, rev);
     }
-    info.hyp_pair_energy[h] = pe, info.hyp_distortion[h] = dist, info.hyp_orientation[h] = orient;
-    info.hyp_energy[h] = E;
-    info.hyp_map_energy[h] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
-    if (h == 0 || E < best) {
-      if (h > 0) ss_match_result_free(out);
-      *out = r, best = E, info.hypothesis = h, info.hyp_landmarks = nl < pr->n ? nl : pr->n;
+    info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
+    info.hyp_energy[c] = E;
+    info.hyp_map_energy[c] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
+    if (c == 0 || E < best) {
+      if (c > 0) ss_match_result_free(out);
+      *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
     } else
       ss_match_result_free(&r);
     memset(&r, 0, sizeof r);
   }
-  info.hypotheses = nh;
+  info.hypotheses = nc;
   info.hyp_margin = INFINITY;
-  for (int h = 0; h < nh; h++)
-    if (h != info.hypothesis && info.hyp_energy[h] - best < info.hyp_margin) info.hyp_margin = info.hyp_energy[h] - best;
-  if (nh > 1)
-    info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
+  for (int c = 0; c < nc; c++)
+    if (c != info.hypothesis && info.hyp_energy[c] - best < info.hyp_margin) info.hyp_margin = info.hyp_energy[c] - best;
+  if (nc > 1) info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
+  else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
   out->autopair = info;
   if (!info.confident) {
     char msg[240];
-    if (nh > 1)
-      snprintf(msg, sizeof msg, "landmark-free map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
-               "hypothesis maps almost as well; the map may be wrong (give landmarks)", info.hyp_margin,
-               o.autopair.hyp_min_margin);
+    if (nc > 1)
+      snprintf(msg, sizeof msg, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
+               "hypothesis maps almost as well; the map may be wrong (%s)", nlg ? "the" : "landmark-free",
+               info.hyp_margin, o.autopair.hyp_min_margin, nlg ? "check the landmarks, add some" : "give landmarks");
     else
       snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
                "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
@@ -798,8 +866,34 @@ done:
   ss_centre_signature_free(&own[0]);
   ss_centre_signature_free(&own[1]);
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
-  free(lx), free(ly), free(segs);
+  free(lx), free(ly), free(cand), free(segs), free(gdX), free(gdY);
   return st;
+}
+
+ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                 const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
+                                 ss_error *err) {
+  return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts_in, out, err);
+}
+
+ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                    const ss_centre_signature *sigY, int nl, const int *lmX, const int *lmY,
+                                    const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  if (nl == 0) return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts, out, err);
+  ss_match_options o;
+  if (opts) o = *opts;
+  else ss_match_default_options(&o);
+  /* hypotheses beside given landmarks: the refined default only, on segmented shapes */
+  if (o.autopair.hyp_landmarks && o.autopair.hypotheses > 1 && o.refine == SS_REFINE_BEST && X && Y &&
+      X->seg.centers && Y->seg.centers && X->mesh && Y->mesh) {
+    for (int i = 0; i < nl; i++)
+      if (!lmX || !lmY || lmX[i] < 0 || lmX[i] >= X->mesh->nv || lmY[i] < 0 || lmY[i] >= Y->mesh->nv)
+        return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
+    return match_hypotheses(X, Y, sigX, sigY, nl, lmX, lmY, &o, out, err);
+  }
+  memset(out, 0, sizeof *out);
+  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,

@@ -4,6 +4,7 @@
 #include "specseg/match.h"
 #include "match/proxy.h"
 #include "match/landmark_check.h"
+#include "match/hypotheses.h"
 #include "mesh/mesh_topology.h"
 
 #include <stdio.h>
@@ -119,13 +120,12 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
   px.mesh = X->has_proxy ? &X->proxy : &X->mesh, py.mesh = Y->has_proxy ? &Y->proxy : &Y->mesh;
   px.t_segment = px.t_eigs = py.t_segment = py.t_eigs = 0;
   ss_status st;
-  if (nl > 0) st = ss_match_prepared(&px, &py, nl, lm, lm + nl, &o, out, err);
-  else {
+  {
     ss_centre_signature sx = X->sig, sy = Y->sig;
     sx.prep = &px, sy.prep = &py;
     const int use_x = X->has_signature && same_autopair(&X->autopair, &o.autopair);
     const int use_y = Y->has_signature && same_autopair(&Y->autopair, &o.autopair);
-    st = ss_match_prepared_auto(&px, &py, use_x ? &sx : NULL, use_y ? &sy : NULL, &o, out, err);
+    st = ssi_match_prepared_signed(&px, &py, use_x ? &sx : NULL, use_y ? &sy : NULL, nl, lm, lm + nl, &o, out, err);
   }
   free(lm);
   /* back to the input meshes' vertices (views of the stored proxies, not owned) */
