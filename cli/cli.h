@@ -108,6 +108,11 @@ ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, s
  * errno set when it cannot be opened. cli_close_out: 0, or -1 after a write error. */
 FILE *cli_open_out(const char *path);
 int cli_close_out(FILE *f);
+/* Outputs that would replace an input, or each other (issue 32): cli_output_clash gives 1 (*o would
+ * overwrite the input *in), 2 (*o named twice) or 0; NULL and "-" are skipped, so are pipes and
+ * devices (written, not replaced). cli_check_outputs reports it as a usage error (-1: none). */
+int cli_output_clash(const char *const *outp, int nout, const char *const *inp, int nin, const char **o, const char **in);
+int cli_check_outputs(cli_args *A, const char *const *outp, int nout, const char *const *inp, int nin);
 /* Frees the buffered standard input (main, before exiting). */
 void cli_io_cleanup(void);
 

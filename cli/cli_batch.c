@@ -346,7 +346,10 @@ int cli_batch_setup(cli_batch *b, cli_args *A, const char *outdir, int need_out,
     b->batch = 1;
   if (!b->batch) {
     if (b->suffix) return cli_bad(A, "--suffix is for batches (several meshes, a folder, or -o a folder)");
-    return -1;
+    const char *outs[16] = {outdir}; /* one mesh: its outputs are file names; none may be the input */
+    int no = 1;
+    for (int e = 0; e < nextras && no < 16; e++) outs[no++] = extras[e];
+    return cli_check_outputs(A, outs, no, (const char *const *)b->in, 1);
   }
   for (int i = 0; i < b->nin; i++)
     if (cli_is_std(b->in[i])) return cli_bad(A, "a batch reads mesh files, not standard input ('-')");

@@ -53,6 +53,8 @@ int cmd_error(int argc, char **argv) {
   if (!mapf || !yf) return cli_bad(&A, "needs MAP.txt and Y");
   const char *ins[4] = {mapf, yf, gtf, symf};
   if (cli_count_std(ins, 4) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  const char *outs[1] = {outf};
+  if (cli_check_outputs(&A, outs, 1, ins, 4) >= 0) return A.rc;
   if (json && cli_is_std(outf)) return cli_bad(&A, "--json and -o - both want standard output");
   FILE *report = cli_is_std(outf) ? stderr : stdout;
   cli_job J;

@@ -172,6 +172,7 @@ int cmd_match(int argc, char **argv) {
   o.std_pairs = pairsp != NULL; /* the pairs file is written for every probe set */
   const char *ins[5] = {xp, yp, lmp ? lmp : "", dxp ? dxp : "", dyp ? dyp : ""}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  if (cli_check_outputs(&A, outs, 3, ins, 5) >= 0) return A.rc;
   int to_stdout = cli_count_std(outs, 3);
   if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
   if (to_stdout && json) return cli_bad(&A, "--json and an output to '-' both want standard output");

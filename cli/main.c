@@ -8,6 +8,7 @@
 #endif
 #include <math.h>
 #include <stdarg.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <dlfcn.h>
@@ -149,6 +150,9 @@ static int run(int argc, char **argv) {
 }
 
 int main(int argc, char **argv) {
+  /* past a file size limit (ulimit -f) a write fails with EFBIG and is reported, its temporary
+   * removed, instead of the signal killing the program with a temporary file left behind */
+  signal(SIGXFSZ, SIG_IGN);
   int rc = run(argc, argv);
   cli_io_cleanup();
   return rc;
