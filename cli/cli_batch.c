@@ -55,9 +55,40 @@ void cli_diag(const char *kind, const char *fmt, va_list ap) {
 
 /* ---- JSON ------------------------------------------------------------------------------------------- */
 
+/* The length of the valid UTF-8 sequence at p (1..4), or 0 when it is not one (RFC 3629: no
+ * overlong forms, no surrogates, nothing above U+10FFFF). */
+static int utf8_len(const unsigned char *p) {
+  const unsigned char c = p[0];
+  if (c < 0x80) return 1;
+  int n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+  if (!n) return 0;
+  unsigned char lo = 0x80, hi = 0xBF; /* the second byte's range */
+  if (c == 0xE0) lo = 0xA0;
+  else if (c == 0xED) hi = 0x9F;
+  else if (c == 0xF0) lo = 0x90;
+  else if (c == 0xF4) hi = 0x8F;
+  if (p[1] < lo || p[1] > hi) return 0;
+  for (int i = 2; i < n; i++)
+    if ((p[i] & 0xC0) != 0x80) return 0;
+  return n;
+}
+
+/* A JSON string: file names are bytes, JSON text is UTF-8; a byte that is not part of valid UTF-8 is
+ * written as \udcXX (XX the byte), Python's surrogateescape: json.loads then os.fsencode gives the
+ * name's bytes back, and the output stays valid UTF-8 JSON. */
 static void json_str(FILE *f, const char *s) {
   fputc('"', f);
   for (const unsigned char *p = (const unsigned char *)s; p && *p; p++) {
+    int n = utf8_len(p);
+    if (n == 0) {
+      fprintf(f, "\\udc%02x", *p);
+      continue;
+    }
+    if (n > 1) {
+      fwrite(p, 1, (size_t)n, f);
+      p += n - 1;
+      continue;
+    }
     if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
     else if (*p == '\n') fputs("\\n", f);
     else if (*p == '\t') fputs("\\t", f);

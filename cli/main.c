@@ -154,6 +154,9 @@ int main(int argc, char **argv) {
    * removed, instead of the signal killing the program with a temporary file left behind */
   signal(SIGXFSZ, SIG_IGN);
   int rc = run(argc, argv);
+  /* every command's stdout, checked once more at the end: a report or a JSON summary that did not
+   * reach its destination (a full disk, /dev/full, a closed pipe) is a failure, not exit 0 */
+  if ((ferror(stdout) || fflush(stdout)) && rc == SS_EXIT_OK) rc = cli_error("cannot write to standard output");
   cli_io_cleanup();
   return rc;
 }
