@@ -209,6 +209,20 @@ int cmd_match(int argc, char **argv) {
       goto done;
     }
   }
+  { /* too many, a vertex with two partners (both lines named), an exact repeat (said) */
+    int la, lb;
+    if (ss_landmarks_check(nl, lx, ly, &la, &lb, &err)) {
+      if (la < 0) rc = cli_error("%s: %s", lmn, err.msg + (strncmp(err.msg, "match: ", 7) ? 0 : 7));
+      else {
+        const int on_y = lx[la] != lx[lb]; /* the shared vertex is on Y */
+        rc = cli_error("%s:%d and %s:%d: vertex %d of %s has two partners on %s (%d and %d)", lmn, lline[la], lmn,
+                       lline[lb], on_y ? ly[la] : lx[la], on_y ? "Y" : "X", on_y ? "X" : "Y", on_y ? lx[la] : ly[la],
+                       on_y ? lx[lb] : ly[lb]);
+      }
+      goto done;
+    }
+    if (la >= 0) cli_warn("%s:%d repeats %s:%d (the same landmark twice)", lmn, lline[lb], lmn, lline[la]);
+  }
   if (dxp) { /* (nX x d) and (nY x d), corresponding columns */
     int rx, cx, ry, cy;
     if (cli_read_matrix(dxp, &DX, &rx, &cx, &err) || cli_read_matrix(dyp, &DY, &ry, &cy, &err)) {
