@@ -125,10 +125,23 @@ void cli_io_cleanup(void) {
   nstreams = 0;
 }
 
+/* A prepared shape (.sss) where a mesh is meant: the mesh it holds (the input's vertices and faces,
+ * in their order), so every command that reads a mesh takes it (issue 32). */
+static ss_status read_prepared_mesh(const char *path, ss_mesh *m, ss_error *err) {
+  cli_shape s;
+  ss_status st = cli_read_shape(path, &s, err);
+  if (st) return st;
+  *m = s.ps.mesh;
+  memset(&s.ps.mesh, 0, sizeof s.ps.mesh);
+  cli_shape_free(&s);
+  return SS_OK;
+}
+
 ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
   const char *b;
   size_t n;
   memset(m, 0, sizeof *m);
+  if (cli_is_prepared_shape(path)) return read_prepared_mesh(path, m, err);
   int is;
   ss_status st = stream_input(path, &is, &b, &n, err);
   if (st || !is) return st ? st : ss_read_mesh(path, m, err);
@@ -140,6 +153,7 @@ ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb
   size_t n;
   memset(m, 0, sizeof *m);
   *rgb = NULL;
+  if (cli_is_prepared_shape(path)) return read_prepared_mesh(path, m, err); /* no colours */
   int is;
   ss_status st = stream_input(path, &is, &b, &n, err);
   if (st || !is) return st ? st : ss_read_mesh_colors(path, m, rgb, err);

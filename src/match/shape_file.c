@@ -60,6 +60,11 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
     st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
   }
   ssi_proxy_free(&px);
+  if (st && err && !strncmp(err->msg, "match: ", 7)) { /* the shared stages' prefix: this is prepare */
+    char msg[sizeof err->msg];
+    snprintf(msg, sizeof msg, "prepare: %s", err->msg + 7);
+    memcpy(err->msg, msg, sizeof msg);
+  }
   ss_shape_prep *mp = out->has_proxy ? &out->proxy_prep : &out->prep; /* what a match uses */
   if (!st) st = ss_shape_prep_crit_fields(mp, err); /* the landmark pairing's distances, once */
   if (!st) st = ss_shape_prep_probe_cache(mp, NULL, err); /* the default match's shape-only probe parts */
