@@ -185,18 +185,29 @@ static void job_free(cli_job *j) {
 }
 
 /* {"command": ..., "ok": N, "failed": N, "seconds": S, "jobs": J, "results": [job, ...]} on stdout */
-static int print_json(const char *cmd, const cli_job *jobs, int n, int failed, double seconds, int nthreads) {
+static int print_json_skipped(const char *cmd, const cli_job *jobs, int n, int failed, double seconds, int nthreads,
+                              char *const *skipped, int nskipped) {
   printf("{\n  \"command\": ");
   json_str(stdout, cmd);
   printf(",\n  \"ok\": %d,\n  \"failed\": %d,\n  \"seconds\": ", n - failed, failed);
   json_num(stdout, seconds);
-  printf(",\n  \"jobs\": %d,\n  \"results\": [", nthreads);
+  printf(",\n  \"jobs\": %d,", nthreads);
+  if (nskipped) { /* folder entries that are not meshes: listed, as they were warned about */
+    printf("\n  \"skipped\": [");
+    for (int i = 0; i < nskipped; i++) printf("%s", i ? ", " : ""), json_str(stdout, skipped[i]);
+    printf("],");
+  }
+  printf("\n  \"results\": [");
   for (int i = 0; i < n; i++) {
     printf("%s", i ? ", " : "");
     json_job(stdout, &jobs[i], "    ");
   }
   printf("]\n}\n");
   return fflush(stdout) ? -1 : 0;
+}
+
+static int print_json(const char *cmd, const cli_job *jobs, int n, int failed, double seconds, int nthreads) {
+  return print_json_skipped(cmd, jobs, n, failed, seconds, nthreads, NULL, 0);
 }
 
 int cli_job_end(cli_job *j, const char *cmd, int rc, int json) {
@@ -278,6 +289,10 @@ void cli_batch_free(cli_batch *b) {
   free(b->in);
   b->in = NULL;
   b->nin = b->cap = 0;
+  for (int i = 0; i < b->nskipped; i++) free(b->skipped[i]);
+  free(b->skipped);
+  b->skipped = NULL;
+  b->nskipped = 0;
 }
 
 int cli_batch_option(cli_batch *b, cli_args *A) {
@@ -311,6 +326,11 @@ static int push_input(cli_batch *b, const char *path) {
 
 static int cmp_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
+static int has_sss(const char *p) {
+  size_t n = strlen(p);
+  return n > 4 && !strcmp(p + n - 4, ".sss");
+}
+
 /* the mesh files of a folder (extensions the library reads, no hidden files), sorted by name */
 static int add_folder(cli_batch *b, cli_args *A, const char *dir) {
   DIR *d = opendir(dir);
@@ -326,16 +346,23 @@ static int add_folder(cli_batch *b, cli_args *A, const char *dir) {
     if (!p) { closedir(d); return cli_error("out of memory"); }
     snprintf(p, n, "%.*s/%s", (int)dl, dir, e->d_name);
     struct stat st;
-    int take = stat(p, &st) == 0 && S_ISREG(st.st_mode) && ss_mesh_extension_supported(p);
-    if (!take && stat(p, &st) == 0 && S_ISREG(st.st_mode)) skipped++;
+    /* meshes and prepared shapes (every per-mesh command reads a .sss as its mesh) */
+    int take = stat(p, &st) == 0 && S_ISREG(st.st_mode) && (ss_mesh_extension_supported(p) || has_sss(p));
     if (take && push_input(b, p)) { free(p); closedir(d); return cli_error("out of memory"); }
+    if (!take) { /* said, not dropped silently: a subfolder, a file of another kind */
+      char **g = realloc(b->skipped, sizeof *g * (size_t)(b->nskipped + 1));
+      if (g) b->skipped = g, g[b->nskipped++] = dup_str(p);
+      skipped++;
+    }
     free(p);
   }
   closedir(d);
-  if (b->nin == first) return cli_bad(A, "%s: no mesh files (OFF, OBJ, PLY%s) in the folder", dir,
+  if (b->nin == first) return cli_bad(A, "%s: no mesh files (OFF, OBJ, PLY%s, prepared shapes .sss) in the folder", dir,
                                       ss_mesh_extension_supported("x.stl") ? ", STL, glTF, ..." : "");
   qsort(b->in + first, (size_t)(b->nin - first), sizeof *b->in, cmp_name);
-  (void)skipped;
+  if (skipped)
+    cli_warn("%s: %d entr%s skipped (subfolders, files that are neither meshes nor prepared shapes)", dir, skipped,
+             skipped == 1 ? "y" : "ies");
   return -1;
 }
 
@@ -536,7 +563,7 @@ int cli_batch_run(cli_batch *b, cli_job_fn fn, void *cfg) {
   pthread_mutex_unlock(&err_lock);
   int rc = r.failed ? SS_EXIT_FAIL : SS_EXIT_OK;
   if (b->json) {
-    if (print_json(b->cmd, r.jobs, b->nin, r.failed, total, jobs) && !rc) rc = cli_error("cannot write to standard output");
+    if (print_json_skipped(b->cmd, r.jobs, b->nin, r.failed, total, jobs, b->skipped, b->nskipped) && !rc) rc = cli_error("cannot write to standard output");
   } else { /* each mesh's report, in the order given, its lines prefixed by the mesh */
     for (int i = 0; i < b->nin; i++) {
       const cli_job *j = &r.jobs[i];
