@@ -108,6 +108,11 @@ ss_status cli_write_npy(const char *path, const double *a, int rows, int cols, s
  * errno set when it cannot be opened. cli_close_out: 0, or -1 after a write error. */
 FILE *cli_open_out(const char *path);
 int cli_close_out(FILE *f);
+/* Outputs that would replace an input, or each other (issue 32): cli_output_clash gives 1 (*o would
+ * overwrite the input *in), 2 (*o named twice) or 0; NULL and "-" are skipped, so are pipes and
+ * devices (written, not replaced). cli_check_outputs reports it as a usage error (-1: none). */
+int cli_output_clash(const char *const *outp, int nout, const char *const *inp, int nin, const char **o, const char **in);
+int cli_check_outputs(cli_args *A, const char *const *outp, int nout, const char *const *inp, int nin);
 /* Frees the buffered standard input (main, before exiting). */
 void cli_io_cleanup(void);
 
@@ -170,6 +175,8 @@ struct cli_batch {
   int batch;
   int nin, cap;
   char **in;
+  int nskipped;  /* folder entries that are not mesh files (warned; "skipped" in --json) */
+  char **skipped;
 };
 
 typedef int (*cli_job_fn)(cli_job *j, void *cfg);
@@ -178,7 +185,9 @@ void cli_batch_init(cli_batch *b, const char *cmd);
 void cli_batch_free(cli_batch *b); /* the inputs (cli_batch_run frees them itself) */
 /* 1 when the current option is --jobs, --json or --suffix (handled; a bad value sets A->rc), else 0. */
 int cli_batch_option(cli_batch *b, cli_args *A);
-/* A positional mesh (a folder: its mesh files). -1 ok, else the exit code (a usage error was reported). */
+/* A positional mesh (a folder: its mesh files and prepared shapes, .sss; other entries, subfolders
+ * included, are skipped with a warning and listed in --json's "skipped"). -1 ok, else the exit code
+ * (a usage error was reported). */
 int cli_batch_add(cli_batch *b, cli_args *A, const char *mesh);
 /* After scanning: batch or single run; in a batch the checks (no '-', -o OUTDIR when need_out, the
  * extras are suffixes, no output overwrites an input or another output) and the folder created.

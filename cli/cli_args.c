@@ -63,13 +63,30 @@ static void print_synopsis(const char *usage, FILE *f) {
   fprintf(f, "%.*s\n", (int)n, usage);
 }
 
+/* --json given to a command that takes it */
+static int wants_json(const cli_args *a) {
+  int declared = 0;
+  for (const char *const *o = a->opts; o && *o && !declared; o++) declared = !strcmp(*o, "--json");
+  for (int i = 1; declared && i < a->argc; i++)
+    if (a->argv[i] && !strcmp(a->argv[i], "--json")) return 1;
+  return 0;
+}
+
 int cli_bad(cli_args *a, const char *fmt, ...) {
+  char msg[2048];
   va_list ap;
   va_start(ap, fmt);
-  fprintf(stderr, "specseg: usage: %s: ", a->cmd);
-  vfprintf(stderr, fmt, ap);
-  fputc('\n', stderr);
+  vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
+  fprintf(stderr, "specseg: usage: %s: %s\n", a->cmd, msg);
+  /* under --json, stdout still gets one object: nothing ran, and why */
+  if (wants_json(a)) {
+    fputs("{\"command\": ", stdout);
+    cli_json_str(stdout, a->cmd);
+    fputs(", \"ok\": 0, \"failed\": 0, \"usage_error\": ", stdout);
+    cli_json_str(stdout, msg);
+    fputs(", \"results\": []}\n", stdout);
+  }
   print_synopsis(a->usage, stderr);
   fprintf(stderr, "Run 'specseg %s --help' for all options.\n", a->cmd);
   return a->rc = SS_EXIT_USAGE;

@@ -55,9 +55,40 @@ void cli_diag(const char *kind, const char *fmt, va_list ap) {
 
 /* ---- JSON ------------------------------------------------------------------------------------------- */
 
+/* The length of the valid UTF-8 sequence at p (1..4), or 0 when it is not one (RFC 3629: no
+ * overlong forms, no surrogates, nothing above U+10FFFF). */
+static int utf8_len(const unsigned char *p) {
+  const unsigned char c = p[0];
+  if (c < 0x80) return 1;
+  int n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+  if (!n) return 0;
+  unsigned char lo = 0x80, hi = 0xBF; /* the second byte's range */
+  if (c == 0xE0) lo = 0xA0;
+  else if (c == 0xED) hi = 0x9F;
+  else if (c == 0xF0) lo = 0x90;
+  else if (c == 0xF4) hi = 0x8F;
+  if (p[1] < lo || p[1] > hi) return 0;
+  for (int i = 2; i < n; i++)
+    if ((p[i] & 0xC0) != 0x80) return 0;
+  return n;
+}
+
+/* A JSON string: file names are bytes, JSON text is UTF-8; a byte that is not part of valid UTF-8 is
+ * written as \udcXX (XX the byte), Python's surrogateescape: json.loads then os.fsencode gives the
+ * name's bytes back, and the output stays valid UTF-8 JSON. */
 static void json_str(FILE *f, const char *s) {
   fputc('"', f);
   for (const unsigned char *p = (const unsigned char *)s; p && *p; p++) {
+    int n = utf8_len(p);
+    if (n == 0) {
+      fprintf(f, "\\udc%02x", *p);
+      continue;
+    }
+    if (n > 1) {
+      fwrite(p, 1, (size_t)n, f);
+      p += n - 1;
+      continue;
+    }
     if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
     else if (*p == '\n') fputs("\\n", f);
     else if (*p == '\t') fputs("\\t", f);
@@ -154,18 +185,29 @@ static void job_free(cli_job *j) {
 }
 
 /* {"command": ..., "ok": N, "failed": N, "seconds": S, "jobs": J, "results": [job, ...]} on stdout */
-static int print_json(const char *cmd, const cli_job *jobs, int n, int failed, double seconds, int nthreads) {
+static int print_json_skipped(const char *cmd, const cli_job *jobs, int n, int failed, double seconds, int nthreads,
+                              char *const *skipped, int nskipped) {
   printf("{\n  \"command\": ");
   json_str(stdout, cmd);
   printf(",\n  \"ok\": %d,\n  \"failed\": %d,\n  \"seconds\": ", n - failed, failed);
   json_num(stdout, seconds);
-  printf(",\n  \"jobs\": %d,\n  \"results\": [", nthreads);
+  printf(",\n  \"jobs\": %d,", nthreads);
+  if (nskipped) { /* folder entries that are not meshes: listed, as they were warned about */
+    printf("\n  \"skipped\": [");
+    for (int i = 0; i < nskipped; i++) printf("%s", i ? ", " : ""), json_str(stdout, skipped[i]);
+    printf("],");
+  }
+  printf("\n  \"results\": [");
   for (int i = 0; i < n; i++) {
     printf("%s", i ? ", " : "");
     json_job(stdout, &jobs[i], "    ");
   }
   printf("]\n}\n");
   return fflush(stdout) ? -1 : 0;
+}
+
+static int print_json(const char *cmd, const cli_job *jobs, int n, int failed, double seconds, int nthreads) {
+  return print_json_skipped(cmd, jobs, n, failed, seconds, nthreads, NULL, 0);
 }
 
 int cli_job_end(cli_job *j, const char *cmd, int rc, int json) {
@@ -247,6 +289,10 @@ void cli_batch_free(cli_batch *b) {
   free(b->in);
   b->in = NULL;
   b->nin = b->cap = 0;
+  for (int i = 0; i < b->nskipped; i++) free(b->skipped[i]);
+  free(b->skipped);
+  b->skipped = NULL;
+  b->nskipped = 0;
 }
 
 int cli_batch_option(cli_batch *b, cli_args *A) {
@@ -280,6 +326,11 @@ static int push_input(cli_batch *b, const char *path) {
 
 static int cmp_name(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
+static int has_sss(const char *p) {
+  size_t n = strlen(p);
+  return n > 4 && !strcmp(p + n - 4, ".sss");
+}
+
 /* the mesh files of a folder (extensions the library reads, no hidden files), sorted by name */
 static int add_folder(cli_batch *b, cli_args *A, const char *dir) {
   DIR *d = opendir(dir);
@@ -295,16 +346,23 @@ static int add_folder(cli_batch *b, cli_args *A, const char *dir) {
     if (!p) { closedir(d); return cli_error("out of memory"); }
     snprintf(p, n, "%.*s/%s", (int)dl, dir, e->d_name);
     struct stat st;
-    int take = stat(p, &st) == 0 && S_ISREG(st.st_mode) && ss_mesh_extension_supported(p);
-    if (!take && stat(p, &st) == 0 && S_ISREG(st.st_mode)) skipped++;
+    /* meshes and prepared shapes (every per-mesh command reads a .sss as its mesh) */
+    int take = stat(p, &st) == 0 && S_ISREG(st.st_mode) && (ss_mesh_extension_supported(p) || has_sss(p));
     if (take && push_input(b, p)) { free(p); closedir(d); return cli_error("out of memory"); }
+    if (!take) { /* said, not dropped silently: a subfolder, a file of another kind */
+      char **g = realloc(b->skipped, sizeof *g * (size_t)(b->nskipped + 1));
+      if (g) b->skipped = g, g[b->nskipped++] = dup_str(p);
+      skipped++;
+    }
     free(p);
   }
   closedir(d);
-  if (b->nin == first) return cli_bad(A, "%s: no mesh files (OFF, OBJ, PLY%s) in the folder", dir,
+  if (b->nin == first) return cli_bad(A, "%s: no mesh files (OFF, OBJ, PLY%s, prepared shapes .sss) in the folder", dir,
                                       ss_mesh_extension_supported("x.stl") ? ", STL, glTF, ..." : "");
   qsort(b->in + first, (size_t)(b->nin - first), sizeof *b->in, cmp_name);
-  (void)skipped;
+  if (skipped)
+    cli_warn("%s: %d entr%s skipped (subfolders, files that are neither meshes nor prepared shapes)", dir, skipped,
+             skipped == 1 ? "y" : "ies");
   return -1;
 }
 
@@ -346,7 +404,10 @@ int cli_batch_setup(cli_batch *b, cli_args *A, const char *outdir, int need_out,
     b->batch = 1;
   if (!b->batch) {
     if (b->suffix) return cli_bad(A, "--suffix is for batches (several meshes, a folder, or -o a folder)");
-    return -1;
+    const char *outs[16] = {outdir}; /* one mesh: its outputs are file names; none may be the input */
+    int no = 1;
+    for (int e = 0; e < nextras && no < 16; e++) outs[no++] = extras[e];
+    return cli_check_outputs(A, outs, no, (const char *const *)b->in, 1);
   }
   for (int i = 0; i < b->nin; i++)
     if (cli_is_std(b->in[i])) return cli_bad(A, "a batch reads mesh files, not standard input ('-')");
@@ -502,7 +563,7 @@ int cli_batch_run(cli_batch *b, cli_job_fn fn, void *cfg) {
   pthread_mutex_unlock(&err_lock);
   int rc = r.failed ? SS_EXIT_FAIL : SS_EXIT_OK;
   if (b->json) {
-    if (print_json(b->cmd, r.jobs, b->nin, r.failed, total, jobs) && !rc) rc = cli_error("cannot write to standard output");
+    if (print_json_skipped(b->cmd, r.jobs, b->nin, r.failed, total, jobs, b->skipped, b->nskipped) && !rc) rc = cli_error("cannot write to standard output");
   } else { /* each mesh's report, in the order given, its lines prefixed by the mesh */
     for (int i = 0; i < b->nin; i++) {
       const cli_job *j = &r.jobs[i];

@@ -11,6 +11,7 @@
 #include "cli.h"
 #include "cli_shape.h"
 #include "specseg/render.h"
+#include "util/out_file.h"
 
 #define STDIN_NAME "<stdin>"
 #define STDOUT_NAME "<stdout>"
@@ -124,10 +125,23 @@ void cli_io_cleanup(void) {
   nstreams = 0;
 }
 
+/* A prepared shape (.sss) where a mesh is meant: the mesh it holds (the input's vertices and faces,
+ * in their order), so every command that reads a mesh takes it (issue 32). */
+static ss_status read_prepared_mesh(const char *path, ss_mesh *m, ss_error *err) {
+  cli_shape s;
+  ss_status st = cli_read_shape(path, &s, err);
+  if (st) return st;
+  *m = s.ps.mesh;
+  memset(&s.ps.mesh, 0, sizeof s.ps.mesh);
+  cli_shape_free(&s);
+  return SS_OK;
+}
+
 ss_status cli_read_mesh(const char *path, ss_mesh *m, ss_error *err) {
   const char *b;
   size_t n;
   memset(m, 0, sizeof *m);
+  if (cli_is_prepared_shape(path)) return read_prepared_mesh(path, m, err);
   int is;
   ss_status st = stream_input(path, &is, &b, &n, err);
   if (st || !is) return st ? st : ss_read_mesh(path, m, err);
@@ -139,6 +153,7 @@ ss_status cli_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb
   size_t n;
   memset(m, 0, sizeof *m);
   *rgb = NULL;
+  if (cli_is_prepared_shape(path)) return read_prepared_mesh(path, m, err); /* no colours */
   int is;
   ss_status st = stream_input(path, &is, &b, &n, err);
   if (st || !is) return st ? st : ss_read_mesh_colors(path, m, rgb, err);
@@ -340,13 +355,76 @@ ss_status cli_read_matrix(const char *path, double **a, int *rows, int *cols, ss
 
 /* ---- standard output ------------------------------------------------------------------------------ */
 
-FILE *cli_open_out(const char *path) { return cli_is_std(path) ? stdout : fopen(path, "wb"); }
+/* The CLI's own text outputs go through util/out_file.h as the library's writers do (a temporary
+ * renamed into place, symlinks followed, pipes and devices written directly): the open ones in a
+ * table, as cli_close_out is given the FILE only (batch jobs open theirs on several threads). */
+static pthread_mutex_t outs_lock = PTHREAD_MUTEX_INITIALIZER;
+static ssi_out *outs;
+static int nouts, couts;
+
+FILE *cli_open_out(const char *path) {
+  if (cli_is_std(path)) return stdout;
+  ssi_out o;
+  ss_error e;
+  if (ssi_out_open(&o, path, &e)) return NULL; /* errno: the reason */
+  pthread_mutex_lock(&outs_lock);
+  if (nouts == couts) {
+    ssi_out *g = realloc(outs, sizeof *outs * (size_t)(couts ? 2 * couts : 8));
+    if (g) outs = g, couts = couts ? 2 * couts : 8;
+  }
+  int room = nouts < couts;
+  if (room) outs[nouts++] = o;
+  pthread_mutex_unlock(&outs_lock);
+  if (!room) {
+    ssi_out_abort(&o);
+    errno = ENOMEM;
+    return NULL;
+  }
+  return o.f;
+}
 
 int cli_close_out(FILE *f) {
-  int bad = ferror(f);
-  if (f == stdout) bad |= fflush(f);
-  else bad |= fclose(f);
-  return bad ? -1 : 0;
+  if (f == stdout || f == stderr) return ferror(f) | fflush(f) ? -1 : 0;
+  ssi_out o = {0};
+  pthread_mutex_lock(&outs_lock);
+  for (int i = 0; i < nouts; i++)
+    if (outs[i].f == f) {
+      o = outs[i];
+      outs[i] = outs[--nouts];
+      break;
+    }
+  pthread_mutex_unlock(&outs_lock);
+  if (!o.f) return fclose(f) ? -1 : 0; /* not opened by cli_open_out */
+  ss_error e;
+  return ssi_out_commit(&o, o.target, &e) ? -1 : 0;
+}
+
+/* A name's file: the same device and inode (through symlinks), or the same name when absent. */
+static int same_output(const char *a, const char *b) {
+  struct stat x, y;
+  if (stat(a, &x) == 0 && stat(b, &y) == 0) return x.st_dev == y.st_dev && x.st_ino == y.st_ino;
+  return !strcmp(a, b);
+}
+
+int cli_output_clash(const char *const *outp, int nout, const char *const *inp, int nin, const char **o, const char **in) {
+  for (int i = 0; i < nout; i++) {
+    if (!outp[i] || cli_is_std(outp[i])) continue;
+    struct stat st; /* a pipe or a device is written, not replaced: /dev/null as input and output is fine */
+    if (stat(outp[i], &st) == 0 && !S_ISREG(st.st_mode)) continue;
+    for (int k = 0; k < nin; k++)
+      if (inp[k] && !cli_is_std(inp[k]) && same_output(outp[i], inp[k])) return *o = outp[i], *in = inp[k], 1;
+    for (int k = 0; k < i; k++)
+      if (outp[k] && !cli_is_std(outp[k]) && same_output(outp[i], outp[k])) return *o = outp[i], *in = NULL, 2;
+  }
+  return 0;
+}
+
+int cli_check_outputs(cli_args *A, const char *const *outp, int nout, const char *const *inp, int nin) {
+  const char *o, *in;
+  int c = cli_output_clash(outp, nout, inp, nin, &o, &in);
+  if (c == 1) return cli_bad(A, "the output %s would overwrite the input %s (choose another output name)", o, in);
+  if (c == 2) return cli_bad(A, "two outputs would be %s", o);
+  return -1;
 }
 
 /* Text vectors on stdout, in the format of ss_write_ints / ss_write_doubles. */

@@ -1,19 +1,23 @@
-/* specseg error MAP.txt Y [--gt GT.txt] [--sym SYM.txt] [-o ERRORS.txt]: geodesic error of a map. */
+/* specseg error MAP.txt Y [--gt GT.txt] [--sym SYM.txt] [--x MESH] [-o ERRORS.txt] [--json]: geodesic
+ * error of a map. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "cli_shape.h"
 
 static const char USAGE[] =
-    "usage: specseg error MAP.txt Y [--gt GT.txt] [--sym SYM.txt] [-o ERRORS.txt]\n"
+    "usage: specseg error MAP.txt Y [--gt GT.txt] [--sym SYM.txt] [--x MESH] [-o ERRORS.txt] [--json]\n"
     "\n"
     "Mean over the vertices x of X of d_Y(MAP(x), GT(x)) / sqrt(area(Y)) with exact geodesics, printed as\n"
     "'mean_error: E' (on stderr when -o is -).\n"
     "\n"
     "  MAP.txt             line i = vertex of Y that is the image of vertex i of X\n"
-    "  Y                   the target mesh (OFF, OBJ, PLY, STL, glTF, ...)\n"
+    "  Y                   the target mesh (OFF, OBJ, PLY, STL, glTF, ..., or a prepared shape .sss)\n"
     "  --gt GT.txt         the ground-truth map, same format (default: the identity)\n"
+    "  --x MESH            the source mesh X (or its .sss): the map must have one line per vertex of X\n"
+    "                      (always checked: one line per line of GT, or per vertex of Y for the identity)\n"
     "  --sym SYM.txt       a left-right symmetry map of X (line i = mirror of vertex i): the error of x is\n"
     "                      the smaller of the errors to GT(x) and GT(mirror of x), the paper's symmetric\n"
     "                      variant\n"
@@ -27,10 +31,24 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static const char *const OPTS[] = {"--gt=", "--sym=", "-o=", "--json", NULL};
+static const char *const OPTS[] = {"--gt=", "--sym=", "--x=", "-o=", "--json", NULL};
+
+/* The vertex count of a mesh or prepared shape; -1 after reporting why not. */
+static int vertex_count(const char *path, ss_mesh *keep) {
+  cli_shape s;
+  ss_error err = {{0}};
+  if (cli_read_shape(path, &s, &err)) {
+    cli_error("%s", err.msg);
+    return -1;
+  }
+  int nv = s.ps.mesh.nv;
+  if (keep) *keep = s.ps.mesh, memset(&s.ps.mesh, 0, sizeof s.ps.mesh); /* the mesh taken over */
+  cli_shape_free(&s);
+  return nv;
+}
 
 int cmd_error(int argc, char **argv) {
-  const char *mapf = NULL, *yf = NULL, *gtf = NULL, *symf = NULL, *outf = NULL;
+  const char *mapf = NULL, *yf = NULL, *gtf = NULL, *symf = NULL, *outf = NULL, *xf = NULL;
   int json = 0;
   cli_args A;
   cli_args_init(&A, argc, argv, USAGE, OPTS);
@@ -43,6 +61,8 @@ int cmd_error(int argc, char **argv) {
       gtf = A.val;
     } else if (cli_is(&A, "--sym")) {
       symf = A.val;
+    } else if (cli_is(&A, "--x")) {
+      xf = A.val;
     } else if (cli_is(&A, "-o")) {
       outf = A.val;
     } else if (cli_is(&A, "--json")) {
@@ -51,8 +71,10 @@ int cmd_error(int argc, char **argv) {
   }
   if (A.rc >= 0) return A.rc;
   if (!mapf || !yf) return cli_bad(&A, "needs MAP.txt and Y");
-  const char *ins[4] = {mapf, yf, gtf, symf};
-  if (cli_count_std(ins, 4) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  const char *ins[5] = {mapf, yf, gtf, symf, xf};
+  if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  const char *outs[1] = {outf};
+  if (cli_check_outputs(&A, outs, 1, ins, 5) >= 0) return A.rc;
   if (json && cli_is_std(outf)) return cli_bad(&A, "--json and -o - both want standard output");
   FILE *report = cli_is_std(outf) ? stderr : stdout;
   cli_job J;
@@ -77,8 +99,7 @@ int cmd_error(int argc, char **argv) {
     if (cli_read_ints_lines(symf, &sym, &lsym, &nsym, &err)) { rc = cli_error("%s", err.msg); goto done; }
     if (nsym != n) { rc = cli_error("%s: %d lines, the map has %d", cli_in_name(symf), nsym, n); goto done; }
   }
-  if (cli_read_mesh(yf, &Y, &err)) { rc = cli_error("%s", err.msg); goto done; }
-  if (!gt && n > Y.nv) { rc = cli_error("identity ground truth: the map has %d vertices, %s only %d", n, cli_in_name(yf), Y.nv); goto done; }
+  if (vertex_count(yf, &Y) < 0) { rc = SS_EXIT_FAIL; goto done; }
   /* entries out of range, named by file and line: maps and GT hold vertices of Y, SYM vertices of X */
   for (int f = 0; f < 3; f++) {
     const int *v = f == 0 ? map : f == 1 ? gt : sym, *ln = f == 0 ? lmap : f == 1 ? lgt : lsym;
@@ -96,6 +117,23 @@ int cmd_error(int argc, char **argv) {
                          name, ln[i], v[i], cli_in_name(yf), Y.nv - 1, cli_in_name(yf));
         goto done;
       }
+  }
+  /* a map cut short (or too long) scores as well as a whole one: its length is checked against
+   * the ground truth's (above), X's and, for the identity, Y's vertex count */
+  if (xf) {
+    int nx = vertex_count(xf, NULL);
+    if (nx < 0) { rc = SS_EXIT_FAIL; goto done; }
+    if (nx != n) {
+      rc = cli_error("%s: %d lines, but X (%s) has %d vertices: a map has one line per vertex of X", cli_in_name(mapf), n,
+                     cli_in_name(xf), nx);
+      goto done;
+    }
+  }
+  if (!gt && n != Y.nv) {
+    rc = cli_error("%s: %d lines, but %s has %d vertices: the identity ground truth needs one line per vertex of Y "
+                   "(give --gt for shapes of different vertex orders)",
+                   cli_in_name(mapf), n, cli_in_name(yf), Y.nv);
+    goto done;
   }
   if (!(e = malloc(sizeof(double) * n))) { rc = cli_error("out of memory"); goto done; }
   if (ss_map_geodesic_error(&Y, n, map, gt, sym, e, &mean, &err)) { rc = cli_error("%s", err.msg); goto done; }

@@ -57,6 +57,10 @@ int cmd_geodesic(int argc, char **argv) {
   }
   if (A.rc >= 0) { rc = A.rc; goto done; }
   if (!path) { rc = cli_bad(&A, "no mesh given"); goto done; }
+  {
+    const char *ins[1] = {path}, *outs[1] = {out};
+    if (cli_check_outputs(&A, outs, 1, ins, 1) >= 0) { rc = A.rc; goto done; }
+  }
   if (ns == 0) { rc = cli_bad(&A, "no --source given"); goto done; }
   if (!out) { rc = cli_bad(&A, "missing -o DIST.txt"); goto done; }
 

@@ -172,6 +172,7 @@ int cmd_match(int argc, char **argv) {
   o.std_pairs = pairsp != NULL; /* the pairs file is written for every probe set */
   const char *ins[5] = {xp, yp, lmp ? lmp : "", dxp ? dxp : "", dyp ? dyp : ""}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  if (cli_check_outputs(&A, outs, 3, ins, 5) >= 0) return A.rc;
   int to_stdout = cli_count_std(outs, 3);
   if (to_stdout > 1) return cli_bad(&A, "only one output can go to standard output ('-')");
   if (to_stdout && json) return cli_bad(&A, "--json and an output to '-' both want standard output");
@@ -207,6 +208,20 @@ int cmd_match(int argc, char **argv) {
       rc = cli_error("%s:%d: landmark vertex %d not on Y (%s has %d vertices)", lmn, lline[i], ly[i], yn, Y->nv);
       goto done;
     }
+  }
+  { /* too many, a vertex with two partners (both lines named), an exact repeat (said) */
+    int la, lb;
+    if (ss_landmarks_check(nl, lx, ly, &la, &lb, &err)) {
+      if (la < 0) rc = cli_error("%s: %s", lmn, err.msg + (strncmp(err.msg, "match: ", 7) ? 0 : 7));
+      else {
+        const int on_y = lx[la] != lx[lb]; /* the shared vertex is on Y */
+        rc = cli_error("%s:%d and %s:%d: vertex %d of %s has two partners on %s (%d and %d)", lmn, lline[la], lmn,
+                       lline[lb], on_y ? ly[la] : lx[la], on_y ? "Y" : "X", on_y ? "X" : "Y", on_y ? lx[la] : ly[la],
+                       on_y ? lx[lb] : ly[lb]);
+      }
+      goto done;
+    }
+    if (la >= 0) cli_warn("%s:%d repeats %s:%d (the same landmark twice)", lmn, lline[lb], lmn, lline[la]);
   }
   if (dxp) { /* (nX x d) and (nY x d), corresponding columns */
     int rx, cx, ry, cy;

@@ -47,6 +47,8 @@ int cmd_pair(int argc, char **argv) {
   if (!xp || !yp) return cli_bad(&A, "needs two meshes X and Y");
   const char *ins[2] = {xp, yp};
   if (cli_count_std(ins, 2) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  const char *outs[1] = {outp};
+  if (cli_check_outputs(&A, outs, 1, ins, 2) >= 0) return A.rc;
   FILE *report = outp && cli_is_std(outp) ? stderr : stdout;
   const char *xn = cli_in_name(xp), *yn = cli_in_name(yp);
 

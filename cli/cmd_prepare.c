@@ -60,6 +60,8 @@ int cmd_prepare(int argc, char **argv) {
   if (!in) return cli_bad(&A, "missing MESH");
   if (!outp) return cli_bad(&A, "missing -o SHAPE.sss");
   if (cli_is_std(outp)) return cli_bad(&A, "-o needs a file name (the prepared shape is written to a file)");
+  const char *ins[1] = {in}, *outs[1] = {outp};
+  if (cli_check_outputs(&A, outs, 1, ins, 1) >= 0) return A.rc;
 
   ss_error err = {{0}};
   ss_mesh m = {0};

@@ -307,6 +307,15 @@ int cmd_render(int argc, char **argv) {
   for (int k = 0; k < 5; k++) from_stdin += cli_count_std(all[k]->v, all[k]->n);
   from_stdin += cli_count_std(meshes.v, meshes.n);
   if (from_stdin > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
+  {
+    const char *ins[6 * MAXM + 4], *outs[1] = {out};
+    int ni = 0;
+    for (int k = 0; k < 5; k++)
+      for (int i = 0; i < all[k]->n; i++) ins[ni++] = all[k]->v[i];
+    for (int i = 0; i < meshes.n; i++) ins[ni++] = meshes.v[i];
+    ins[ni++] = target, ins[ni++] = gt_path, ins[ni++] = sym_path, ins[ni++] = ref_path;
+    if (cli_check_outputs(&A, outs, 1, ins, ni) >= 0) return A.rc;
+  }
   FILE *report = cli_is_std(out) ? stderr : stdout;
 
   /* a two-column landmark file: column 1 on the first mesh, column 2 on the second (or the target) */

@@ -58,10 +58,13 @@ static int segment_job(cli_job *j, void *vcfg) {
     const ss_segment_options *so = &S.ps.seg;
     /* the output is the one from the mesh with these options only */
     if (c->opt.no_streamline != so->no_streamline || (!so->no_streamline && c->opt.target_faces != so->target_faces)) {
-      char was[64];
+      char was[64], asked[64]; /* both named: which option differs is not always the one given */
       if (so->no_streamline) snprintf(was, sizeof was, "--no-streamline");
       else snprintf(was, sizeof was, "--faces %d", so->target_faces);
-      rc = cli_error("%s: was prepared with %s; give the same options (or the mesh)", cli_in_name(in), was);
+      if (c->opt.no_streamline) snprintf(asked, sizeof asked, "--no-streamline");
+      else snprintf(asked, sizeof asked, "--faces %d", c->opt.target_faces);
+      rc = cli_error("%s: was prepared with %s, not %s; give the same options (or the mesh)", cli_in_name(in), was,
+                     asked);
       cli_shape_free(&S);
       return rc;
     }

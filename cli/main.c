@@ -8,6 +8,7 @@
 #endif
 #include <math.h>
 #include <stdarg.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <dlfcn.h>
@@ -149,7 +150,13 @@ static int run(int argc, char **argv) {
 }
 
 int main(int argc, char **argv) {
+  /* past a file size limit (ulimit -f) a write fails with EFBIG and is reported, its temporary
+   * removed, instead of the signal killing the program with a temporary file left behind */
+  signal(SIGXFSZ, SIG_IGN);
   int rc = run(argc, argv);
+  /* every command's stdout, checked once more at the end: a report or a JSON summary that did not
+   * reach its destination (a full disk, /dev/full, a closed pipe) is a failure, not exit 0 */
+  if ((ferror(stdout) || fflush(stdout)) && rc == SS_EXIT_OK) rc = cli_error("cannot write to standard output");
   cli_io_cleanup();
   return rc;
 }

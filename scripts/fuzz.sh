@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # libFuzzer harnesses of tests/fuzz (issue 13, item 8): every reader (OFF, OBJ, PLY, content
-# sniffing, text vectors, landmarks) and read -> check -> geodesics / eigenpairs on small meshes.
+# sniffing, text vectors, landmarks), read -> check -> geodesics / eigenpairs on small meshes, and the
+# prepared-shape reader on mutated payloads whose checksum the harness recomputes (shape).
 #   scripts/fuzz.sh SECONDS [--save] [HARNESS...]
 # builds them with clang (ASan + UBSan + coverage, in build-fuzz/), then runs each for SECONDS (all
 # harnesses by default, e.g. `scripts/fuzz.sh 60 geometry`). The seed corpus is
@@ -15,7 +16,7 @@ secs=${1:?usage: scripts/fuzz.sh SECONDS [--save] [HARNESS...]}
 shift
 save=0
 if [ "${1:-}" = --save ]; then save=1; shift; fi
-all=(off obj ply mesh vectors landmarks geometry)
+all=(off obj ply mesh vectors landmarks geometry shape)
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=("${all[@]}")
 command -v clang > /dev/null || { echo "fuzz: clang not found (apt-get install clang)" >&2; exit 77; }
@@ -38,6 +39,8 @@ for h in "${harnesses[@]}"; do
   mkdir -p "$work" "$seed"
   maxlen=4096 timeout=2 rss=2048
   [ "$h" = geometry ] && maxlen=2048 timeout=10
+  # prepared shapes: payloads of small meshes (the seeds ~26-45 KB), checksum recomputed by the harness
+  [ "$h" = shape ] && maxlen=65536 timeout=10
   log=$B/fuzz_$h.log
   # the scratch corpus first: libFuzzer adds new inputs to the first folder only
   if "$B/fuzz_$h" "$work" "$seed" -max_total_time="$secs" -max_len="$maxlen" -timeout="$timeout" -rss_limit_mb="$rss" \

@@ -61,4 +61,21 @@ printf '1\n0\n2\n3\n6\n5\n' > "$TMP/badsym.txt"
   grep -q "error: .*badsym.txt:5: vertex 6 is not a vertex of X" "$TMP/err" && ok || bad "out-of-range symmetry entry: $(cat "$TMP/err")"
 "$BIN" error "$TMP/nope.txt" "$TMP/oct.off" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "missing map: want exit 1"
 "$BIN" error "$TMP/id.txt" "$TMP/oct.off" --gt "$TMP/bad.txt" > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "short gt: want exit 1"
+# the map's length (issue 32, item 3): the identity needs one line per vertex of Y; with --gt the
+# ground truth's length, and X (--x) its vertex count; a map one line short or long is refused
+head -5 "$TMP/id.txt" > "$TMP/short.txt"
+"$BIN" error "$TMP/short.txt" "$TMP/oct.off" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "error: .*short.txt: 5 lines, but .*oct.off has 6 vertices" "$TMP/err" && ok || bad "short map, identity: $(cat "$TMP/err")"
+{ cat "$TMP/id.txt"; echo 0; } > "$TMP/long.txt"
+"$BIN" error "$TMP/long.txt" "$TMP/oct.off" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] && grep -q "7 lines" "$TMP/err" && ok ||
+  bad "long map, identity: $(cat "$TMP/err")"
+printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$TMP/tet.off"
+"$BIN" error "$TMP/one.txt" "$TMP/oct.off" --gt "$TMP/id.txt" --x "$TMP/oct.off" > "$TMP/out" 2>&1 && ok || bad "--x: $(cat "$TMP/out")"
+"$BIN" error "$TMP/one.txt" "$TMP/oct.off" --gt "$TMP/id.txt" --x "$TMP/tet.off" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "error: .*one.txt: 6 lines, but X (.*tet.off) has 4 vertices" "$TMP/err" && ok || bad "--x mismatch: $(cat "$TMP/err")"
+"$BIN" error "$TMP/one.txt" "$TMP/tet.off" --x "$TMP/oct.off" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] && ok ||
+  bad "identity onto a smaller Y: $(cat "$TMP/err")"
+# the synopsis names every option (--json was missing)
+"$BIN" error --help | head -1 | grep -q -- '--json' && "$BIN" error --help | head -1 | grep -q -- '--x MESH' && ok ||
+  bad "error --help synopsis: $("$BIN" error --help | head -1)"
 finish

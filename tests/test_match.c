@@ -326,10 +326,20 @@ int main(void) {
     const double tv[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     const int tf[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
     ss_mesh T = {4, 4, (double *)tv, (int *)tf};
-    int lt[5] = {0, 1, 2, 3, 0};
-    CHECK(ss_match(&X, &T, 5, lm, lt, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "Y (the second mesh)"));
-    CHECK(ss_match(&T, &Y, 5, lt, lm, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "X (the first mesh)"));
+    int lt[5] = {0, 1, 2, 3, 0}; /* four landmarks: a fifth would give vertex 0 of T two partners (refused first) */
+    CHECK(ss_match(&X, &T, 4, lm, lt, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "Y (the second mesh)"));
+    CHECK(ss_match(&T, &Y, 4, lt, lm, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "X (the first mesh)"));
     CHECK(ss_match(&T, &T, 5, lt, lt, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "X (the first mesh)"));
+    /* a vertex with two partners, too many landmarks: refused, naming them (issue 32, item 6) */
+    int la = 0, lb = 0;
+    CHECK(ss_match(&X, &T, 5, lm, lt, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "landmarks 0 and 4: vertex 0 of Y has two partners on X"));
+    CHECK(ss_landmarks_check(5, lt, lt, &la, &lb, &e) == SS_OK && la == 0 && lb == 4); /* an exact repeat */
+    {
+      int many[SS_MAX_LANDMARKS + 1];
+      for (int i = 0; i <= SS_MAX_LANDMARKS; i++) many[i] = i;
+      CHECK(ss_landmarks_check(SS_MAX_LANDMARKS, many, many, &la, &lb, &e) == SS_OK && la == -1);
+      CHECK(ss_match(&X, &X, SS_MAX_LANDMARKS + 1, many, many, &om, &r1, &e) == SS_ERR_INVALID && strstr(e.msg, "at most 200"));
+    }
 #ifdef _OPENMP
     omp_set_num_threads(threads0);
 #endif

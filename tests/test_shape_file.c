@@ -190,6 +190,66 @@ static void blob_tests(const char *dir) {
   remove(path);
 }
 
+/* A file whose checksum is right but whose values are not (issue 32, item 2): each is refused by
+ * the reader, naming what is wrong; and the landmark-free pairing given such a signature in memory
+ * returns an error instead of crashing in its mirror-candidate search. v: the value to poison. */
+static void poisoned_file(ss_prepared_shape *P, double *v, double bad, const char *what, const char *dir) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s/poisoned.sss", dir);
+  const double keep = *v;
+  *v = bad;
+  ss_error e = {{0}};
+  ss_prepared_shape R;
+  CHECK(ss_prepared_shape_write(path, P, &e) == SS_OK);
+  ss_status st = ss_prepared_shape_read(path, &R, &e);
+  CHECK_MSG(st == SS_ERR_PARSE && strstr(e.msg, "not used") && strstr(e.msg, what), "%s: %d %s", what, (int)st, e.msg);
+  if (!st) ss_prepared_shape_free(&R);
+  *v = keep;
+  remove(path);
+}
+
+static void value_tests(ss_prepared_shape *PX, ss_prepared_shape *PY, const char *dir) {
+  ss_centre_signature *s = &PX->sig;
+  poisoned_file(PX, &s->descr[3], NAN, "signature's descriptors", dir);
+  poisoned_file(PX, &s->D[1], INFINITY, "signature's distances", dir);
+  poisoned_file(PX, &s->normals[7], NAN, "signature's normals", dir);
+  poisoned_file(PX, &s->volume_ratio, NAN, "signature's volume ratio", dir);
+  poisoned_file(PX, &PX->prep.evecs[100], NAN, "eigenvectors", dir);
+  poisoned_file(PX, &PX->prep.evals[5], NAN, "eigenvalues", dir);
+  poisoned_file(PX, &PX->prep.M[10], 0.0, "masses", dir);
+  poisoned_file(PX, &PX->prep.M[11], -1.0, "masses", dir);
+  poisoned_file(PX, &PX->prep.area, NAN, "area", dir);
+  poisoned_file(PX, &PX->mesh.V[4], NAN, "non-finite coordinate", dir);
+  poisoned_file(PX, &PX->prep.seg.work.V[4], INFINITY, "work mesh", dir);
+  poisoned_file(PX, &PX->prep.seg.phi[2], NAN, "Fiedler", dir);
+  poisoned_file(PX, &PX->prep.seg.lambda2, NAN, "Fiedler", dir);
+  poisoned_file(PX, &PX->prep.seg.work_dist[3], NAN, "distances to the centres", dir);
+  poisoned_file(PX, &PX->seg.cmcf_dt, -1.0, "segmentation options", dir);
+  poisoned_file(PX, &PX->autopair.w_geo, NAN, "pairing options", dir);
+  /* all distances NaN, or one descriptor: an error from the pairing, not a crash */
+  const size_t mm = (size_t)s->m * s->m;
+  double *D = malloc(sizeof(double) * mm);
+  CHECK(D != NULL);
+  if (!D) return;
+  memcpy(D, s->D, sizeof(double) * mm);
+  ss_error e = {{0}};
+  ss_segment_pairs out = {0};
+  ss_autopair_options o;
+  ss_autopair_default_options(&o);
+  for (size_t i = 0; i < mm; i++) s->D[i] = NAN;
+  ss_status st = ss_pair_centres_auto(s, &PY->sig, &o, &out, NULL, &e);
+  CHECK_MSG(st == SS_ERR_INVALID && strstr(e.msg, "not finite"), "NaN distances: %d %s", (int)st, e.msg);
+  ss_segment_pairs_free(&out);
+  memcpy(s->D, D, sizeof(double) * mm);
+  const double d0 = s->descr[0];
+  s->descr[0] = NAN;
+  st = ss_pair_centres_auto(PY->sig.m <= s->m ? &PY->sig : s, PY->sig.m <= s->m ? s : &PY->sig, &o, &out, NULL, &e);
+  CHECK_MSG(st == SS_ERR_INVALID && strstr(e.msg, "not finite"), "NaN descriptor: %d %s", (int)st, e.msg);
+  ss_segment_pairs_free(&out);
+  s->descr[0] = d0;
+  free(D);
+}
+
 int main(void) {
   ss_error e = {{0}};
   char dir[] = "/tmp/test_shape_file_XXXXXX";
@@ -309,6 +369,7 @@ int main(void) {
   }
 
   damage_tests(px, dir);
+  value_tests(&PX, &PY, dir);
 
   ss_prepared_shape_free(&PX), ss_prepared_shape_free(&PY), ss_prepared_shape_free(&RX), ss_prepared_shape_free(&RY);
   ss_mesh_free(&X), ss_mesh_free(&Y);

@@ -566,6 +566,16 @@ SS_API int ss_match_segments(const ss_match_options *opts, int nl);
  * refining, descr_k, seg_descr_k with segment probes). 110 for the defaults. */
 SS_API int ss_match_eigenpairs(const ss_match_options *opts, int nl);
 
+/* The most landmarks a match takes: each adds probe functions and, for the segment pairing, a
+ * geodesic field (1000 landmarks took over 60 s and 2.3 GB on a 7000-vertex pair). */
+#define SS_MAX_LANDMARKS 200
+/* The landmark list of a match (nl pairs lmX[i] <-> lmY[i], in range): SS_ERR_INVALID for more than
+ * SS_MAX_LANDMARKS (*a = *b = -1) or a vertex given two partners ("962 1319" and "962 100", or two
+ * vertices of X one vertex of Y): *a < *b the two landmarks (0-based). An exact repeat is accepted
+ * (*a, *b are then its first two occurrences and the status SS_OK; -1 when none). a, b may be NULL.
+ * ss_match, ss_match_warn and ss_match_prepared_shapes check their landmarks with it. */
+SS_API ss_status ss_landmarks_check(int nl, const int *lmX, const int *lmY, int *a, int *b, ss_error *err);
+
 /* ss_match_warn on two prepared shapes: the same map, pairs and notes as ss_match_warn(&X->mesh,
  * &Y->mesh, ...) with opts->seg = the shapes' options, when each was prepared with exactly
  * ss_match_eigenpairs(opts, nl) eigenpairs (more: a match in the larger basis, as ss_match_prepared

@@ -499,8 +499,9 @@ def geodesic(V, F, sources, method="exact", max_dist=None):
         Exact polyhedral geodesics (VTP, the default), Dijkstra on the NPP22 graph, or Dijkstra on
         the mesh edges.
     max_dist : float, optional
-        Stop the propagation past this distance; farther vertices get inf. None (default), inf or
-        a value <= 0: no limit (as in the C library). NaN is refused.
+        Stop the propagation past this distance; farther vertices get inf. None (default) or inf: no
+        limit. As the CLI's --max-dist it must be positive: 0, a negative value or NaN raise
+        ValueError.
 
     Returns
     -------
@@ -523,6 +524,8 @@ def geodesic(V, F, sources, method="exact", max_dist=None):
         raise ValueError("sources is empty: give at least one vertex index")
     d, e = np.zeros(V.shape[0]), _err()
     md = math.inf if max_dist is None else _as_float(max_dist, "max_dist", allow_inf=True)
+    if not md > 0:  # as the CLI's --max-dist: a negative bound meant "no limit" in the library
+        raise ValueError("max_dist must be positive (None or inf: no limit), not %r" % (max_dist,))
     _check(lib.ss_geodesic_distances(C.byref(m), _METHODS[method], _clib.ptr(src, C.c_int), src.size, md,
                                     _clib.ptr(d, C.c_double), C.byref(e)), e)
     return d

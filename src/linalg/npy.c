@@ -5,6 +5,7 @@
  * header dictionary is parsed strictly and the data size is checked against the file size before
  * anything of that size is allocated. */
 #include "specseg/io.h"
+#include "util/out_file.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -32,8 +33,10 @@ static ss_status npy_write(const char *path, const double *d, const int *iv, int
   memset(head + 10 + dl, ' ', pad);
   head[10 + hlen - 1] = '\n';
 
-  FILE *f = fopen(path, "wb");
-  if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
+  ssi_out o; /* whole or not at all (util/out_file.h) */
+  ss_status st = ssi_out_open(&o, path, err);
+  if (st) return st;
+  FILE *f = o.f;
   int ok = fwrite(head, 1, 10 + hlen, f) == 10 + hlen;
   /* C order: row by row from the column-major input, little-endian bytes through a small buffer */
   unsigned char buf[4096];
@@ -54,10 +57,12 @@ static ss_status npy_write(const char *path, const double *d, const int *iv, int
       ok = fwrite(buf, (size_t)isz, (size_t)nb, f) == (size_t)nb;
     }
   }
-  int e = ok ? 0 : errno;
-  if (fclose(f) != 0 && ok) ok = 0, e = errno;
-  if (!ok) return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e));
-  return SS_OK;
+  if (!ok) {
+    int e = errno;
+    ssi_out_abort(&o);
+    return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e ? e : EIO));
+  }
+  return ssi_out_commit(&o, path, err);
 }
 
 ss_status ss_write_npy(const char *path, const double *a, int rows, int cols, ss_error *err) {

@@ -879,6 +879,15 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
                            int maxh, ss_segment_pairs *hyp_out, int *nh_out, ss_segment_pairs *out,
                            ss_autopair_info *info, ss_error *err);
 
+/* 1 when the descriptors and distances the search's energies are made of are finite */
+static int signature_finite(const ss_centre_signature *s) {
+  for (size_t i = 0; i < (size_t)s->m * s->nd; i++)
+    if (!isfinite(s->descr[i])) return 0;
+  for (size_t i = 0; i < (size_t)s->m * s->m; i++)
+    if (!isfinite(s->D[i])) return 0;
+  return 1;
+}
+
 ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y, const ss_autopair_options *o_in,
                                ss_segment_pairs *out, ss_autopair_info *info, ss_error *err) {
   return pair_auto(X, Y, o_in, 0, NULL, NULL, out, info, err);
@@ -909,6 +918,10 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     return ss_fail(err, SS_ERR_INVALID, "autopair: empty signature");
   if (X->nd != Y->nd)
     return ss_fail(err, SS_ERR_INVALID, "autopair: signatures computed with different options");
+  /* a NaN energy is never below another: the search would keep no leaf and the mirror search
+   * would read an unset assignment */
+  if (!signature_finite(X) || !signature_finite(Y))
+    return ss_fail(err, SS_ERR_INVALID, "autopair: a signature's descriptors or distances are not finite");
   if (!(o.w_descr >= 0) || !(o.w_geo >= 0) || !isfinite(o.w_descr + o.w_geo))
     return ss_fail(err, SS_ERR_INVALID, "autopair: weights must be finite and non-negative");
   if (!(o.orient_keep > 0 && o.orient_keep <= 1))
@@ -945,6 +958,10 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   fill_unary(&S, U, minU, A, B, o.w_descr);
   run_search(&S, exact, TOPK, 0, &status);
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
+  if (!isfinite(S.top_e[0])) { /* no leaf kept (energies not finite): S.top_p[0] is unset */
+    st = ss_fail(err, SS_ERR_INVALID, "autopair: no pairing of finite energy (the signatures' values are not finite)");
+    goto done;
+  }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
   mirror_candidate(&S, A, B, pi1, pi2, third);
   double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);

@@ -919,6 +919,7 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
     if (lmY[i] < 0 || lmY[i] >= Y->nv)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->nv);
   }
+  if (ss_landmarks_check(nl, lmX, lmY, NULL, NULL, err)) return SS_ERR_INVALID; /* too many, two partners */
   kept kx, ky;
   ss_status st = keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
   if (st) return st;

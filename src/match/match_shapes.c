@@ -66,6 +66,8 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
     if (lmY[i] < 0 || lmY[i] >= Y->mesh.nv)
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->mesh.nv);
   }
+  ss_status lst = ss_landmarks_check(nl, lmX, lmY, NULL, NULL, err); /* too many, two partners */
+  if (lst) return lst;
   int whole[2];
   for (int s = 0; s < 2; s++)
     if ((whole[s] = keeps_whole(&S[s]->mesh, nl, s ? lmY : lmX)) < 0)

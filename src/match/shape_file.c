@@ -2,6 +2,8 @@
  * centre signature), computed once, written to and read from a versioned, checksummed file
  * (util/blob.h: the eval cache's format). See match.h. */
 #include "specseg/match.h"
+#include "specseg/streamline.h"
+#include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
 #include "match/proxy.h"
 #include "util/blob.h"
@@ -58,6 +60,11 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
     st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
   }
   ssi_proxy_free(&px);
+  if (st && err && !strncmp(err->msg, "match: ", 7)) { /* the shared stages' prefix: this is prepare */
+    char msg[sizeof err->msg];
+    snprintf(msg, sizeof msg, "prepare: %s", err->msg + 7);
+    memcpy(err->msg, msg, sizeof msg);
+  }
   ss_shape_prep *mp = out->has_proxy ? &out->proxy_prep : &out->prep; /* what a match uses */
   if (!st) st = ss_shape_prep_crit_fields(mp, err); /* the landmark pairing's distances, once */
   if (!st) st = ss_shape_prep_probe_cache(mp, NULL, err); /* the default match's shape-only probe parts */
@@ -293,8 +300,97 @@ static int get_prep(ssi_blob *b, ss_shape_prep *p, int nv_i, int with_spectrum) 
          (!g->crit_type || (g->crit_type[i] >= SS_CRIT_REGULAR && g->crit_type[i] <= SS_CRIT_SADDLE));
   for (size_t i = 0; ok && i < 3 * (size_t)g->work.nf; i++) ok = g->work.F[i] >= 0 && g->work.F[i] < g->work.nv;
   for (size_t i = 0; ok && g->work_labels && i < wn; i++) ok = g->work_labels[i] >= -1 && g->work_labels[i] < g->m;
-  for (size_t i = 0; ok && i < kev; i++) ok = isfinite(p->evals[i]);
   return ok;
+}
+
+/* ---- the values ------------------------------------------------------------------------------
+ * The checksum catches accidental damage only: a file written by another program, or edited and
+ * re-checksummed, may hold any bits. Every value a match or a segmentation reads is checked here, so
+ * such a file is refused with the reason instead of giving a garbage map (NaN eigenvectors, a zero
+ * mass) or crashing (NaN pairing energies leave the pairing's search without a leaf). */
+
+/* 1 when every x[i] is finite and >= lo (lo -INFINITY: any finite value) */
+static int all_at_least(const double *x, size_t n, double lo) {
+  for (size_t i = 0; x && i < n; i++)
+    if (!isfinite(x[i]) || x[i] < lo) return 0;
+  return 1;
+}
+
+/* distances: >= 0, +inf allowed (unreachable), NaN not */
+static int all_distances(const double *x, size_t n) {
+  for (size_t i = 0; x && i < n; i++)
+    if (!(x[i] >= 0)) return 0;
+  return 1;
+}
+
+#define BAD_VALUE(...) return snprintf(why, n, __VA_ARGS__), 1
+
+/* the options of the key line, as the writer's library accepts them */
+static int check_options(const ss_prepared_shape *s, int sig, char *why, size_t n) {
+  const ss_segment_options *o = &s->seg;
+  if (o->target_faces < 4 || o->target_faces > SS_REMESH_MAX_FACES || (o->no_streamline != 0 && o->no_streamline != 1) ||
+      o->cleanup_rings < 0 || o->cleanup_rings > 1000 || o->n_eigs < 0 || o->n_eigs > 10000 || o->cmcf_steps < 0 ||
+      o->cmcf_steps > 1000000 || !(o->cmcf_dt >= 0) || !isfinite(o->cmcf_dt) || (o->sanitize != 0 && o->sanitize != 1))
+    BAD_VALUE("value out of range: the segmentation options of the key line");
+  const ss_autopair_options *a = &s->autopair;
+  if (sig && (a->descr_k < 1 || a->n_energies < 1 || a->exact_max < 0 || a->orient_k < 1 || a->orient_descr_k < 1 ||
+              !(a->sigma_factor > 0) || !isfinite(a->sigma_factor) || !isfinite(a->descr_radius) ||
+              !(a->w_descr >= 0) || !isfinite(a->w_descr) || !(a->w_geo >= 0) || !isfinite(a->w_geo) ||
+              !isfinite(a->min_gap) || !isfinite(a->min_mirror)))
+    BAD_VALUE("value out of range: the pairing options of the key line");
+  return 0;
+}
+
+/* one prep's values; what: "" or "the proxy's " for messages */
+static int check_prep_values(const ss_shape_prep *p, const ss_mesh *m, const char *what, char *why, size_t n) {
+  const ss_segmentation *g = &p->seg;
+  const size_t nv = (size_t)m->nv, kev = (size_t)p->kev, wn = (size_t)g->work.nv, gm = (size_t)g->m;
+  ss_error e = {{0}};
+  if (ssi_mesh_check_coordinates(m, NULL, &e)) BAD_VALUE("%smesh: %.400s", what, e.msg);
+  /* eigenvalues of a positive semi-definite pencil, ascending up to the solver's accuracy */
+  const double top = kev ? fabs(p->evals[kev - 1]) : 0, tol = 1e-6 * (top > 1 ? top : 1);
+  for (size_t i = 0; i < kev; i++)
+    if (!isfinite(p->evals[i]) || p->evals[i] < -tol || (i && p->evals[i] < p->evals[i - 1] - tol))
+      BAD_VALUE("value out of range: %seigenvalues (eigenvalue %zu is %g)", what, i, p->evals[i]);
+  if (!all_at_least(p->evecs, nv * kev, -INFINITY)) BAD_VALUE("value out of range: %seigenvectors not finite", what);
+  for (size_t i = 0; p->M && i < nv; i++)
+    if (!(p->M[i] > 0) || !isfinite(p->M[i]))
+      BAD_VALUE("value out of range: %smasses (vertex %zu has mass %g; masses must be positive)", what, i, p->M[i]);
+  if (!(p->area > 0) || !isfinite(p->area)) BAD_VALUE("value out of range: %sarea %g", what, p->area);
+  if (!all_at_least(&p->t_segment, 1, 0) || !all_at_least(&p->t_eigs, 1, 0))
+    BAD_VALUE("value out of range: %stimings", what);
+  if (g->empty_segments < 0 || g->empty_segments > g->m || g->ncrit_raw < 0)
+    BAD_VALUE("value out of range: %ssegment counts", what);
+  if (!isfinite(g->lambda2) || !all_at_least(g->phi, wn, -INFINITY))
+    BAD_VALUE("value out of range: %sFiedler vector or value not finite", what);
+  if (!all_at_least(g->work.V, 3 * wn, -INFINITY)) BAD_VALUE("value out of range: %swork mesh coordinates not finite", what);
+  if (!all_distances(g->work_dist, wn)) BAD_VALUE("value out of range: %sdistances to the centres", what);
+  if (!all_distances(p->crit_fields, wn * gm)) BAD_VALUE("value out of range: %scritical points' fields", what);
+  const double t[8] = {g->t_read, g->t_smooth, g->t_remesh, g->t_psi, g->t_spectrum, g->t_critical, g->t_ivd, g->t_total};
+  if (!all_at_least(t, 8, 0)) BAD_VALUE("value out of range: %ssegmentation timings", what);
+  return 0;
+}
+
+static int check_signature(const ss_centre_signature *c, size_t mv, char *why, size_t n) {
+  const size_t m = (size_t)c->m;
+  if (!all_at_least(c->descr, m * c->nd, -INFINITY)) BAD_VALUE("value out of range: the pairing signature's descriptors not finite");
+  for (size_t i = 0; i < m * m; i++)
+    if (!(c->D[i] >= 0) || !isfinite(c->D[i]) || (i % (m + 1) == 0 && c->D[i] != 0))
+      BAD_VALUE("value out of range: the pairing signature's distances (entry %zu is %g)", i, c->D[i]);
+  if (!all_at_least(c->normals, 3 * mv, -INFINITY)) BAD_VALUE("value out of range: the pairing signature's normals not finite");
+  if (!isfinite(c->volume_ratio)) BAD_VALUE("value out of range: the pairing signature's volume ratio %g", c->volume_ratio);
+  if (c->orient_sign != 1 && c->orient_sign != -1)
+    BAD_VALUE("value out of range: the pairing signature's orientation sign %g", c->orient_sign);
+  if (!isfinite(c->sigma_score)) BAD_VALUE("value out of range: the pairing signature's symmetry score %g", c->sigma_score);
+  return 0;
+}
+
+/* every value of a structurally sound file; 0: fine */
+static int check_values(const ss_prepared_shape *s, char *why, size_t n) {
+  if (check_options(s, s->has_signature, why, n) || check_prep_values(&s->prep, &s->mesh, "", why, n)) return 1;
+  if (s->has_proxy && check_prep_values(&s->proxy_prep, &s->proxy, "the proxy's ", why, n)) return 1;
+  const ss_shape_prep *mp = s->has_proxy ? &s->proxy_prep : &s->prep;
+  return s->has_signature && check_signature(&s->sig, (size_t)mp->seg.nv, why, n);
 }
 
 /* the contents, range-checked; 0: fine */
@@ -340,6 +436,7 @@ static int parse_payload(ssi_blob *b, const char *key, ss_prepared_shape *s, cha
   }
   ok = ok && !b->bad && b->pos == b->n;
   if (!ok) return snprintf(why, n, "checksum right but contents out of range or of the wrong size"), 1;
+  if (check_values(s, why, n)) return 1;
   s->prep.mesh = m;
   if (s->has_proxy) s->proxy_prep.mesh = &s->proxy;
   s->sig.prep = s->has_signature ? mp : NULL;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "specseg/io.h"
+#include "util/out_file.h"
 
 static ss_status check_mesh(const char *path, const ss_mesh *m, ss_error *err) {
   if (!m || m->nv < 0 || m->nf < 0 || (m->nv > 0 && !m->V) || (m->nf > 0 && !m->F))
@@ -19,28 +20,21 @@ static ss_status check_mesh(const char *path, const ss_mesh *m, ss_error *err) {
   return SS_OK;
 }
 
-static ss_status open_out(const char *path, FILE **f, ss_error *err) {
-  *f = fopen(path, "wb");
-  if (!*f) return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
-  return SS_OK;
+/* through util/out_file.h: written whole under a temporary name, then renamed into place */
+static ss_status open_out(const char *path, ssi_out *o, FILE **f, ss_error *err) {
+  ss_status st = ssi_out_open(o, path, err);
+  *f = st ? NULL : o->f;
+  return st;
 }
 
-static ss_status close_out(const char *path, FILE *f, ss_error *err) {
-  int bad = ferror(f);
-  int e = errno;
-  if (fclose(f) != 0 && !bad) {
-    bad = 1;
-    e = errno;
-  }
-  if (bad) return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e));
-  return SS_OK;
-}
+static ss_status close_out(const char *path, ssi_out *o, ss_error *err) { return ssi_out_commit(o, path, err); }
 
 ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err) {
   ss_status st = check_mesh(path, m, err);
   if (st) return st;
+  ssi_out o;
   FILE *f;
-  if ((st = open_out(path, &f, err))) return st;
+  if ((st = open_out(path, &o, &f, err))) return st;
   /* COFF: "x y z r g b a" per vertex, the layout most viewers read */
   fprintf(f, "%s\n%d %d 0\n", rgb ? "COFF" : "OFF", m->nv, m->nf);
   for (int i = 0; i < m->nv && !ferror(f); i++) {
@@ -54,7 +48,7 @@ ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *
     const int *t = m->F + 3 * (size_t)i;
     fprintf(f, "3 %d %d %d\n", t[0], t[1], t[2]);
   }
-  return close_out(path, f, err);
+  return close_out(path, &o, err);
 }
 
 /* Appends an n-byte unsigned value in the requested byte order. */
@@ -72,8 +66,9 @@ ss_status ss_write_ply_labels(const char *path, const ss_mesh *m, const unsigned
   if (st) return st;
   if (fmt != SS_PLY_ASCII && fmt != SS_PLY_BINARY_LE && fmt != SS_PLY_BINARY_BE)
     return ss_fail(err, SS_ERR_INVALID, "%s: unknown PLY format %d", path, (int)fmt);
+  ssi_out o;
   FILE *f;
-  if ((st = open_out(path, &f, err))) return st;
+  if ((st = open_out(path, &o, &f, err))) return st;
   static const char *names[] = {"ascii", "binary_little_endian", "binary_big_endian"};
   fprintf(f, "ply\nformat %s 1.0\ncomment written by specseg\nelement vertex %d\n", names[fmt], m->nv);
   fprintf(f, "property double x\nproperty double y\nproperty double z\n");
@@ -118,14 +113,15 @@ ss_status ss_write_ply_labels(const char *path, const ss_mesh *m, const unsigned
       fwrite(rec, 1, 13, f);
     }
   }
-  return close_out(path, f, err);
+  return close_out(path, &o, err);
 }
 
 ss_status ss_write_obj(const char *path, const ss_mesh *m, const unsigned char *rgb, ss_error *err) {
   ss_status st = check_mesh(path, m, err);
   if (st) return st;
+  ssi_out o;
   FILE *f;
-  if ((st = open_out(path, &f, err))) return st;
+  if ((st = open_out(path, &o, &f, err))) return st;
   fprintf(f, "# written by specseg\n");
   for (int i = 0; i < m->nv && !ferror(f); i++) {
     const double *p = m->V + 3 * (size_t)i;
@@ -139,7 +135,7 @@ ss_status ss_write_obj(const char *path, const ss_mesh *m, const unsigned char *
     const int *t = m->F + 3 * (size_t)i;
     fprintf(f, "f %d %d %d\n", t[0] + 1, t[1] + 1, t[2] + 1);
   }
-  return close_out(path, f, err);
+  return close_out(path, &o, err);
 }
 
 ss_status ss_write_mesh_labels(const char *path, const ss_mesh *m, const unsigned char *rgb, const int *labels,

@@ -1,6 +1,7 @@
 /* The checksummed binary files (key line, payload line, raw payload) shared by the prepared-shape
  * files (match/shape_file.c) and the eval cache (eval/eval_shape.c); see blob.h. */
 #include "blob.h"
+#include "out_file.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -76,25 +77,20 @@ void ssi_blob_free(ssi_blob *b) {
 
 int ssi_blob_write(const char *path, const char *key, const ssi_blob *b) {
   if (b->bad) return errno = ENOMEM, -1;
-  size_t plen = strlen(path);
-  char *tmp = malloc(plen + 32);
-  if (!tmp) return errno = ENOMEM, -1;
-  snprintf(tmp, plen + 32, "%s.tmp%ld", path, (long)getpid());
-  FILE *f = fopen(tmp, "wb");
-  if (!f) {
-    int e = errno;
-    free(tmp);
-    return errno = e, -1;
-  }
+  ssi_out o; /* a temporary beside the target, renamed into place (util/out_file.h) */
+  ss_error err;
+  if (ssi_out_open(&o, path, &err)) return errno = errno ? errno : EIO, -1;
   uint64_t h = ssi_fnv1a_x4(ssi_fnv1a(SSI_FNV_INIT, key, strlen(key)), b->p, b->n);
-  int ok = fputs(key, f) >= 0 && fprintf(f, "payload %zu fnv1a64x4 %016llx\n", b->n, (unsigned long long)h) > 0 &&
-           (b->n == 0 || fwrite(b->p, 1, b->n, f) == b->n);
+  int ok = fputs(key, o.f) >= 0 && fprintf(o.f, "payload %zu fnv1a64x4 %016llx\n", b->n, (unsigned long long)h) > 0 &&
+           (b->n == 0 || fwrite(b->p, 1, b->n, o.f) == b->n);
   int e = errno;
-  ok = !fclose(f) && ok;
-  if (ok && rename(tmp, path)) ok = 0, e = errno;
-  if (!ok) remove(tmp), errno = e ? e : EIO;
-  free(tmp);
-  return ok ? 0 : -1;
+  if (!ok) {
+    ssi_out_abort(&o);
+    return errno = e ? e : EIO, -1;
+  }
+  errno = 0;
+  if (ssi_out_commit(&o, path, &err)) return errno = errno ? errno : EIO, -1;
+  return 0;
 }
 
 /* the file's bytes are buf[0, total) (malloc'd, taken over) */

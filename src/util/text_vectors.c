@@ -8,6 +8,7 @@
 
 #include "specseg/io.h"
 #include "util/io_text.h"
+#include "util/out_file.h"
 
 /* Shared parser: one value per content line of [buf, buf + len) into a growing array of doubles or
  * ints; `path` names the input in messages. */
@@ -147,20 +148,14 @@ ss_status ss_read_doubles(const char *path, double **out, int *n, ss_error *err)
 
 static ss_status write_values(const char *path, const int *iv, const double *dv, int n, ss_error *err) {
   if (n < 0 || (n > 0 && !iv && !dv)) return ss_fail(err, SS_ERR_INVALID, "%s: invalid vector (n = %d)", path, n);
-  FILE *f = fopen(path, "wb");
-  if (!f) return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
-  for (int i = 0; i < n && !ferror(f); i++) {
-    if (iv) fprintf(f, "%d\n", iv[i]);
-    else fprintf(f, "%.17g\n", dv[i]);
+  ssi_out o; /* whole or not at all: a map cut at a line boundary would look complete */
+  ss_status st = ssi_out_open(&o, path, err);
+  if (st) return st;
+  for (int i = 0; i < n && !ferror(o.f); i++) {
+    if (iv) fprintf(o.f, "%d\n", iv[i]);
+    else fprintf(o.f, "%.17g\n", dv[i]);
   }
-  int bad = ferror(f);
-  int e = errno;
-  if (fclose(f) != 0 && !bad) {
-    bad = 1;
-    e = errno;
-  }
-  if (bad) return ss_fail(err, SS_ERR_IO, "%s: write error: %s", path, strerror(e));
-  return SS_OK;
+  return ssi_out_commit(&o, path, err);
 }
 
 ss_status ss_write_ints(const char *path, const int *v, int n, ss_error *err) { return write_values(path, v, NULL, n, err); }

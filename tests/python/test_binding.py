@@ -298,5 +298,22 @@ try:
 except ValueError:
     check(True, "")
 
+# issue 32, item 8: max_dist as the CLI's --max-dist (positive; None or inf: no limit); prepare's
+# errors say prepare, not match
+for bad_md in (-1, 0, float("nan")):
+    try:
+        specseg.geodesic(V, F, [0], max_dist=bad_md)
+        check(False, "geodesic max_dist=%r raises" % bad_md)
+    except ValueError as ex:
+        check("max_dist" in str(ex), "geodesic max_dist=%r: %s" % (bad_md, ex))
+check(np.array_equal(specseg.geodesic(V, F, [0], max_dist=float("inf")), specseg.geodesic(V, F, [0])),
+      "geodesic max_dist=inf: no limit")
+if specseg._clib.has("ss_prepared_shape_compute"):
+    try:
+        specseg.prepare(V, F, k=2)
+        check(False, "prepare(k=2) raises")
+    except (ValueError, specseg.SpecsegError) as ex:
+        check(str(ex).startswith("prepare:"), "prepare(k=2): the message names prepare: %s" % ex)
+
 print("%d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
