@@ -291,7 +291,7 @@ int cmd_match(int argc, char **argv) {
             "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
             res.autopair.mirror_other, res.autopair.pairing_confident ? ", confident" : ", NOT confident");
-  if (res.autopair.used && !json && res.autopair.hypotheses > 1)
+  if (!json && res.autopair.hypotheses > 1)
     fprintf(report, "hypotheses: %d mapped, #%d kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed; "
             "margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
             res.autopair.hyp_energy[res.autopair.hypothesis], res.autopair.hyp_distortion[res.autopair.hypothesis],

@@ -262,6 +262,24 @@ static void test_permuted_and_mirrored(void) {
     ss_match_result_free(&res);
     mo.autopair.hypotheses = SS_MAX_HYPOTHESES + 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    /* three landmarks on their mirrors, hypotheses beside them (hyp_landmarks 1): the map of least
+     * hypothesis energy, on the mirrors; off (the default): the landmarks' map alone */
+    mo.autopair.hypotheses = 4;
+    const int lx[3] = {pX.seg.centers[0], pX.seg.centers[1], pX.seg.centers[2]};
+    const int ly[3] = {sym[lx[0]], sym[lx[1]], sym[lx[2]]};
+    for (int h = 0; h < 2; h++) {
+      mo.autopair.hyp_landmarks = h;
+      CHECK_MSG(ss_match_prepared(&pX, &pR, 3, lx, ly, &mo, &res, &e) == SS_OK, "%s", e.msg);
+      int right = 0;
+      for (int i = 0; res.map && i < n; i++) right += res.map[i] == sym[i];
+      const ss_autopair_info *ai = &res.autopair;
+      printf("reflection, 3 landmarks, hyp_landmarks %d: %d hypotheses, #%d returned; %d of %d vertices on their mirror\n",
+             h, ai->hypotheses, ai->hypothesis, right, n);
+      CHECK(right > n / 2 && !ai->used);
+      if (!h) CHECK(ai->hypotheses <= 1);
+      for (int q = 0; h && q < ai->hypotheses; q++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[q]);
+      ss_match_result_free(&res);
+    }
   }
   ss_centre_signature_free(&sX), ss_centre_signature_free(&sR);
 

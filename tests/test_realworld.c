@@ -685,6 +685,24 @@ static void test_two_spheres_match(void) {
   for (int i = 0; r.map && i < s.nv; i++) same &= r.map[i] == i; /* a sphere onto itself */
   CHECK(r.map && r.nX == two.nv && same);
   ss_match_result_free(&r);
+  /* landmarks on both spheres with the refined default and hypotheses beside the landmarks: a shape in
+   * two components has no pairing signature, so the landmarks' map alone, with a note (CI: this was
+   * "autopair: a segment centre does not reach every vertex") */
+  int lm6[6] = {0, 100, 300, s.nv, s.nv + 100, s.nv + 300};
+  ss_match_options od;
+  ss_match_default_options(&od);
+  od.fmap.k = 20, od.fmap.zoomout_kmax = 30, od.fmap.descr_k = 20;
+  for (int h = 0; h < 2; h++) {
+    od.autopair.hyp_landmarks = h;
+    st = ss_match_warn(&two, &two, 6, lm6, lm6, &od, &r, warn, sizeof warn, &e);
+    CHECK_MSG(st == SS_OK, "hyp_landmarks %d: %s", h, e.msg);
+    same = r.map != NULL;
+    for (int i = 0; r.map && i < two.nv; i++) same &= r.map[i] == i;
+    CHECK_MSG(same, "hyp_landmarks %d: the two spheres do not map onto themselves", h);
+    CHECK_MSG(!!strstr(r.notes, "no hypotheses beside the landmarks") == h, "hyp_landmarks %d: notes '%s'", h, r.notes);
+    CHECK(r.autopair.hypotheses <= 1);
+    ss_match_result_free(&r);
+  }
   ss_mesh_free(&two);
   ss_mesh_free(&s);
 }

@@ -248,12 +248,13 @@ typedef struct ss_autopair_options {
   /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin (default
    * 0.003) below every other hypothesis's (docs/tuning.md) */
   double hyp_min_margin;
-  /* with given landmarks (ss_match_prepared, the refined default): 1 (default) maps the landmarks
-   * alone and, beside them, the landmarks plus each pairing hypothesis's protrusion pairs that agree
+  /* with given landmarks (ss_match_prepared, the refined default): 0 (default) the landmarks' map
+   * alone; 1 maps the landmarks alone and, beside them, the landmarks plus each pairing hypothesis's protrusion pairs that agree
    * with them — neither centre within hyp_landmark_tol (default 0.1, geodesic / √area) of a given
    * landmark, every given landmark as far from both centres within it — and returns the map of least
-   * hypothesis energy (a limb swapped despite correct landmarks is then a hypothesis that loses);
-   * 0: the landmarks' map alone */
+   * hypothesis energy, or the landmarks' map alone with a note where no pairing signature can be
+   * formed (a shape in several components). Off by default: on the FAUST_r tuning pairs it fails
+   * with five ground-truth landmarks it returned the same maps (docs/tuning.md) */
   int hyp_landmarks;
   double hyp_landmark_tol;
 } ss_autopair_options;

@@ -631,7 +631,7 @@ static ss_status run(brun *R, ss_error *err) {
           continue;
         }
         r->seconds = ss_time() - ts;
-        if (res.autopair.used) r->confident = res.autopair.confident;
+        if (res.autopair.used || res.autopair.hypotheses > 1) r->confident = res.autopair.confident;
         if (res.notes[0]) bm_note(r->notes, sizeof r->notes, "%s", res.notes);
         if (wbuf[0]) bm_note(r->notes, sizeof r->notes, "%s", wbuf);
         char mp[4400];

@@ -890,7 +890,22 @@ ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep 
     for (int i = 0; i < nl; i++)
       if (!lmX || !lmY || lmX[i] < 0 || lmX[i] >= X->mesh->nv || lmY[i] < 0 || lmY[i] >= Y->mesh->nv)
         return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
-    return match_hypotheses(X, Y, sigX, sigY, nl, lmX, lmY, &o, out, err);
+    /* an extra beside the landmarks' map: where it cannot be formed (a shape in several components
+     * has no pairing signature), the landmarks' map alone, with a note */
+    ss_error he = {{0}};
+    ss_status hs = match_hypotheses(X, Y, sigX, sigY, nl, lmX, lmY, &o, out, &he);
+    if (hs != SS_ERR_INVALID) {
+      if (hs && err) *err = he;
+      return hs;
+    }
+    memset(out, 0, sizeof *out);
+    ss_status cs = match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+    if (!cs) {
+      char note[200];
+      snprintf(note, sizeof note, "no hypotheses beside the landmarks (%.150s)", he.msg);
+      add_note(out, note);
+    }
+    return cs;
   }
   memset(out, 0, sizeof *out);
   return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
