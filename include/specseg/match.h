@@ -249,12 +249,14 @@ typedef struct ss_autopair_options {
    * 0.003) below every other hypothesis's (docs/tuning.md) */
   double hyp_min_margin;
   /* with given landmarks (ss_match_prepared, the refined default): 0 (default) the landmarks' map
-   * alone; 1 maps the landmarks alone and, beside them, the landmarks plus each pairing hypothesis's protrusion pairs that agree
-   * with them — neither centre within hyp_landmark_tol (default 0.1, geodesic / √area) of a given
-   * landmark, every given landmark as far from both centres within it — and returns the map of least
-   * hypothesis energy, or the landmarks' map alone with a note where no pairing signature can be
-   * formed (a shape in several components). Off by default: on the FAUST_r tuning pairs it fails
-   * with five ground-truth landmarks it returned the same maps (docs/tuning.md) */
+   * alone; 1 maps the landmarks alone and, beside them, the landmarks plus each pairing hypothesis's
+   * protrusion pairs that agree with them — neither centre within hyp_landmark_tol (default 0.1,
+   * geodesic / √area) of a given landmark, every given landmark as far from both centres within it;
+   * 2 also maps each pairing hypothesis landmark-free (as without landmarks), eligible when at most a
+   * quarter of the given landmarks (none of three or fewer) land farther than hyp_landmark_tol from
+   * their partners under it. The map of least hypothesis energy is returned (a note names the
+   * landmarks a landmark-free map departs from); where no pairing signature can be formed (a shape
+   * in several components), the landmarks' map alone with a note. docs/tuning.md has the measurements */
   int hyp_landmarks;
   double hyp_landmark_tol;
 } ss_autopair_options;

@@ -715,6 +715,17 @@ static int same_set(int n, const int *a, const int *b, int m, const int *c, cons
   return 1;
 }
 
+static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) {
+  if (a->hypotheses < 1 || a->hypotheses > SS_MAX_HYPOTHESES || !(a->hyp_gap >= 0) ||
+      !(a->hyp_w_reversed >= 0) || !isfinite(a->hyp_w_reversed) ||
+      !isfinite(a->hyp_reversed_below) || !(a->hyp_keep > 0 && a->hyp_keep <= 1) ||
+      !isfinite(a->hyp_min_margin) || !(a->hyp_landmark_tol >= 0) ||
+      a->hyp_landmarks < 0 || a->hyp_landmarks > 2)
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2",
+                   a->hypotheses, SS_MAX_HYPOTHESES);
+  return SS_OK;
+}
+
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
  * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
  * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
@@ -728,12 +739,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   else ss_match_default_options(&o);
   if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
     return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
-  if (o.autopair.hypotheses < 1 || o.autopair.hypotheses > SS_MAX_HYPOTHESES || !(o.autopair.hyp_gap >= 0) ||
-      !(o.autopair.hyp_w_reversed >= 0) || !isfinite(o.autopair.hyp_w_reversed) ||
-      !isfinite(o.autopair.hyp_reversed_below) || !(o.autopair.hyp_keep > 0 && o.autopair.hyp_keep <= 1) ||
-      !isfinite(o.autopair.hyp_min_margin) || !(o.autopair.hyp_landmark_tol >= 0))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0",
-                   o.autopair.hypotheses, SS_MAX_HYPOTHESES);
+  if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
   ss_centre_signature own[2];
   memset(own, 0, sizeof own);
   ss_segment_pairs hyp[SS_MAX_HYPOTHESES];
@@ -760,17 +766,20 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   for (int h = 0; h < nh; h++)
     if (hyp[h].n > mx) mx = hyp[h].n;
   /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
-  const int stride = nlg + mx, ncap = nh + 1;
+  const int stride = nlg + mx, ncap = 2 * nh + 1;
   lx = malloc(sizeof(int) * (size_t)stride * ncap);
   ly = malloc(sizeof(int) * (size_t)stride * ncap);
   cand = malloc(sizeof(int) * (size_t)ncap);
   segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
   if (!lx || !ly || !cand || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  int nc = 0, from_pairs[SS_MAX_HYPOTHESES]; /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none) */
+  /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
+   * candidate (hypothesis hyp_of[c]'s protrusion pairs alone) */
+  int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES], hyp_of[SS_MAX_HYPOTHESES];
   if (nlg == 0) {
     for (int h = 0; h < nh; h++) {
       cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
       from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
+      free_of[nc] = 1, hyp_of[nc] = h;
       nc++;
     }
   } else {
@@ -782,18 +791,27 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
           (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
         goto done;
     memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
-    cand[0] = nlg, from_pairs[0] = -1, nc = 1;
+    cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, hyp_of[0] = -1, nc = 1;
+    /* hyp_landmarks 2: each hypothesis's landmark-free map too, eligible where it keeps the given
+     * landmarks (see the selection below): a landmark on a spot where two body parts touch and the
+     * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
+    for (int h = 0; o.autopair.hyp_landmarks == 2 && h < nh && nc < SS_MAX_HYPOTHESES; h++) {
+      cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
+      from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
+      free_of[nc] = 1, hyp_of[nc] = h;
+      nc++;
+    }
     int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
     if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int h = 0; h < nh; h++) {
+    for (int h = 0; h < nh && nc < SS_MAX_HYPOTHESES; h++) {
       int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
       int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
       memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
       int ne = agreeing_pairs(&hc, nlg, gdX, gdY, nk, kx, ky, o.autopair.hyp_landmark_tol, cx + nlg, cy + nlg);
       int dup = ne == 0;
       for (int c = 1; c < nc && !dup; c++)
-        dup = same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
-      if (!dup) cand[nc] = nlg + ne, from_pairs[nc++] = -1;
+        dup = !free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
+      if (!dup) cand[nc] = nlg + ne, from_pairs[nc] = -1, free_of[nc] = 0, hyp_of[nc++] = -1;
     }
     free(kx), free(ky);
   }
@@ -804,17 +822,18 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   oall.pairing.min_landmarks = 1;
   oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
   double best = INFINITY, t_loop = ss_time();
+  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES];
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
     if (from_pairs[c] >= 0) {
       if ((st = match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
     } else {
       ss_match_options ok = o;
-      if (nlg == 0 && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
+      if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
       if ((st = match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
     }
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
-    const int h = nlg == 0 ? c : -1; /* the pairing hypothesis behind it (landmark-free) */
+    const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
     if (h >= 0) {
       pe = 0;
       for (int p = 0; p < hyp[h].n; p++) pe += hyp[h].energy[p];
@@ -830,7 +849,13 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
     info.hyp_energy[c] = E;
     info.hyp_map_energy[c] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
-    if (c == 0 || E < best) {
+    /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
+     * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
+    int off = 0;
+    for (int i = 0; i < nlg; i++)
+      off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
+    eligible[c] = !free_of[c] || off <= nlg / 4, lm_off[c] = off;
+    if (c == 0 || (eligible[c] && E < best)) {
       if (c > 0) ss_match_result_free(out);
       *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
     } else
@@ -840,13 +865,21 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   info.hypotheses = nc;
   info.hyp_margin = INFINITY;
   for (int c = 0; c < nc; c++)
-    if (c != info.hypothesis && info.hyp_energy[c] - best < info.hyp_margin) info.hyp_margin = info.hyp_energy[c] - best;
+    if (c != info.hypothesis && eligible[c] && info.hyp_energy[c] - best < info.hyp_margin)
+      info.hyp_margin = info.hyp_energy[c] - best;
   if (nc > 1) info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
   else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
   out->autopair = info;
+  if (nlg > 0 && lm_off[info.hypothesis] > 0) {
+    char msg[256];
+    snprintf(msg, sizeof msg, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
+             "under the map kept (hypothesis #%d%s); check them", lm_off[info.hypothesis], nlg,
+             o.autopair.hyp_landmark_tol, info.hypothesis, free_of[info.hypothesis] ? ", landmark-free" : "");
+    add_note(out, msg);
+  }
   if (!info.confident) {
     char msg[240];
     if (nc > 1)
@@ -881,15 +914,19 @@ ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep 
                                     const ss_match_options *opts, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   if (nl == 0) return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts, out, err);
+  memset(out, 0, sizeof *out);
   ss_match_options o;
   if (opts) o = *opts;
   else ss_match_default_options(&o);
+  if (o.autopair.hyp_landmarks < 0 || o.autopair.hyp_landmarks > 2)
+    return ss_fail(err, SS_ERR_INVALID, "match: hyp_landmarks %d (0..2)", o.autopair.hyp_landmarks);
   /* hypotheses beside given landmarks: the refined default only, on segmented shapes */
   if (o.autopair.hyp_landmarks && o.autopair.hypotheses > 1 && o.refine == SS_REFINE_BEST && X && Y &&
       X->seg.centers && Y->seg.centers && X->mesh && Y->mesh) {
     for (int i = 0; i < nl; i++)
       if (!lmX || !lmY || lmX[i] < 0 || lmX[i] >= X->mesh->nv || lmY[i] < 0 || lmY[i] >= Y->mesh->nv)
         return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
+    if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
     /* an extra beside the landmarks' map: where it cannot be formed (a shape in several components
      * has no pairing signature), the landmarks' map alone, with a note */
     ss_error he = {{0}};
