@@ -775,14 +775,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
    * candidate (hypothesis hyp_of[c]'s protrusion pairs alone) */
   int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES], hyp_of[SS_MAX_HYPOTHESES];
-  if (nlg == 0) {
-    for (int h = 0; h < nh; h++) {
-      cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
-      from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
-      free_of[nc] = 1, hyp_of[nc] = h;
-      nc++;
-    }
-  } else {
+  if (nlg > 0) {
     gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
     gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
     if (!gdX || !gdY) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
@@ -792,15 +785,17 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
         goto done;
     memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
     cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, hyp_of[0] = -1, nc = 1;
-    /* hyp_landmarks 2: each hypothesis's landmark-free map too, eligible where it keeps the given
-     * landmarks (see the selection below): a landmark on a spot where two body parts touch and the
-     * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
-    for (int h = 0; o.autopair.hyp_landmarks == 2 && h < nh && nc < SS_MAX_HYPOTHESES; h++) {
-      cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
-      from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
-      free_of[nc] = 1, hyp_of[nc] = h;
-      nc++;
-    }
+  }
+  /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
+   * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
+   * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
+  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nc < SS_MAX_HYPOTHESES; h++) {
+    cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
+    from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
+    free_of[nc] = 1, hyp_of[nc] = h;
+    nc++;
+  }
+  if (nlg > 0) {
     int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
     if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
     for (int h = 0; h < nh && nc < SS_MAX_HYPOTHESES; h++) {
