@@ -83,12 +83,13 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
   size_t n = 0;
   n += (size_t)snprintf(buf + n, size - n, "[");
   for (int h = 0; h < a->hypotheses && h < SS_MAX_HYPOTHESES && n < size; h++) {
-    const double v[7] = {a->hyp_energy[h], a->hyp_distortion[h], a->hyp_reversed[h], a->hyp_orientation[h],
-                         a->hyp_orientation_min[h], a->hyp_pair_energy[h], a->hyp_map_energy[h]};
-    static const char *const key[7] = {"energy", "distortion", "reversed", "orientation", "orientation_min",
-                                       "pair_energy", "map_energy"};
+    const double v[8] = {a->hyp_energy[h],       a->hyp_distortion[h],      a->hyp_reversed[h],
+                         a->hyp_orientation[h],  a->hyp_orientation_min[h], a->hyp_pair_energy[h],
+                         a->hyp_map_energy[h],   a->hyp_differ[h]};
+    static const char *const key[8] = {"energy",      "distortion", "reversed", "orientation", "orientation_min",
+                                       "pair_energy", "map_energy", "differ"};
     n += (size_t)snprintf(buf + n, size - n, "%s{", h ? ", " : "");
-    for (int k = 0; k < 7 && n < size; k++) {
+    for (int k = 0; k < 8 && n < size; k++) {
       if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
       else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
     }
@@ -302,10 +303,10 @@ int cmd_match(int argc, char **argv) {
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
   cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.autopair.hyp_landmarks : nl);
   cli_job_int(&J, "landmark_free", res.autopair.used);
-  char hbuf[SS_MAX_HYPOTHESES * 256];
-  if (res.autopair.used) {
+  char hbuf[SS_MAX_HYPOTHESES * 384];
+  if (res.autopair.used || res.autopair.hypotheses > 1) { /* landmark-free, or hypotheses beside landmarks */
     cli_job_int(&J, "confident", res.autopair.confident);
-    cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);
+    if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);
     if (res.autopair.hypotheses > 1) cli_job_num(&J, "hypothesis_margin", res.autopair.hyp_margin);
     cli_job_int(&J, "hypothesis", res.autopair.hypothesis);
     cli_job_json(&J, "hypotheses", hypotheses_json(&res.autopair, hbuf, sizeof hbuf));

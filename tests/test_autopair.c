@@ -279,7 +279,26 @@ static void test_permuted_and_mirrored(void) {
       if (!h) CHECK(ai->hypotheses <= 1);
       if (h == 1)
         for (int q = 0; q < ai->hypotheses; q++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[q]);
-      if (h == 2) CHECK(ai->hypotheses > 1 && ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[0]);
+      if (h == 2) {
+        CHECK(ai->hypotheses > 1 && ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[0]);
+        /* the margin is taken against the maps that differ: the returned one differs nowhere from
+         * itself, shares lie in [0, 1], and counting every candidate (share 0) can only shrink it */
+        CHECK(ai->hyp_differ[ai->hypothesis] == 0);
+        for (int q = 0; q < ai->hypotheses; q++) CHECK(ai->hyp_differ[q] >= 0 && ai->hyp_differ[q] <= 1);
+        const double margin = ai->hyp_margin;
+        ss_match_result_free(&res);
+        mo.autopair.hyp_differ_share = 0;
+        CHECK_MSG(ss_match_prepared(&pX, &pR, 3, lx, ly, &mo, &res, &e) == SS_OK, "%s", e.msg);
+        printf("  hypothesis margin %.4g against the maps that differ, %.4g against all\n", margin,
+               res.autopair.hyp_margin);
+        CHECK(res.autopair.hyp_margin <= margin);
+        ss_match_result_free(&res);
+        mo.autopair.hyp_differ_share = 1.5;
+        CHECK(ss_match_prepared(&pX, &pR, 3, lx, ly, &mo, &res, &e) == SS_ERR_INVALID);
+        ss_autopair_options dflt;
+        ss_autopair_default_options(&dflt);
+        mo.autopair.hyp_differ_share = dflt.hyp_differ_share;
+      }
       ss_match_result_free(&res);
     }
     /* five landmarks on their mirrors but the last one wrong (the far end of the shape): with hyp_landmarks 2 the map is still the right one, and a note

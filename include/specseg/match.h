@@ -259,6 +259,13 @@ typedef struct ss_autopair_options {
    * in several components), the landmarks' map alone with a note. docs/tuning.md has the measurements */
   int hyp_landmarks;
   double hyp_landmark_tol;
+  /* the hypothesis margin (confidence) is taken against the other candidates whose maps differ from
+   * the returned one: on at least hyp_differ_share (default 0.05) of X's vertices their images lie
+   * farther apart than hyp_differ_tol (default 0.1, Euclidean / √area of Y). Two candidates that
+   * give the same map are one answer, not a doubt (with landmarks, the landmarks' map and a right
+   * landmark-free map agree); 0: every candidate counts */
+  double hyp_differ_tol;
+  double hyp_differ_share;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -327,9 +334,12 @@ typedef struct ss_autopair_info {
   double hyp_orientation_min[SS_MAX_HYPOTHESES]; /* the least orientation score over X's segments */
   double hyp_reversed[SS_MAX_HYPOTHESES];        /* the share of X's segments below hyp_reversed_below */
   int hyp_landmarks;  /* landmarks of the returned map (its protrusion pairs, hyp_keep) */
-  /* E of the best other hypothesis − E of the returned one (INFINITY: one hypothesis); a match's
-   * `confident` is then the map's: hyp_margin >= hyp_min_margin (ss_autopair_options) */
+  /* E of the best other hypothesis whose map differs (hyp_differ_share) − E of the returned one
+   * (INFINITY: none); a match's `confident` is then the map's: hyp_margin >= hyp_min_margin */
   double hyp_margin;
+  /* per candidate, the share of X's vertices whose image lies farther than hyp_differ_tol from the
+   * returned map's image of it (0 for the returned one) */
+  double hyp_differ[SS_MAX_HYPOTHESES];
 } ss_autopair_info;
 
 /* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:

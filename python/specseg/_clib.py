@@ -128,7 +128,8 @@ class ss_autopair_options(C.Structure):
                 ("hyp_w_reversed", C.c_double),
                 ("hyp_reversed_below", C.c_double), ("hyp_keep", C.c_double),
                 ("hyp_min_margin", C.c_double), ("hyp_landmarks", C.c_int),
-                ("hyp_landmark_tol", C.c_double)]
+                ("hyp_landmark_tol", C.c_double), ("hyp_differ_tol", C.c_double),
+                ("hyp_differ_share", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):
@@ -142,7 +143,8 @@ class ss_autopair_info(C.Structure):
                 ("hyp_orientation", C.c_double * 8), ("hyp_distortion", C.c_double * 8),
                 ("hyp_energy", C.c_double * 8), ("hyp_map_energy", C.c_double * 8),
                 ("hyp_orientation_min", C.c_double * 8), ("hyp_reversed", C.c_double * 8),
-                ("hyp_landmarks", C.c_int), ("hyp_margin", C.c_double)]
+                ("hyp_landmarks", C.c_int), ("hyp_margin", C.c_double),
+                ("hyp_differ", C.c_double * 8)]
 
 
 class ss_match_options(C.Structure):

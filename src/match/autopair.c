@@ -45,6 +45,8 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_min_margin = 0.003;
   o->hyp_landmarks = 0;
   o->hyp_landmark_tol = 0.1;
+  o->hyp_differ_tol = 0.1;
+  o->hyp_differ_share = 0.05;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {
