@@ -716,7 +716,7 @@ static int same_set(int n, const int *a, const int *b, int m, const int *c, cons
 }
 
 /* The share of X's nX vertices whose images under maps a and b (vertices of Y) lie farther apart
- * than tol · s (Euclidean; s = √area of Y). */
+ * than tol_abs (Euclidean, in Y's units: the caller scales hyp_differ_tol by √area of Y). */
 static double map_differ_share(const ss_mesh *Y, double tol_abs, int nX, const int *a, const int *b) {
   int far = 0;
   for (int v = 0; v < nX; v++) {
