@@ -321,6 +321,7 @@ static void test_adapter(void) {
      * paper's methods in one call: the same maps */
     CHECK(ev_match(&ctx, &X, &Y, SS_LM_BEST, SS_METHOD_REFINED, m1, NULL, &e) == SS_ERR_INVALID);
     ss_match_default_options(&ctx.ropt);
+    ctx.ropt.autopair.hyp_landmarks = 0; /* as Table 1 sets it: the refined rows are the landmarks' map */
     ctx.ropt.fmap.k = 20, ctx.ropt.fmap.n_energies = 30, ctx.ropt.fmap.descr_k = 30, ctx.ropt.fmap.zoomout_kmax = 30;
     ctx.kref = 30;
     CHECK(ev_shape_refined(&X, &ctx, &e) == SS_OK && ev_shape_refined(&Y, &ctx, &e) == SS_OK);

@@ -380,6 +380,8 @@ int main(void) {
   {
     ss_match_options od;
     ss_match_default_options(&od);
+    CHECK(od.autopair.hyp_landmarks == 2); /* the default: landmark-free hypotheses beside the landmarks */
+    od.autopair.hyp_landmarks = 0;         /* these checks are of the landmarks' own map and its refinement */
     od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
     od.refine_w_descr = 0; /* the energy recomputed below is ss_p2p_energy alone */
     od.refine_single = 0;  /* every start refined: the reference of the single refinement below */
@@ -426,6 +428,7 @@ int main(void) {
     ss_match_result_free(&rd);
     /* with the default selection energy (descriptor residual included): the same invariants */
     ss_match_default_options(&od);
+    od.autopair.hyp_landmarks = 0;
     od.fmap.k = 40, od.fmap.descr_k = 50, od.fmap.zoomout_kmax = 50;
     CHECK(od.refine_w_descr > 0);
     CHECK(ss_match_prepared(&pX, &pY, 5, lm, lm, &od, &rd, &e) == SS_OK);

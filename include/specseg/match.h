@@ -248,11 +248,11 @@ typedef struct ss_autopair_options {
   /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin (default
    * 0.003) below every other hypothesis's (docs/tuning.md) */
   double hyp_min_margin;
-  /* with given landmarks (ss_match_prepared, the refined default): 0 (default) the landmarks' map
-   * alone; 1 maps the landmarks alone and, beside them, the landmarks plus each pairing hypothesis's
+  /* with given landmarks (ss_match_prepared, the refined default): 0 the landmarks' map alone
+   * (Table 1's refined rows); 1 maps the landmarks alone and, beside them, the landmarks plus each pairing hypothesis's
    * protrusion pairs that agree with them — neither centre within hyp_landmark_tol (default 0.1,
    * geodesic / √area) of a given landmark, every given landmark as far from both centres within it;
-   * 2 also maps each pairing hypothesis landmark-free (as without landmarks), eligible when at most a
+   * 2 (default) also maps each pairing hypothesis landmark-free (as without landmarks), eligible when at most a
    * quarter of the given landmarks (none of three or fewer) land farther than hyp_landmark_tol from
    * their partners under it. The map of least hypothesis energy is returned (a note names the
    * landmarks a landmark-free map departs from); where no pairing signature can be formed (a shape

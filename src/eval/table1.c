@@ -143,6 +143,7 @@ static ss_status table1_run(const ss_table1_options *o, int *new_rows, run_locks
   if (o->confident_pairing) ss_pairing_default_options(&ctx.mopt.pairing); /* the paper methods' rows: safeguarded */
   if (o->methods_mask >> SS_METHOD_REFINED & 1) { /* and the library's default output, at the same k */
     ss_match_default_options(&ctx.ropt);
+    ctx.ropt.autopair.hyp_landmarks = 0; /* Table 1's refined rows: the landmarks' own map, as defined */
     ctx.ropt.fmap.k = o->k;
     if (ctx.ropt.fmap.zoomout_kmax < o->k) ctx.ropt.fmap.zoomout_kmax = o->k;
     if (ctx.ropt.fmap.descr_k < o->k) ctx.ropt.fmap.descr_k = 0;

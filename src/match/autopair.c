@@ -43,7 +43,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_reversed_below = 0.15;
   o->hyp_keep = 0.625;
   o->hyp_min_margin = 0.003;
-  o->hyp_landmarks = 0;
+  o->hyp_landmarks = 2;
   o->hyp_landmark_tol = 0.1;
   o->hyp_differ_tol = 0.1;
   o->hyp_differ_share = 0.05;
