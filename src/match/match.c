@@ -6,7 +6,7 @@
 #include "mesh/mesh_topology.h"
 #include "specseg/streamline.h"
 #include "fmap/fmap_options.h"
-#include "match/proxy.h"
+#include "match/match_submesh.h"
 #include "match/hypotheses.h"
 #include "match/autopair_internal.h"
 #include "match/landmark_check.h"
@@ -532,115 +532,6 @@ static ss_status prepare_both(const ss_mesh *PX, const ss_mesh *PY, int segment,
   return st;
 }
 
-/* ---- meshes of several components ---------------------------------------------------------------
- * The functional map is only determined on components that hold a landmark (elsewhere the probes
- * leave the basis functions free: "dsposv info N"). So ss_match keeps, on each mesh, the components
- * that hold a landmark — the body of a scan, without its crumbs — and matches those; a vertex of X on
- * a dropped component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X
- * maps to a dropped vertex of Y. */
-typedef struct kept {
-  int active;      /* 0: the whole mesh is used */
-  ss_mesh sub;     /* the kept components (vertices in input order) */
-  int *to_in;      /* sub vertex -> input vertex */
-  int *to_sub;     /* input vertex -> sub vertex, -1 when dropped */
-  int nc, nkept;   /* components, kept components */
-  int landmark_free; /* kept: the largest component (no landmarks) */
-  double area, kept_area;
-} kept;
-
-static void kept_free(kept *k) {
-  ss_mesh_free(&k->sub);
-  free(k->to_in);
-  free(k->to_sub);
-  memset(k, 0, sizeof *k);
-}
-
-static ss_status keep_landmark_components(const ss_mesh *m, const char *name, int nl, const int *lm, kept *k,
-                                          ss_error *err) {
-  memset(k, 0, sizeof *k);
-  if (!m->V || !m->F || m->nv < 1 || m->nf < 1) return SS_OK; /* refused by the preparation, with its message */
-  for (size_t c = 0; c < 3 * (size_t)m->nf; c++)
-    if (m->F[c] < 0 || m->F[c] >= m->nv)
-      return ss_fail(err, SS_ERR_INVALID, "match: %s: face %zu has vertex index %d out of range [0, %d)", name, c / 3,
-                     m->F[c], m->nv);
-  int *comp = malloc(sizeof(int) * (size_t)m->nv);
-  unsigned char *has = NULL;
-  double *carea = NULL;
-  ss_status st = SS_OK;
-  int nc = comp ? ssi_mesh_components(m, comp) : -1;
-  if (nc < 0) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  k->nc = nc;
-  if (nc <= 1) goto done;
-  has = calloc((size_t)nc, 1);
-  carea = calloc((size_t)nc, sizeof(double));
-  if (!has || !carea) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  int unref = 0, first_unref = -1;
-  for (int i = 0; i < m->nv; i++)
-    if (comp[i] < 0 && !unref++) first_unref = i;
-  if (unref) {
-    st = ss_fail(err, SS_ERR_INVALID,
-                 "match: %s: the mesh has %d unreferenced vert%s (e.g. vertex %d); remove them first (`specseg info` "
-                 "counts them): landmarks and maps refer to its vertex indices",
-                 name, unref, unref == 1 ? "ex" : "ices", first_unref);
-    goto done;
-  }
-  for (int i = 0; i < nl; i++) has[comp[lm[i]]] = 1;
-  for (int f = 0; f < m->nf; f++) {
-    const int *t = m->F + 3 * (size_t)f;
-    double a = ssi_triangle_area(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2]);
-    if (isfinite(a)) carea[comp[t[0]]] += a, k->area += a;
-  }
-  if (nl == 0) { /* landmark-free: the largest component by area (the body of a scan) */
-    int big = 0;
-    k->landmark_free = 1;
-    for (int c = 1; c < nc; c++)
-      if (carea[c] > carea[big]) big = c;
-    has[big] = 1;
-  }
-  for (int c = 0; c < nc; c++)
-    if (has[c]) k->nkept++, k->kept_area += carea[c];
-  if (k->nkept == nc) goto done; /* every component has a landmark: matched as it is */
-  k->active = 1;
-  k->to_sub = malloc(sizeof(int) * (size_t)m->nv);
-  k->to_in = malloc(sizeof(int) * (size_t)m->nv);
-  if (!k->to_sub || !k->to_in) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  int nv = 0, nf = 0;
-  for (int i = 0; i < m->nv; i++) {
-    k->to_sub[i] = has[comp[i]] ? nv : -1;
-    if (has[comp[i]]) k->to_in[nv++] = i;
-  }
-  for (int f = 0; f < m->nf; f++) nf += has[comp[m->F[3 * (size_t)f]]];
-  if ((st = ss_mesh_alloc(&k->sub, nv, nf, err))) goto done;
-  for (int i = 0; i < nv; i++) memcpy(k->sub.V + 3 * (size_t)i, m->V + 3 * (size_t)k->to_in[i], sizeof(double) * 3);
-  nf = 0;
-  for (int f = 0; f < m->nf; f++) {
-    const int *t = m->F + 3 * (size_t)f;
-    if (!has[comp[t[0]]]) continue;
-    for (int j = 0; j < 3; j++) k->sub.F[3 * (size_t)nf + j] = k->to_sub[t[j]];
-    nf++;
-  }
-done:
-  free(comp);
-  free(has);
-  free(carea);
-  if (st) kept_free(k);
-  return st;
-}
-
-
-static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int is_x, char *w, size_t size) {
-  if (!k->active) return;
-  char line[400];
-  int dropped = m->nv - k->sub.nv, nd = k->nc - k->nkept;
-  snprintf(line, sizeof line,
-           "%s: matched the %d of its %d components that %s (%d of %d vertices, %.1f%% of the area); "
-           "dropped %d component%s of %d vert%s in all, %s",
-           name, k->nkept, k->nc, k->landmark_free ? "is the largest" : "hold a landmark", k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
-           nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
-           is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
-  ssi_warn_append(w, size, line);
-}
-
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                             const ss_match_options *opts, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
@@ -994,44 +885,41 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->nv);
   }
   if (ss_landmarks_check(nl, lmX, lmY, NULL, NULL, err)) return SS_ERR_INVALID; /* too many, two partners */
-  kept kx, ky;
-  ss_status st = keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
+  ssi_kept kx, ky;
+  ss_status st = ssi_keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
   if (st) return st;
-  if ((st = keep_landmark_components(Y, "Y (the second mesh)", nl, lmY, &ky, err))) {
-    kept_free(&kx);
+  if ((st = ssi_keep_landmark_components(Y, "Y (the second mesh)", nl, lmY, &ky, err))) {
+    ssi_kept_free(&kx);
     return st;
   }
-  const ss_mesh *PX = kx.active ? &kx.sub : X, *PY = ky.active ? &ky.sub : Y;
+  const ss_mesh *PX = kx.sub.active ? &kx.sub.mesh : X, *PY = ky.sub.active ? &ky.sub.mesh : Y;
   int *lx = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1)), *ly = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1));
   double *dX = NULL, *dY = NULL; /* the caller's descriptors on the kept vertices */
   ss_shape_prep pX = {0}, pY = {0};
-  ssi_proxy cx = {0}, cy = {0};
+  ssi_submesh cx = {0}, cy = {0};
   int have_x = 0, have_y = 0;
   if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   if (o.ndescr > 0 && o.descrX && o.descrY) {
     for (int s = 0; s < 2; s++) {
-      const kept *kk = s ? &ky : &kx;
+      const ssi_submesh *kk = s ? &ky.sub : &kx.sub;
       if (!kk->active) continue;
-      const int n_in = s ? Y->nv : X->nv, n_sub = kk->sub.nv;
-      const double *in = s ? o.descrY : o.descrX;
-      double *d = malloc(sizeof(double) * (size_t)n_sub * (size_t)o.ndescr);
+      double *d = malloc(sizeof(double) * (size_t)kk->mesh.nv * (size_t)o.ndescr);
       if (!d) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-      for (int j = 0; j < o.ndescr; j++)
-        for (int i = 0; i < n_sub; i++) d[i + (size_t)n_sub * j] = in[kk->to_in[i] + (size_t)n_in * j];
+      ssi_submesh_restrict(kk, s ? Y->nv : X->nv, o.ndescr, s ? o.descrY : o.descrX, d);
       if (s) dY = d, o.descrY = d;
       else dX = d, o.descrX = d;
     }
   }
-  for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
+  for (int i = 0; i < nl; i++) lx[i] = ssi_submesh_sub_vertex(&kx.sub, lmX[i]), ly[i] = ssi_submesh_sub_vertex(&ky.sub, lmY[i]);
   int kev = ss_match_eigenpairs(&o, nl);
   /* very large meshes are matched through coarse proxies (topology kept), the map lifted back */
-  const ss_mesh *FX = PX, *FY = PY;
+  const ss_mesh *FX = PX;
   /* (not with the caller's descriptors: their rows are the mesh's vertices, not the proxy's) */
   if (!(o.ndescr > 0 && o.descrX && o.descrY) &&
       ((st = ssi_proxy_make(PX, nl, lx, &cx, err)) || (st = ssi_proxy_make(PY, nl, ly, &cy, err))))
     goto done;
-  if (cx.active) PX = &cx.coarse;
-  if (cy.active) PY = &cy.coarse;
+  if (cx.active) PX = &cx.mesh;
+  if (cy.active) PY = &cy.mesh;
   /* STD with landmarks uses no segments: only the spectra, unless the pairing is asked for */
   const int segment = ss_match_segments(&o, nl);
   double t_prep = ss_time();
@@ -1041,40 +929,11 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
   /* the stage times add up both shapes' work; the total is the time this call took */
   out->t_total += t_prep - (pX.t_segment + pY.t_segment + pX.t_eigs + pY.t_eigs);
-  if ((st = ssi_proxy_lift(&cx, &cy, FX->nv, out, err))) goto done;
-  PX = FX, PY = FY;
-  if (kx.active || ky.active) { /* back to the input meshes' vertices */
-    int *map = malloc(sizeof(int) * (size_t)X->nv);
-    if (!map) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int i = 0; i < PX->nv; i++) {
-      int y = out->map[i];
-      map[kx.active ? kx.to_in[i] : i] = ky.active ? ky.to_in[y] : y;
-    }
-    if (kx.active) {
-      int nd = X->nv - PX->nv, *near = malloc(sizeof(int) * (size_t)(nd > 0 ? nd : 1));
-      double *P = malloc(sizeof(double) * 3 * (size_t)(nd > 0 ? nd : 1));
-      if (!near || !P) st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-      int j = 0;
-      for (int i = 0; !st && i < X->nv; i++)
-        if (kx.to_sub[i] < 0) memcpy(P + 3 * (size_t)j++, X->V + 3 * (size_t)i, sizeof(double) * 3);
-      if (!st) st = ss_closest_vertices(P, nd, &kx.sub, near, err);
-      j = 0;
-      for (int i = 0; !st && i < X->nv; i++)
-        if (kx.to_sub[i] < 0) map[i] = map[kx.to_in[near[j++]]];
-      free(near);
-      free(P);
-      if (st) { free(map); goto done; }
-    }
-    for (int p = 0; p < out->pairs.n; p++) {
-      if (kx.active) out->centerX[p] = kx.to_in[out->centerX[p]];
-      if (ky.active) out->centerY[p] = ky.to_in[out->centerY[p]];
-    }
-    free(out->map);
-    out->map = map;
-    out->nX = X->nv;
-  }
-  kept_warning(&kx, X, "X (the first mesh)", 1, warnings, warnings_size);
-  kept_warning(&ky, Y, "Y (the second mesh)", 0, warnings, warnings_size);
+  /* back to the input meshes' vertices: from the proxies, then from the kept components */
+  if ((st = ssi_match_lift(&cx, &cy, FX, out, err))) goto done;
+  if ((st = ssi_match_lift(&kx.sub, &ky.sub, X, out, err))) goto done;
+  ssi_kept_warning(&kx, X, "X (the first mesh)", 1, warnings, warnings_size);
+  ssi_kept_warning(&ky, Y, "Y (the second mesh)", 0, warnings, warnings_size);
 done:
   if (st) ss_match_result_free(out);
   if (have_x) ss_shape_prep_free(&pX);
@@ -1083,10 +942,10 @@ done:
   free(ly);
   free(dX);
   free(dY);
-  kept_free(&kx);
-  kept_free(&ky);
-  ssi_proxy_free(&cx);
-  ssi_proxy_free(&cy);
+  ssi_kept_free(&kx);
+  ssi_kept_free(&ky);
+  ssi_submesh_free(&cx);
+  ssi_submesh_free(&cy);
   return st;
 }
 
