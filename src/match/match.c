@@ -6,6 +6,7 @@
 #include "mesh/mesh_topology.h"
 #include "specseg/streamline.h"
 #include "fmap/fmap_options.h"
+#include "match/match_internal.h"
 #include "match/match_submesh.h"
 #include "match/hypotheses.h"
 #include "match/autopair_internal.h"
@@ -76,7 +77,7 @@ static int match_kev(const ss_match_options *o) {
 
 /* The fmap options of a match's two starts: [0] STD, [1] the segment-aided one (its own descriptor
  * basis); returns how many differ in what a probe cache holds (1 or 2). */
-static int start_options(const ss_match_options *o, ss_fmap_match_options fo[2]) {
+int ssi_match_start_options(const ss_match_options *o, ss_fmap_match_options fo[2]) {
   fo[0] = fo[1] = o->fmap;
   fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0;
   fo[1].descr_k = o->seg_descr_k;
@@ -89,7 +90,7 @@ static ss_status probe_caches(const ss_shape_prep *p, const ss_match_options *o,
   *out = NULL, *n = 0;
   if (o->ndescr > 0 || o->fmap.no_wks) return SS_OK;
   ss_fmap_match_options fo[2];
-  const int ns = start_options(o, fo);
+  const int ns = ssi_match_start_options(o, fo);
   int kt = 0;
   for (int c = 0; c < ns; c++) kt = ssi_fmap_descr_k(&fo[c]) > kt ? ssi_fmap_descr_k(&fo[c]) : kt;
   if (kt > p->kev) return SS_OK; /* the match reports the missing eigenpairs */
@@ -110,14 +111,14 @@ static ss_status probe_caches(const ss_shape_prep *p, const ss_match_options *o,
 /* do p's cache entries serve every base probe set of a match with options o? */
 static int caches_cover(const ss_shape_prep *p, const ss_match_options *o) {
   ss_fmap_match_options fo[2];
-  const int ns = start_options(o, fo);
+  const int ns = ssi_match_start_options(o, fo);
   ss_fmap_shape fs = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, p->probe_cache, p->nprobe_cache};
   for (int c = 0; c < ns; c++)
     if (!ssi_fmap_cache_covers(&fs, &fo[c], o->fmap.w_dcomm > 0)) return 0;
   return 1;
 }
 
-/* One shape's probe cache entries for probe_caches_both (nothing when the shape carries them). */
+/* One shape's probe cache entries for ssi_match_probe_caches_both (nothing when the shape carries them). */
 typedef struct cache_task {
   const ss_shape_prep *p;
   const ss_match_options *o;
@@ -131,8 +132,9 @@ static ss_status cache_task_run(void *arg, ss_error *err) {
 
 /* The probe cache entries of both shapes that the shapes do not carry (NULL, 0 where they do), side
  * by side when both need them (ssi_run_both); X's error first. */
-static ss_status probe_caches_both(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
-                                   ss_fmap_probe_cache **cx, int *nx, ss_fmap_probe_cache **cy, int *ny, ss_error *err) {
+ss_status ssi_match_probe_caches_both(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
+                                      ss_fmap_probe_cache **cx, int *nx, ss_fmap_probe_cache **cy, int *ny,
+                                      ss_error *err) {
   *cx = *cy = NULL, *nx = *ny = 0;
   cache_task tx = {X, o, cx, nx, !caches_cover(X, o)}, ty = {Y, o, cy, ny, !caches_cover(Y, o)};
   return ssi_run_both(cache_task_run, &tx, cache_task_run, &ty, tx.need && ty.need, err);
@@ -182,7 +184,7 @@ static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, c
   return SS_OK;
 }
 
-static void add_note(ss_match_result *r, const char *msg) {
+void ssi_match_note(ss_match_result *r, const char *msg) {
   size_t n = strlen(r->notes);
   snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
 }
@@ -241,9 +243,9 @@ static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, 
   return SS_OK;
 }
 
-static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
-                            ss_error *err) {
+ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
+                         const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
+                         ss_error *err) {
   double t_start = ss_time();
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
@@ -325,10 +327,10 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   if (use_seg && nl < o.pairing.min_landmarks) {
     char msg[160];
     snprintf(msg, sizeof msg, "%d landmarks (fewer than %d): no segment probes, STD map", nl, o.pairing.min_landmarks);
-    add_note(out, msg);
+    ssi_match_note(out, msg);
     use_seg = 0;
   } else if (use_seg && np == 0) {
-    add_note(out, "no segment paired: STD map");
+    ssi_match_note(out, "no segment paired: STD map");
     use_seg = 0;
   }
   /* candidate starts: 0 STD, 1 segment-aided */
@@ -337,7 +339,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   const int want_std = !use_seg || o.refine == SS_REFINE_BEST || check, want_seg = use_seg;
   /* the shape-only parts of the base probes: the shapes' caches, else computed here by the same
    * function (so a prepared shape and its mesh give the same map) */
-  if ((st = probe_caches_both(X, Y, &o, &cacheX, &ncacheX, &cacheY, &ncacheY, err))) goto fail;
+  if ((st = ssi_match_probe_caches_both(X, Y, &o, &cacheX, &ncacheX, &cacheY, &ncacheY, err))) goto fail;
   ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr, cacheX ? cacheX : X->probe_cache,
                       cacheX ? ncacheX : X->nprobe_cache},
                 sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr, cacheY ? cacheY : Y->probe_cache,
@@ -345,7 +347,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
   /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
    * assembled system per distinct descriptor basis (ZoomOut is run and timed below) */
   ss_fmap_match_options fo[2];
-  start_options(&o, fo);
+  ssi_match_start_options(&o, fo);
   const int ops = o.fmap.w_dcomm > 0, xops = ops && o.fmap.extra_dcomm;
   const int own1 = want_seg && (!want_std || ssi_fmap_descr_k(&fo[1]) != ssi_fmap_descr_k(&fo[0])); /* its own base */
   ss_fmap_weights w;
@@ -367,7 +369,7 @@ static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int 
         char msg[160];
         snprintf(msg, sizeof msg, "%d of %d segment pairs dropped: the STD map sends under %.2g of the segment there%s",
                  dropped, np + dropped, o.pairing.min_map_share, np ? "" : "; STD map");
-        add_note(out, msg);
+        ssi_match_note(out, msg);
       }
       if (np == 0) { use_seg = 0; break; }
     }
@@ -546,7 +548,7 @@ ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y
     if (out) memset(out, 0, sizeof *out);
     return ss_fail(err, SS_ERR_INVALID, "match: NULL segment pairs");
   }
-  return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
+  return ssi_match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
 }
 
 /* The landmarks of a hypothesis pr: the centres of its round(keep · n) (at least 3) pairs whose X
@@ -731,11 +733,11 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
     if (from_pairs[c] >= 0) {
-      if ((st = match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
+      if ((st = ssi_match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
     } else {
       ss_match_options ok = o;
       if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
-      if ((st = match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
+      if ((st = ssi_match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
     }
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
@@ -791,7 +793,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     snprintf(msg, sizeof msg, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
              "under the map kept (hypothesis #%d%s); check them", lm_off[info.hypothesis], nlg,
              o.autopair.hyp_landmark_tol, info.hypothesis, free_of[info.hypothesis] ? ", landmark-free" : "");
-    add_note(out, msg);
+    ssi_match_note(out, msg);
   }
   if (!info.confident) {
     char msg[240];
@@ -803,7 +805,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
                "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
                o.autopair.min_mirror);
-    add_note(out, msg);
+    ssi_match_note(out, msg);
   }
 done:
   if (st) ss_match_result_free(out);
@@ -838,7 +840,7 @@ ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep 
       X->seg.centers && Y->seg.centers && X->mesh && Y->mesh) {
     for (int i = 0; i < nl; i++)
       if (!lmX || !lmY || lmX[i] < 0 || lmX[i] >= X->mesh->nv || lmY[i] < 0 || lmY[i] >= Y->mesh->nv)
-        return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
+        return ssi_match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
     if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
     /* an extra beside the landmarks' map: where it cannot be formed (a shape in several components
      * has no pairing signature), the landmarks' map alone, with a note */
@@ -849,16 +851,16 @@ ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep 
       return hs;
     }
     memset(out, 0, sizeof *out);
-    ss_status cs = match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+    ss_status cs = ssi_match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
     if (!cs) {
       char note[200];
       snprintf(note, sizeof note, "no hypotheses beside the landmarks (%.150s)", he.msg);
-      add_note(out, note);
+      ssi_match_note(out, note);
     }
     return cs;
   }
   memset(out, 0, sizeof *out);
-  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+  return ssi_match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
