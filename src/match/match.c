@@ -1,19 +1,16 @@
-/* The matching pipeline of paper §6 on two shapes: pairing of the segments, their probe functions as
- * extra probes of the functional map (STD / ASA / DIFF), point map, ZoomOut. */
-#include "util/warnings.h"
+/* The matching pipeline's entry points (match.h): its options and result; ss_match / ss_match_warn
+ * from two meshes (landmarks checked, the kept components and proxies of match_submesh.c, both shapes
+ * prepared side by side, the map lifted back); ss_match_prepared and ss_match_prepared_pairs on
+ * prepared shapes; ss_pair_auto. The stages they run: match_core.c (one match from landmarks),
+ * match_hypotheses.c (the hypotheses' maps), match_probe_cache.c; pairing.c and autopair.c pair the
+ * segments, segment_probes.c gives their probe functions. */
 #include "specseg/match.h"
-#include "mesh/mesh_geometry.h"
-#include "mesh/mesh_topology.h"
-#include "specseg/streamline.h"
-#include "fmap/fmap_options.h"
 #include "match/match_internal.h"
 #include "match/match_submesh.h"
 #include "match/hypotheses.h"
-#include "match/autopair_internal.h"
 #include "match/landmark_check.h"
 #include "util/side_by_side.h"
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
