@@ -356,7 +356,7 @@ SS_API ss_status ss_pair_centres_hypotheses(const ss_centre_signature *X, const 
                                             const ss_autopair_options *o, int maxh, ss_segment_pairs *hyp, int *nh,
                                             ss_autopair_info *info, ss_error *err);
 
-/* ---- The matching pipeline (match.c) ------------------------------------------------------------ */
+/* ---- The matching pipeline (match.c; its stages in match_*.c) ----------------------------------- */
 
 typedef enum ss_probe_set {
   SS_PROBES_STD = 0,  /* WKS + landmark wave-kernel maps (NO17) */

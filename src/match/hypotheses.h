@@ -25,7 +25,7 @@ ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_err
 
 /* ss_match_prepared with the shapes' centre signatures when the caller has them (NULL: computed):
  * landmark-free, the hypotheses' map; with landmarks and ss_autopair_options.hyp_landmarks, the
- * given landmarks' map against the pairing hypotheses that agree with them (match.c). */
+ * given landmarks' map against the pairing hypotheses that agree with them (match_hypotheses.c). */
 ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
                                     const ss_centre_signature *sigY, int nl, const int *lmX, const int *lmY,
                                     const ss_match_options *opts, ss_match_result *out, ss_error *err);

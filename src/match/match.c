@@ -1,18 +1,16 @@
-/* The matching pipeline of paper §6 on two shapes: pairing of the segments, their probe functions as
- * extra probes of the functional map (STD / ASA / DIFF), point map, ZoomOut. */
-#include "util/warnings.h"
+/* The matching pipeline's entry points (match.h): its options and result; ss_match / ss_match_warn
+ * from two meshes (landmarks checked, the kept components and proxies of match_submesh.c, both shapes
+ * prepared side by side, the map lifted back); ss_match_prepared and ss_match_prepared_pairs on
+ * prepared shapes; ss_pair_auto. The stages they run: match_core.c (one match from landmarks),
+ * match_hypotheses.c (the hypotheses' maps), match_probe_cache.c; pairing.c and autopair.c pair the
+ * segments, segment_probes.c gives their probe functions. */
 #include "specseg/match.h"
-#include "mesh/mesh_geometry.h"
-#include "mesh/mesh_topology.h"
-#include "specseg/streamline.h"
-#include "fmap/fmap_options.h"
-#include "match/proxy.h"
+#include "match/match_internal.h"
+#include "match/match_submesh.h"
 #include "match/hypotheses.h"
-#include "match/autopair_internal.h"
 #include "match/landmark_check.h"
 #include "util/side_by_side.h"
 
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,436 +63,6 @@ void ss_match_result_free(ss_match_result *r) {
   memset(r, 0, sizeof *r);
 }
 
-/* eigenpairs the options need on each shape */
-static int match_kev(const ss_match_options *o) {
-  int kev = o->fmap.k;
-  if (o->refine != SS_REFINE_NONE && o->fmap.zoomout_kmax > kev) kev = o->fmap.zoomout_kmax;
-  if (o->fmap.descr_k > kev) kev = o->fmap.descr_k;
-  if (o->probes != SS_PROBES_STD && o->seg_descr_k > kev) kev = o->seg_descr_k;
-  return kev;
-}
-
-/* The fmap options of a match's two starts: [0] STD, [1] the segment-aided one (its own descriptor
- * basis); returns how many differ in what a probe cache holds (1 or 2). */
-static int start_options(const ss_match_options *o, ss_fmap_match_options fo[2]) {
-  fo[0] = fo[1] = o->fmap;
-  fo[0].zoomout_kmax = fo[1].zoomout_kmax = 0;
-  fo[1].descr_k = o->seg_descr_k;
-  return o->probes != SS_PROBES_STD && ssi_fmap_descr_k(&fo[1]) != ssi_fmap_descr_k(&fo[0]) ? 2 : 1;
-}
-
-/* the probe cache entries of a match with options o on prep p (*n 0: none applies) */
-static ss_status probe_caches(const ss_shape_prep *p, const ss_match_options *o, ss_fmap_probe_cache **out, int *n,
-                              ss_error *err) {
-  *out = NULL, *n = 0;
-  if (o->ndescr > 0 || o->fmap.no_wks) return SS_OK;
-  ss_fmap_match_options fo[2];
-  const int ns = start_options(o, fo);
-  int kt = 0;
-  for (int c = 0; c < ns; c++) kt = ssi_fmap_descr_k(&fo[c]) > kt ? ssi_fmap_descr_k(&fo[c]) : kt;
-  if (kt > p->kev) return SS_OK; /* the match reports the missing eigenpairs */
-  ss_fmap_probe_cache *c = calloc((size_t)ns, sizeof *c);
-  if (!c) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-  ss_fmap_shape fs = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
-  ss_status st = SS_OK;
-  for (int i = 0; i < ns && !st; i++) st = ss_fmap_probe_cache_compute(&fs, &fo[i], i == 0, kt, &c[i], err);
-  if (st) {
-    for (int i = 0; i < ns; i++) ss_fmap_probe_cache_free(&c[i]);
-    free(c);
-    return st;
-  }
-  *out = c, *n = ns;
-  return SS_OK;
-}
-
-/* do p's cache entries serve every base probe set of a match with options o? */
-static int caches_cover(const ss_shape_prep *p, const ss_match_options *o) {
-  ss_fmap_match_options fo[2];
-  const int ns = start_options(o, fo);
-  ss_fmap_shape fs = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, p->probe_cache, p->nprobe_cache};
-  for (int c = 0; c < ns; c++)
-    if (!ssi_fmap_cache_covers(&fs, &fo[c], o->fmap.w_dcomm > 0)) return 0;
-  return 1;
-}
-
-/* One shape's probe cache entries for probe_caches_both (nothing when the shape carries them). */
-typedef struct cache_task {
-  const ss_shape_prep *p;
-  const ss_match_options *o;
-  ss_fmap_probe_cache **c;
-  int *n, need;
-} cache_task;
-static ss_status cache_task_run(void *arg, ss_error *err) {
-  cache_task *t = arg;
-  return t->need ? probe_caches(t->p, t->o, t->c, t->n, err) : SS_OK;
-}
-
-/* The probe cache entries of both shapes that the shapes do not carry (NULL, 0 where they do), side
- * by side when both need them (ssi_run_both); X's error first. */
-static ss_status probe_caches_both(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
-                                   ss_fmap_probe_cache **cx, int *nx, ss_fmap_probe_cache **cy, int *ny, ss_error *err) {
-  *cx = *cy = NULL, *nx = *ny = 0;
-  cache_task tx = {X, o, cx, nx, !caches_cover(X, o)}, ty = {Y, o, cy, ny, !caches_cover(Y, o)};
-  return ssi_run_both(cache_task_run, &tx, cache_task_run, &ty, tx.need && ty.need, err);
-}
-
-ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *opts, ss_error *err) {
-  if (!p || !p->mesh || !p->evecs) return ss_fail(err, SS_ERR_INVALID, "probe cache: shape not prepared");
-  ss_match_options d;
-  if (!opts) ss_match_default_options(&d), opts = &d;
-  ss_fmap_probe_cache *c;
-  int n;
-  ss_status st = probe_caches(p, opts, &c, &n, err);
-  if (st) return st;
-  for (int i = 0; i < p->nprobe_cache && p->probe_cache; i++) ss_fmap_probe_cache_free(&p->probe_cache[i]);
-  free(p->probe_cache);
-  p->probe_cache = c, p->nprobe_cache = n;
-  return SS_OK;
-}
-
-int ss_match_segments(const ss_match_options *opts, int nl) {
-  ss_match_options d;
-  if (!opts) ss_match_default_options(&d), opts = &d;
-  return nl == 0 || opts->probes != SS_PROBES_STD || opts->std_pairs;
-}
-
-int ss_match_eigenpairs(const ss_match_options *opts, int nl) {
-  ss_match_options d;
-  if (!opts) ss_match_default_options(&d), opts = &d;
-  int kev = match_kev(opts);
-  if (nl == 0) { /* the landmark-free pairing's descriptors and orientation test */
-    if (opts->autopair.descr_k > kev) kev = opts->autopair.descr_k;
-    if (opts->autopair.orient_k > kev) kev = opts->autopair.orient_k;
-  }
-  return kev;
-}
-
-/* the selection energy of SS_REFINE_BEST for the point map X -> Y (see match.h) */
-static ss_status select_energy(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o, int k, int kz,
-                               const ss_fmap_probes *bX, const ss_fmap_probes *bY, const int *map, double *E, ss_error *err) {
-  *E = NAN;
-  ss_status st = ss_p2p_energy(Y->mesh->nv, X->mesh->nv, Y->evals, X->evals, Y->evecs, X->evecs, X->M, map, k, kz, 1,
-                               o->refine_w_lap, E, NULL, NULL, err);
-  if (st || !(o->refine_w_descr > 0)) return st;
-  double r;
-  if ((st = ss_p2p_descr_residual(Y->mesh->nv, X->mesh->nv, Y->evecs, X->evecs, X->M, bY, bX, map, &r, err))) return st;
-  *E += o->refine_w_descr * r;
-  return SS_OK;
-}
-
-static void add_note(ss_match_result *r, const char *msg) {
-  size_t n = strlen(r->notes);
-  snprintf(r->notes + n, sizeof r->notes - n, "%s%s", n ? "; " : "", msg);
-}
-
-static int count_components(const ss_mesh *m) {
-  int *comp = malloc(sizeof(int) * (size_t)(m->nv > 0 ? m->nv : 1));
-  int nc = comp ? ssi_mesh_components(m, comp) : -1;
-  free(comp);
-  return nc;
-}
-
-/* The functional-map system could not be solved (normal equations singular: "fmap: ... dsposv info
- * N"): say why that usually happens and what to do. */
-static void explain_singular(const ss_mesh *X, const ss_mesh *Y, int nl, int npairs, int k, ss_error *err) {
-  if (!err) return;
-  char what[512];
-  snprintf(what, sizeof what, "%.500s", err->msg);
-  int cx = count_components(X), cy = count_components(Y);
-  if (cx > 1 || cy > 1)
-    ss_fail(err, SS_ERR_NUMERIC,
-            "match: the functional-map system is singular (%s): X has %d connected components and Y %d, and the "
-            "probe functions do not determine the map on components without a landmark; match only the components "
-            "that hold landmarks (ss_match does) or put landmarks on every component",
-            what, cx, cy);
-  else
-    ss_fail(err, SS_ERR_NUMERIC,
-            "match: the functional-map system is singular (%s): the probe functions (descriptors, %d landmark%s, %d "
-            "paired segment%s) do not determine the %d x %d map; use more landmarks or a smaller basis (k)",
-            what, nl, nl == 1 ? "" : "s", npairs, npairs == 1 ? "" : "s", k, k);
-}
-
-/* a copy of the given pairing, checked against the segmentations */
-static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, const ss_shape_prep *Y, ss_segment_pairs *out,
-                            ss_error *err) {
-  memset(out, 0, sizeof *out);
-  if (in->n < 0 || (in->n > 0 && (!in->sx || !in->sy)))
-    return ss_fail(err, SS_ERR_INVALID, "match: bad segment pairs (%d)", in->n);
-  for (int p = 0; p < in->n; p++)
-    if (in->sx[p] < 0 || in->sx[p] >= X->seg.m || in->sy[p] < 0 || in->sy[p] >= Y->seg.m)
-      return ss_fail(err, SS_ERR_INVALID, "match: segment pair %d (%d, %d) out of range (%d, %d segments)", p, in->sx[p],
-                     in->sy[p], X->seg.m, Y->seg.m);
-  const size_t n = (size_t)(in->n > 0 ? in->n : 1);
-  out->sx = malloc(sizeof(int) * n), out->sy = malloc(sizeof(int) * n), out->energy = malloc(sizeof(double) * n);
-  if (!out->sx || !out->sy || !out->energy) {
-    ss_segment_pairs_free(out);
-    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-  }
-  out->n = in->n, out->nx = in->nx, out->ny = in->ny;
-  if (in->n > 0) {
-    memcpy(out->sx, in->sx, sizeof(int) * (size_t)in->n);
-    memcpy(out->sy, in->sy, sizeof(int) * (size_t)in->n);
-    if (in->energy) memcpy(out->energy, in->energy, sizeof(double) * (size_t)in->n);
-    else
-      for (int p = 0; p < in->n; p++) out->energy[p] = NAN;
-  }
-  return SS_OK;
-}
-
-static ss_status match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
-                            const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
-                            ss_error *err) {
-  double t_start = ss_time();
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
-  memset(out, 0, sizeof *out);
-  out->refine_choice = -1;
-  for (int i = 0; i < 4; i++) out->refine_energy[i] = NAN;
-  ss_match_options o;
-  if (opts_in) o = *opts_in;
-  else ss_match_default_options(&o);
-  if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
-    return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
-  if ((int)o.segment_profile < SS_PROFILE_INDICATOR || o.segment_profile > SS_PROFILE_SOFT)
-    return ss_fail(err, SS_ERR_INVALID, "match: unknown segment profile %d", (int)o.segment_profile);
-  if (o.probes < SS_PROBES_STD || o.probes > SS_PROBES_DIFF)
-    return ss_fail(err, SS_ERR_INVALID, "match: unknown probe set %d", (int)o.probes);
-  if (o.seg_descr_k != 0 && o.seg_descr_k < o.fmap.k)
-    return ss_fail(err, SS_ERR_INVALID, "match: seg_descr_k %d below k = %d", o.seg_descr_k, o.fmap.k);
-  if (o.refine < SS_REFINE_NONE || o.refine > SS_REFINE_BEST)
-    return ss_fail(err, SS_ERR_INVALID, "match: unknown refinement %d", (int)o.refine);
-  if (!(o.refine_w_lap >= 0) || !isfinite(o.refine_w_lap) || !(o.refine_w_descr >= 0) || !isfinite(o.refine_w_descr))
-    return ss_fail(err, SS_ERR_INVALID, "match: refine weights %g, %g must be finite and non-negative", o.refine_w_lap,
-                   o.refine_w_descr);
-  if (nl < 1 || !lmX || !lmY) return ss_fail(err, SS_ERR_INVALID, "match: needs at least one landmark");
-  if (o.ndescr < 0 || (o.ndescr > 0 && (!o.descrX || !o.descrY)))
-    return ss_fail(err, SS_ERR_INVALID, "match: %d descriptors without their values", o.ndescr);
-  const int nX = X->mesh->nv, nY = Y->mesh->nv, k = o.fmap.k;
-  for (int i = 0; i < nl; i++) {
-    if (lmX[i] < 0 || lmX[i] >= nX)
-      return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on X [0,%d)", i, lmX[i], nX);
-    if (lmY[i] < 0 || lmY[i] >= nY)
-      return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], nY);
-  }
-  if (k < 3 || (o.fmap.zoomout_kmax != 0 && o.fmap.zoomout_kmax < k))
-    return ss_fail(err, SS_ERR_INVALID, "match: bad basis sizes (k %d, ZoomOut %d)", k, o.fmap.zoomout_kmax);
-  /* ZoomOut size: only with refinement */
-  const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > k ? o.fmap.zoomout_kmax : k;
-  int need = match_kev(&o);
-  if (X->kev < need || Y->kev < need)
-    return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs needed, shapes have %d and %d", need, X->kev, Y->kev);
-
-  ss_status st = SS_OK;
-  double *EX = NULL, *EY = NULL, *Ck[2] = {NULL, NULL}, *Cz = NULL, *Cbest = NULL;
-  int *zmap = NULL, *smap[2] = {NULL, NULL};
-  ss_fmap_probes bX = {0}, bY = {0}, xX = {0}, xY = {0}, sbX = {0}, sbY = {0}; /* sb: STD's base (selection energy) */
-  ss_fmap_system *sys = NULL;
-  ssi_zoomout_plan plan = {0};
-  ss_fmap_probe_cache *cacheX = NULL, *cacheY = NULL; /* this match's own, when the shapes' do not serve */
-  int ncacheX = 0, ncacheY = 0;
-  out->nX = nX;
-  out->t_segment = X->t_segment + Y->t_segment;
-  out->t_eigs = X->t_eigs + Y->t_eigs;
-
-  /* 1. pairing of the segments (with STD only when asked for: its map does not use them) */
-  double t0 = ss_time();
-  if (pairs_in) {
-    if ((st = copy_pairs(pairs_in, X, Y, &out->pairs, err))) goto fail;
-  } else if (ss_match_segments(&o, nl)) {
-    if (!X->seg.centers || !Y->seg.centers) {
-      st = ss_fail(err, SS_ERR_INVALID, "match: %s not segmented (ss_shape_prep_compute_spectral): %s",
-                   !X->seg.centers ? "X is" : "Y is", o.probes != SS_PROBES_STD ? "ASA and DIFF pair its segments"
-                                                                                 : "std_pairs pairs its segments");
-      goto fail;
-    }
-    if ((st = ss_pair_segments_prepared(X, Y, nl, lmX, lmY, &o.pairing, &out->pairs, err))) goto fail;
-  }
-  int np = out->pairs.n;
-  out->centerX = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
-  out->centerY = malloc(sizeof(int) * (size_t)(np > 0 ? np : 1));
-  if (!out->centerX || !out->centerY) goto nomem;
-  for (int p = 0; p < np; p++) {
-    out->centerX[p] = X->seg.centers[out->pairs.sx[p]];
-    out->centerY[p] = Y->seg.centers[out->pairs.sy[p]];
-  }
-  double t1 = ss_time();
-  out->t_pair = t1 - t0;
-
-  /* 2. functional maps at size k: STD (base probes alone) and the segment-aided one (with the
-   * chosen extra probes), against one assembled system per descriptor basis */
-  int use_seg = o.probes != SS_PROBES_STD;
-  if (use_seg && nl < o.pairing.min_landmarks) {
-    char msg[160];
-    snprintf(msg, sizeof msg, "%d landmarks (fewer than %d): no segment probes, STD map", nl, o.pairing.min_landmarks);
-    add_note(out, msg);
-    use_seg = 0;
-  } else if (use_seg && np == 0) {
-    add_note(out, "no segment paired: STD map");
-    use_seg = 0;
-  }
-  /* candidate starts: 0 STD, 1 segment-aided */
-  /* the map check of the pairing (pairing.min_map_share) needs the STD map */
-  const int check = use_seg && o.pairing.min_map_share > 0;
-  const int want_std = !use_seg || o.refine == SS_REFINE_BEST || check, want_seg = use_seg;
-  /* the shape-only parts of the base probes: the shapes' caches, else computed here by the same
-   * function (so a prepared shape and its mesh give the same map) */
-  if ((st = probe_caches_both(X, Y, &o, &cacheX, &ncacheX, &cacheY, &ncacheY, err))) goto fail;
-  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, o.descrX, o.ndescr, cacheX ? cacheX : X->probe_cache,
-                      cacheX ? ncacheX : X->nprobe_cache},
-                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, o.descrY, o.ndescr, cacheY ? cacheY : Y->probe_cache,
-                      cacheY ? ncacheY : Y->nprobe_cache};
-  /* fo[0]: the STD map's options, fo[1]: the segment-aided one's (its own descriptor basis); one
-   * assembled system per distinct descriptor basis (ZoomOut is run and timed below) */
-  ss_fmap_match_options fo[2];
-  start_options(&o, fo);
-  const int ops = o.fmap.w_dcomm > 0, xops = ops && o.fmap.extra_dcomm;
-  const int own1 = want_seg && (!want_std || ssi_fmap_descr_k(&fo[1]) != ssi_fmap_descr_k(&fo[0])); /* its own base */
-  ss_fmap_weights w;
-  if ((st = ss_fmap_pair_weights(&sX, &sY, &fo[0], &w, err))) goto fail;
-  for (int c = 0; c < 2; c++) {
-    if (!(c ? want_seg : want_std)) continue;
-    if (c == 1 && check) { /* drop the pairs the STD map contradicts (pairing.c) */
-      /* the STD start's point map, kept for the selection energy below */
-      int dropped = 0;
-      if (!(smap[0] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
-      st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[0], smap[0], err);
-      if (!st) st = ss_segment_pairs_check_map(&X->seg, &Y->seg, X->M, smap[0], o.pairing.min_map_share, &out->pairs,
-                                               NULL, &dropped, err);
-      if (st) goto fail;
-      np = out->pairs.n;
-      for (int p = 0; p < np; p++)
-        out->centerX[p] = X->seg.centers[out->pairs.sx[p]], out->centerY[p] = Y->seg.centers[out->pairs.sy[p]];
-      if (dropped) {
-        char msg[160];
-        snprintf(msg, sizeof msg, "%d of %d segment pairs dropped: the STD map sends under %.2g of the segment there%s",
-                 dropped, np + dropped, o.pairing.min_map_share, np ? "" : "; STD map");
-        add_note(out, msg);
-      }
-      if (np == 0) { use_seg = 0; break; }
-    }
-    if (c == 0 || own1) {
-      if (c == 1 && want_std) {
-        /* STD's base probes are kept for the selection energy (it reads their coefficients only) */
-        sbX = bX, sbY = bY;
-        memset(&bX, 0, sizeof bX), memset(&bY, 0, sizeof bY);
-      }
-      ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY);
-      ss_fmap_system_free(sys);
-      sys = NULL;
-      if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo[c], ops, &bX, err))) goto fail;
-      if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[c], ops, &bY, err))) goto fail;
-      /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
-      if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto fail;
-    }
-    if (c == 1) {
-      ss_probe_filter filt = o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
-      if ((st = ss_segment_probes(&X->seg, np, out->pairs.sx, o.segment_profile, &EX, err))) goto fail;
-      if ((st = ss_segment_probes(&Y->seg, np, out->pairs.sy, o.segment_profile, &EY, err))) goto fail;
-      if ((st = ss_fmap_extra_probes(&sX, nl, np, EX, filt, &fo[1], xops, &xX, err))) goto fail;
-      if ((st = ss_fmap_extra_probes(&sY, nl, np, EY, filt, &fo[1], xops, &xY, err))) goto fail;
-    }
-    if (!(Ck[c] = malloc(sizeof(double) * (size_t)k * k))) goto nomem;
-    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, Ck[c], err))) {
-      if (st == SS_ERR_NUMERIC) explain_singular(X->mesh, Y->mesh, nl, c ? np : 0, k, err);
-      goto fail;
-    }
-  }
-  out->map = malloc(sizeof(int) * (size_t)nX);
-  if (!out->map) goto nomem;
-  double t2 = ss_time();
-  out->t_fmap = t2 - t1;
-
-  /* 3. point map: unrefined, ZoomOut of the chosen probes' map, or the best of the candidates */
-  const int main_c = use_seg ? 1 : 0;
-  if (o.refine != SS_REFINE_BEST) {
-    if (kz > k) {
-      out->kc = kz;
-      if (!(out->C = malloc(sizeof(double) * (size_t)kz * kz))) goto nomem;
-      int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
-        goto fail;
-      if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step, out->map, out->C, err)))
-        goto fail;
-      out->t_zoomout = ss_time() - t2;
-    } else {
-      if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[main_c], out->map, err))) goto fail;
-      out->kc = k;
-      out->C = Ck[main_c];
-      Ck[main_c] = NULL;
-    }
-  } else {
-    /* candidates 2c (start c at size k) and 2c+1 (its ZoomOut to kz), selection energy at size kz */
-    zmap = malloc(sizeof(int) * (size_t)nX);
-    Cz = malloc(sizeof(double) * (size_t)kz * kz);
-    Cbest = malloc(sizeof(double) * (size_t)kz * kz);
-    if (!zmap || !Cz || !Cbest) goto nomem;
-    const int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-    /* the STD base probes of the selection energy: kept apart when the segment-aided map had its own */
-    const ss_fmap_probes *qX = sbX.A ? &sbX : &bX, *qY = sbY.A ? &sbY : &bY;
-    double best = INFINITY;
-    int kbest = k;
-    /* the starts' energies first (with refine_single only the lower one is refined) */
-    for (int c = 0; c < 2; c++) {
-      if (!Ck[c]) continue;
-      if (!smap[c]) { /* (the map check may have computed the STD start's already) */
-        if (!(smap[c] = malloc(sizeof(int) * (size_t)nX))) goto nomem;
-        if ((st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, Ck[c], smap[c], err))) goto fail;
-      }
-      if ((st = select_energy(X, Y, &o, k, kz, qX, qY, smap[c], &out->refine_energy[2 * c], err))) goto fail;
-    }
-    if (kz > k) {
-      double tz = ss_time();
-      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
-        goto fail;
-      out->t_zoomout += ss_time() - tz;
-    }
-    for (int c = 0; c < 2; c++) {
-      if (!Ck[c]) continue;
-      double e0 = out->refine_energy[2 * c], e1 = INFINITY;
-      /* refine_single: the other start has the lower energy (ties: STD's is refined) */
-      const double eo = out->refine_energy[2 * (1 - c)];
-      const int skip = o.refine_single && Ck[1 - c] && (eo < e0 || (eo == e0 && c == 1));
-      if (kz > k && !skip) {
-        double tz = ss_time();
-        if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
-        out->t_zoomout += ss_time() - tz;
-        if ((st = select_energy(X, Y, &o, k, kz, qX, qY, zmap, &e1, err))) goto fail;
-        out->refine_energy[2 * c + 1] = e1;
-      }
-      /* the start, then its refinement only when it lowers the energy (ties keep the earlier one) */
-      if (e0 < best) {
-        best = e0, out->refine_choice = 2 * c, kbest = k;
-        memcpy(out->map, smap[c], sizeof(int) * (size_t)nX);
-        memcpy(Cbest, Ck[c], sizeof(double) * (size_t)k * k);
-      }
-      if (e1 < best && e1 <= e0) {
-        best = e1, out->refine_choice = 2 * c + 1, kbest = kz;
-        memcpy(out->map, zmap, sizeof(int) * (size_t)nX);
-        memcpy(Cbest, Cz, sizeof(double) * (size_t)kz * kz);
-      }
-    }
-    out->kc = kbest;
-    out->C = Cbest;
-    Cbest = NULL;
-  }
-  out->t_total = out->t_segment + out->t_eigs + (ss_time() - t_start);
-  goto cleanup;
-nomem:
-  st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-fail:
-  ss_match_result_free(out);
-cleanup:
-  ss_fmap_system_free(sys);
-  ssi_zoomout_plan_free(&plan);
-  ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);
-  ss_fmap_probes_free(&sbX), ss_fmap_probes_free(&sbY);
-  free(EX), free(EY), free(Ck[0]), free(Ck[1]), free(Cz), free(Cbest), free(zmap);
-  free(smap[0]), free(smap[1]);
-  for (int i = 0; i < ncacheX; i++) ss_fmap_probe_cache_free(&cacheX[i]);
-  for (int i = 0; i < ncacheY; i++) ss_fmap_probe_cache_free(&cacheY[i]);
-  free(cacheX), free(cacheY);
-  return st;
-}
-
 /* "match: what" -> "match: SHAPE: what" (every message of a shape's preparation is about one mesh) */
 static void name_shape(ss_error *err, const char *shape) {
   if (!err) return;
@@ -532,115 +100,6 @@ static ss_status prepare_both(const ss_mesh *PX, const ss_mesh *PY, int segment,
   return st;
 }
 
-/* ---- meshes of several components ---------------------------------------------------------------
- * The functional map is only determined on components that hold a landmark (elsewhere the probes
- * leave the basis functions free: "dsposv info N"). So ss_match keeps, on each mesh, the components
- * that hold a landmark — the body of a scan, without its crumbs — and matches those; a vertex of X on
- * a dropped component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X
- * maps to a dropped vertex of Y. */
-typedef struct kept {
-  int active;      /* 0: the whole mesh is used */
-  ss_mesh sub;     /* the kept components (vertices in input order) */
-  int *to_in;      /* sub vertex -> input vertex */
-  int *to_sub;     /* input vertex -> sub vertex, -1 when dropped */
-  int nc, nkept;   /* components, kept components */
-  int landmark_free; /* kept: the largest component (no landmarks) */
-  double area, kept_area;
-} kept;
-
-static void kept_free(kept *k) {
-  ss_mesh_free(&k->sub);
-  free(k->to_in);
-  free(k->to_sub);
-  memset(k, 0, sizeof *k);
-}
-
-static ss_status keep_landmark_components(const ss_mesh *m, const char *name, int nl, const int *lm, kept *k,
-                                          ss_error *err) {
-  memset(k, 0, sizeof *k);
-  if (!m->V || !m->F || m->nv < 1 || m->nf < 1) return SS_OK; /* refused by the preparation, with its message */
-  for (size_t c = 0; c < 3 * (size_t)m->nf; c++)
-    if (m->F[c] < 0 || m->F[c] >= m->nv)
-      return ss_fail(err, SS_ERR_INVALID, "match: %s: face %zu has vertex index %d out of range [0, %d)", name, c / 3,
-                     m->F[c], m->nv);
-  int *comp = malloc(sizeof(int) * (size_t)m->nv);
-  unsigned char *has = NULL;
-  double *carea = NULL;
-  ss_status st = SS_OK;
-  int nc = comp ? ssi_mesh_components(m, comp) : -1;
-  if (nc < 0) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  k->nc = nc;
-  if (nc <= 1) goto done;
-  has = calloc((size_t)nc, 1);
-  carea = calloc((size_t)nc, sizeof(double));
-  if (!has || !carea) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  int unref = 0, first_unref = -1;
-  for (int i = 0; i < m->nv; i++)
-    if (comp[i] < 0 && !unref++) first_unref = i;
-  if (unref) {
-    st = ss_fail(err, SS_ERR_INVALID,
-                 "match: %s: the mesh has %d unreferenced vert%s (e.g. vertex %d); remove them first (`specseg info` "
-                 "counts them): landmarks and maps refer to its vertex indices",
-                 name, unref, unref == 1 ? "ex" : "ices", first_unref);
-    goto done;
-  }
-  for (int i = 0; i < nl; i++) has[comp[lm[i]]] = 1;
-  for (int f = 0; f < m->nf; f++) {
-    const int *t = m->F + 3 * (size_t)f;
-    double a = ssi_triangle_area(m->V + 3 * (size_t)t[0], m->V + 3 * (size_t)t[1], m->V + 3 * (size_t)t[2]);
-    if (isfinite(a)) carea[comp[t[0]]] += a, k->area += a;
-  }
-  if (nl == 0) { /* landmark-free: the largest component by area (the body of a scan) */
-    int big = 0;
-    k->landmark_free = 1;
-    for (int c = 1; c < nc; c++)
-      if (carea[c] > carea[big]) big = c;
-    has[big] = 1;
-  }
-  for (int c = 0; c < nc; c++)
-    if (has[c]) k->nkept++, k->kept_area += carea[c];
-  if (k->nkept == nc) goto done; /* every component has a landmark: matched as it is */
-  k->active = 1;
-  k->to_sub = malloc(sizeof(int) * (size_t)m->nv);
-  k->to_in = malloc(sizeof(int) * (size_t)m->nv);
-  if (!k->to_sub || !k->to_in) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  int nv = 0, nf = 0;
-  for (int i = 0; i < m->nv; i++) {
-    k->to_sub[i] = has[comp[i]] ? nv : -1;
-    if (has[comp[i]]) k->to_in[nv++] = i;
-  }
-  for (int f = 0; f < m->nf; f++) nf += has[comp[m->F[3 * (size_t)f]]];
-  if ((st = ss_mesh_alloc(&k->sub, nv, nf, err))) goto done;
-  for (int i = 0; i < nv; i++) memcpy(k->sub.V + 3 * (size_t)i, m->V + 3 * (size_t)k->to_in[i], sizeof(double) * 3);
-  nf = 0;
-  for (int f = 0; f < m->nf; f++) {
-    const int *t = m->F + 3 * (size_t)f;
-    if (!has[comp[t[0]]]) continue;
-    for (int j = 0; j < 3; j++) k->sub.F[3 * (size_t)nf + j] = k->to_sub[t[j]];
-    nf++;
-  }
-done:
-  free(comp);
-  free(has);
-  free(carea);
-  if (st) kept_free(k);
-  return st;
-}
-
-
-static void kept_warning(const kept *k, const ss_mesh *m, const char *name, int is_x, char *w, size_t size) {
-  if (!k->active) return;
-  char line[400];
-  int dropped = m->nv - k->sub.nv, nd = k->nc - k->nkept;
-  snprintf(line, sizeof line,
-           "%s: matched the %d of its %d components that %s (%d of %d vertices, %.1f%% of the area); "
-           "dropped %d component%s of %d vert%s in all, %s",
-           name, k->nkept, k->nc, k->landmark_free ? "is the largest" : "hold a landmark", k->sub.nv, m->nv, k->area > 0 ? 100 * k->kept_area / k->area : 0.0, nd,
-           nd == 1 ? "" : "s", dropped, dropped == 1 ? "ex" : "ices",
-           is_x ? "which map to the image of their nearest matched vertex" : "to which no vertex of X maps");
-  ssi_warn_append(w, size, line);
-}
-
 ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                             const ss_match_options *opts, ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
@@ -655,319 +114,7 @@ ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y
     if (out) memset(out, 0, sizeof *out);
     return ss_fail(err, SS_ERR_INVALID, "match: NULL segment pairs");
   }
-  return match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
-}
-
-/* The landmarks of a hypothesis pr: the centres of its round(keep · n) (at least 3) pairs whose X
- * centre is farthest on average from X's other centres (the protrusions), in pair order; all pairs
- * when keep >= 1. Returns their count. */
-static int kept_pairs(const ss_centre_signature *SX, const ss_segment_pairs *pr, double keep, const ss_shape_prep *X,
-                      const ss_shape_prep *Y, int *lx, int *ly) {
-  const int n = pr->n, m = SX->m;
-  int nk = n;
-  if (keep < 1 && n > 3) {
-    nk = (int)floor(keep * n + 0.5);
-    if (nk < 3) nk = 3;
-  }
-  int q = 0;
-  for (int p = 0; p < n; p++) {
-    double ep = 0;
-    for (int c = 0; c < m; c++) ep += SX->D[pr->sx[p] + (size_t)m * c];
-    int rank = 0;
-    for (int t = 0; t < n; t++) {
-      double et = 0;
-      for (int c = 0; c < m; c++) et += SX->D[pr->sx[t] + (size_t)m * c];
-      rank += et > ep || (et == ep && t < p);
-    }
-    if (rank < nk) lx[q] = X->seg.centers[pr->sx[p]], ly[q++] = Y->seg.centers[pr->sy[p]];
-  }
-  return q;
-}
-
-/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed) */
-static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed) {
-  return distortion + o->hyp_w_reversed * reversed;
-}
-
-/* With given landmarks, the kept pairs (kx, ky; nk) of a hypothesis that agree with them: neither
- * centre within tol of a given landmark (that one anchors the place already), and every given
- * landmark as far from one centre as from the other within tol (edge-graph geodesics over √area;
- * gdX, gdY: nX x nlg and nY x nlg distances from the given landmarks). Returns their count. */
-static int agreeing_pairs(const ssi_hyp_ctx *hc, int nlg, const double *gdX, const double *gdY, int nk, const int *kx,
-                          const int *ky, double tol, int *ex, int *ey) {
-  const size_t nX = (size_t)hc->X->nv, nY = (size_t)hc->Y->nv;
-  int q = 0;
-  for (int p = 0; p < nk; p++) {
-    int keep = 1;
-    for (int i = 0; i < nlg && keep; i++) {
-      const double dx = gdX[nX * i + kx[p]] / hc->sX, dy = gdY[nY * i + ky[p]] / hc->sY;
-      keep = isfinite(dx) && isfinite(dy) && dx > tol && dy > tol && fabs(dx - dy) <= tol;
-    }
-    if (keep) ex[q] = kx[p], ey[q++] = ky[p];
-  }
-  return q;
-}
-
-static int same_set(int n, const int *a, const int *b, int m, const int *c, const int *d) {
-  if (n != m) return 0;
-  for (int i = 0; i < n; i++)
-    if (a[i] != c[i] || b[i] != d[i]) return 0;
-  return 1;
-}
-
-/* The share of X's nX vertices whose images under maps a and b (vertices of Y) lie farther apart
- * than tol_abs (Euclidean, in Y's units: the caller scales hyp_differ_tol by √area of Y). */
-static double map_differ_share(const ss_mesh *Y, double tol_abs, int nX, const int *a, const int *b) {
-  int far = 0;
-  for (int v = 0; v < nX; v++) {
-    const double *p = Y->V + 3 * (size_t)a[v], *q = Y->V + 3 * (size_t)b[v];
-    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-    far += dx * dx + dy * dy + dz * dz > tol_abs * tol_abs;
-  }
-  return nX > 0 ? (double)far / nX : 0;
-}
-
-static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) {
-  if (a->hypotheses < 1 || a->hypotheses > SS_MAX_HYPOTHESES || !(a->hyp_gap >= 0) ||
-      !(a->hyp_w_reversed >= 0) || !isfinite(a->hyp_w_reversed) ||
-      !isfinite(a->hyp_reversed_below) || !(a->hyp_keep > 0 && a->hyp_keep <= 1) ||
-      !isfinite(a->hyp_min_margin) || !(a->hyp_landmark_tol >= 0) ||
-      a->hyp_landmarks < 0 || a->hyp_landmarks > 2 || !(a->hyp_differ_tol >= 0) || !isfinite(a->hyp_differ_tol) ||
-      !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1]",
-                   a->hypotheses, SS_MAX_HYPOTHESES);
-  return SS_OK;
-}
-
-/* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
- * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
- * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
-static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
-                                  const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
-                                  const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
-  memset(out, 0, sizeof *out);
-  ss_match_options o;
-  if (opts_in) o = *opts_in;
-  else ss_match_default_options(&o);
-  if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
-    return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
-  if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
-  ss_centre_signature own[2];
-  memset(own, 0, sizeof own);
-  ss_segment_pairs hyp[SS_MAX_HYPOTHESES];
-  memset(hyp, 0, sizeof hyp);
-  int nh = 0;
-  ss_autopair_info info;
-  ssi_hyp_ctx hc = {0};
-  ss_match_result r;
-  memset(&r, 0, sizeof r);
-  int *lx = NULL, *ly = NULL, *cand = NULL, *maps = NULL;
-  double *segs = NULL, *gdX = NULL, *gdY = NULL;
-  ss_status st = SS_OK;
-  double t0 = ss_time();
-  if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
-  if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
-  const ss_centre_signature *SX = sigX ? sigX : &own[0], *SY = sigY ? sigY : &own[1];
-  /* with given landmarks, one candidate slot is theirs alone */
-  const int want = nlg > 0 && o.autopair.hypotheses >= SS_MAX_HYPOTHESES ? SS_MAX_HYPOTHESES - 1 : o.autopair.hypotheses;
-  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, want, hyp, &nh, &info, err))) goto done;
-  if (nlg > 0) info.used = 0;
-  if ((nh > 1 || nlg > 0) && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
-  double t_pair = ss_time() - t0;
-  int mx = 1;
-  for (int h = 0; h < nh; h++)
-    if (hyp[h].n > mx) mx = hyp[h].n;
-  /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
-  const int stride = nlg + mx, ncap = 2 * nh + 1;
-  lx = malloc(sizeof(int) * (size_t)stride * ncap);
-  ly = malloc(sizeof(int) * (size_t)stride * ncap);
-  cand = malloc(sizeof(int) * (size_t)ncap);
-  segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
-  if (!lx || !ly || !cand || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
-   * candidate (hypothesis hyp_of[c]'s protrusion pairs alone) */
-  int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES], hyp_of[SS_MAX_HYPOTHESES];
-  if (nlg > 0) {
-    gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
-    gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
-    if (!gdX || !gdY) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int i = 0; i < nlg; i++)
-      if ((st = ss_graph_dijkstra(&hc.gX, &lgX[i], 1, 0, gdX + (size_t)X->mesh->nv * i, NULL, err)) ||
-          (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
-        goto done;
-    memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
-    cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, hyp_of[0] = -1, nc = 1;
-  }
-  /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
-   * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
-   * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
-  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nc < SS_MAX_HYPOTHESES; h++) {
-    cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
-    from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
-    free_of[nc] = 1, hyp_of[nc] = h;
-    nc++;
-  }
-  if (nlg > 0) {
-    int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
-    if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int h = 0; h < nh && nc < SS_MAX_HYPOTHESES; h++) {
-      int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
-      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
-      memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
-      int ne = agreeing_pairs(&hc, nlg, gdX, gdY, nk, kx, ky, o.autopair.hyp_landmark_tol, cx + nlg, cy + nlg);
-      int dup = ne == 0;
-      for (int c = 1; c < nc && !dup; c++)
-        dup = !free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
-      if (!dup) cand[nc] = nlg + ne, from_pairs[nc] = -1, free_of[nc] = 0, hyp_of[nc++] = -1;
-    }
-    free(kx), free(ky);
-  }
-  /* hyp_keep = 1 (landmark-free): the paired centres are the landmarks and the pairing is the
-   * segments'; otherwise the segments are paired from the landmarks as with given landmarks (the
-   * saddles' centres sit front or back inconsistently between shapes) */
-  ss_match_options oall = o;
-  oall.pairing.min_landmarks = 1;
-  oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
-  double best = INFINITY, t_loop = ss_time();
-  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES];
-  const size_t nX = (size_t)X->mesh->nv;
-  /* every candidate's map, to tell the candidates that differ from the returned one */
-  if (nc > 1 && !(maps = malloc(sizeof(int) * nX * (size_t)nc))) {
-    st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-    goto done;
-  }
-  for (int c = 0; c < nc; c++) {
-    const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
-    if (from_pairs[c] >= 0) {
-      if ((st = match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
-    } else {
-      ss_match_options ok = o;
-      if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
-      if ((st = match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
-    }
-    double E = 0, dist = NAN, orient = NAN, pe = NAN;
-    const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
-    if (h >= 0) {
-      pe = 0;
-      for (int p = 0; p < hyp[h].n; p++) pe += hyp[h].energy[p];
-    }
-    if (nc > 1) {
-      memcpy(maps + nX * c, r.map, sizeof(int) * nX);
-      if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
-      orient = ssi_map_orientation(SX, SY, r.map);
-      double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
-                                                &info.hyp_orientation_min[c]);
-      info.hyp_reversed[c] = rev;
-      E = hypothesis_energy(&o.autopair, dist, rev);
-    }
-    info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
-    info.hyp_energy[c] = E;
-    info.hyp_map_energy[c] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
-    /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
-     * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
-    int off = 0;
-    for (int i = 0; i < nlg; i++)
-      off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
-    eligible[c] = !free_of[c] || off <= nlg / 4, lm_off[c] = off;
-    if (c == 0 || (eligible[c] && E < best)) {
-      if (c > 0) ss_match_result_free(out);
-      *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
-    } else
-      ss_match_result_free(&r);
-    memset(&r, 0, sizeof r);
-  }
-  info.hypotheses = nc;
-  info.hyp_margin = INFINITY;
-  /* the margin against the maps that differ from the returned one: with landmarks, the landmarks'
-   * map and a right landmark-free map agree at almost equal energy, and that tie is no doubt
-   * (FAUST_r tuning pairs with gt:5: 83 of 97 flagged by it alone; docs/tuning.md) */
-  for (int c = 0; c < nc && nc > 1; c++) {
-    info.hyp_differ[c] = map_differ_share(Y->mesh, o.autopair.hyp_differ_tol * hc.sY, (int)nX, maps + nX * c,
-                                          maps + nX * info.hypothesis);
-    if (c != info.hypothesis && eligible[c] && info.hyp_differ[c] >= o.autopair.hyp_differ_share &&
-        info.hyp_energy[c] - best < info.hyp_margin)
-      info.hyp_margin = info.hyp_energy[c] - best;
-  }
-  if (nc > 1) info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
-  else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
-  /* the other hypotheses' maps count as pairing time */
-  out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
-  out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
-  out->autopair = info;
-  if (nlg > 0 && lm_off[info.hypothesis] > 0) {
-    char msg[256];
-    snprintf(msg, sizeof msg, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
-             "under the map kept (hypothesis #%d%s); check them", lm_off[info.hypothesis], nlg,
-             o.autopair.hyp_landmark_tol, info.hypothesis, free_of[info.hypothesis] ? ", landmark-free" : "");
-    add_note(out, msg);
-  }
-  if (!info.confident) {
-    char msg[240];
-    if (nc > 1)
-      snprintf(msg, sizeof msg, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
-               "hypothesis maps almost as well; the map may be wrong (%s)", nlg ? "the" : "landmark-free",
-               info.hyp_margin, o.autopair.hyp_min_margin, nlg ? "check the landmarks, add some" : "give landmarks");
-    else
-      snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
-               "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
-               o.autopair.min_mirror);
-    add_note(out, msg);
-  }
-done:
-  if (st) ss_match_result_free(out);
-  ss_match_result_free(&r);
-  ssi_hyp_ctx_free(&hc);
-  ss_centre_signature_free(&own[0]);
-  ss_centre_signature_free(&own[1]);
-  for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
-  free(lx), free(ly), free(cand), free(segs), free(gdX), free(gdY), free(maps);
-  return st;
-}
-
-ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
-                                 const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
-                                 ss_error *err) {
-  return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts_in, out, err);
-}
-
-ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
-                                    const ss_centre_signature *sigY, int nl, const int *lmX, const int *lmY,
-                                    const ss_match_options *opts, ss_match_result *out, ss_error *err) {
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
-  if (nl == 0) return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts, out, err);
-  memset(out, 0, sizeof *out);
-  ss_match_options o;
-  if (opts) o = *opts;
-  else ss_match_default_options(&o);
-  if (o.autopair.hyp_landmarks < 0 || o.autopair.hyp_landmarks > 2)
-    return ss_fail(err, SS_ERR_INVALID, "match: hyp_landmarks %d (0..2)", o.autopair.hyp_landmarks);
-  /* hypotheses beside given landmarks: the refined default only, on segmented shapes */
-  if (o.autopair.hyp_landmarks && o.autopair.hypotheses > 1 && o.refine == SS_REFINE_BEST && X && Y &&
-      X->seg.centers && Y->seg.centers && X->mesh && Y->mesh) {
-    for (int i = 0; i < nl; i++)
-      if (!lmX || !lmY || lmX[i] < 0 || lmX[i] >= X->mesh->nv || lmY[i] < 0 || lmY[i] >= Y->mesh->nv)
-        return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
-    if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
-    /* an extra beside the landmarks' map: where it cannot be formed (a shape in several components
-     * has no pairing signature), the landmarks' map alone, with a note */
-    ss_error he = {{0}};
-    ss_status hs = match_hypotheses(X, Y, sigX, sigY, nl, lmX, lmY, &o, out, &he);
-    if (hs != SS_ERR_INVALID) {
-      if (hs && err) *err = he;
-      return hs;
-    }
-    memset(out, 0, sizeof *out);
-    ss_status cs = match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
-    if (!cs) {
-      char note[200];
-      snprintf(note, sizeof note, "no hypotheses beside the landmarks (%.150s)", he.msg);
-      add_note(out, note);
-    }
-    return cs;
-  }
-  memset(out, 0, sizeof *out);
-  return match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+  return ssi_match_core(X, Y, nl, lmX, lmY, pairs, opts, out, err);
 }
 
 ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
@@ -994,44 +141,41 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
       return ss_fail(err, SS_ERR_INVALID, "match: landmark %d: vertex %d out of range on Y [0,%d)", i, lmY[i], Y->nv);
   }
   if (ss_landmarks_check(nl, lmX, lmY, NULL, NULL, err)) return SS_ERR_INVALID; /* too many, two partners */
-  kept kx, ky;
-  ss_status st = keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
+  ssi_kept kx, ky;
+  ss_status st = ssi_keep_landmark_components(X, "X (the first mesh)", nl, lmX, &kx, err);
   if (st) return st;
-  if ((st = keep_landmark_components(Y, "Y (the second mesh)", nl, lmY, &ky, err))) {
-    kept_free(&kx);
+  if ((st = ssi_keep_landmark_components(Y, "Y (the second mesh)", nl, lmY, &ky, err))) {
+    ssi_kept_free(&kx);
     return st;
   }
-  const ss_mesh *PX = kx.active ? &kx.sub : X, *PY = ky.active ? &ky.sub : Y;
+  const ss_mesh *PX = kx.sub.active ? &kx.sub.mesh : X, *PY = ky.sub.active ? &ky.sub.mesh : Y;
   int *lx = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1)), *ly = malloc(sizeof(int) * (size_t)(nl > 0 ? nl : 1));
   double *dX = NULL, *dY = NULL; /* the caller's descriptors on the kept vertices */
   ss_shape_prep pX = {0}, pY = {0};
-  ssi_proxy cx = {0}, cy = {0};
+  ssi_submesh cx = {0}, cy = {0};
   int have_x = 0, have_y = 0;
   if (!lx || !ly) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   if (o.ndescr > 0 && o.descrX && o.descrY) {
     for (int s = 0; s < 2; s++) {
-      const kept *kk = s ? &ky : &kx;
+      const ssi_submesh *kk = s ? &ky.sub : &kx.sub;
       if (!kk->active) continue;
-      const int n_in = s ? Y->nv : X->nv, n_sub = kk->sub.nv;
-      const double *in = s ? o.descrY : o.descrX;
-      double *d = malloc(sizeof(double) * (size_t)n_sub * (size_t)o.ndescr);
+      double *d = malloc(sizeof(double) * (size_t)kk->mesh.nv * (size_t)o.ndescr);
       if (!d) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-      for (int j = 0; j < o.ndescr; j++)
-        for (int i = 0; i < n_sub; i++) d[i + (size_t)n_sub * j] = in[kk->to_in[i] + (size_t)n_in * j];
+      ssi_submesh_restrict(kk, s ? Y->nv : X->nv, o.ndescr, s ? o.descrY : o.descrX, d);
       if (s) dY = d, o.descrY = d;
       else dX = d, o.descrX = d;
     }
   }
-  for (int i = 0; i < nl; i++) lx[i] = kx.active ? kx.to_sub[lmX[i]] : lmX[i], ly[i] = ky.active ? ky.to_sub[lmY[i]] : lmY[i];
+  for (int i = 0; i < nl; i++) lx[i] = ssi_submesh_sub_vertex(&kx.sub, lmX[i]), ly[i] = ssi_submesh_sub_vertex(&ky.sub, lmY[i]);
   int kev = ss_match_eigenpairs(&o, nl);
   /* very large meshes are matched through coarse proxies (topology kept), the map lifted back */
-  const ss_mesh *FX = PX, *FY = PY;
+  const ss_mesh *FX = PX;
   /* (not with the caller's descriptors: their rows are the mesh's vertices, not the proxy's) */
   if (!(o.ndescr > 0 && o.descrX && o.descrY) &&
       ((st = ssi_proxy_make(PX, nl, lx, &cx, err)) || (st = ssi_proxy_make(PY, nl, ly, &cy, err))))
     goto done;
-  if (cx.active) PX = &cx.coarse;
-  if (cy.active) PY = &cy.coarse;
+  if (cx.active) PX = &cx.mesh;
+  if (cy.active) PY = &cy.mesh;
   /* STD with landmarks uses no segments: only the spectra, unless the pairing is asked for */
   const int segment = ss_match_segments(&o, nl);
   double t_prep = ss_time();
@@ -1041,40 +185,11 @@ ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *l
   if ((st = ss_match_prepared(&pX, &pY, nl, lx, ly, &o, out, err))) goto done;
   /* the stage times add up both shapes' work; the total is the time this call took */
   out->t_total += t_prep - (pX.t_segment + pY.t_segment + pX.t_eigs + pY.t_eigs);
-  if ((st = ssi_proxy_lift(&cx, &cy, FX->nv, out, err))) goto done;
-  PX = FX, PY = FY;
-  if (kx.active || ky.active) { /* back to the input meshes' vertices */
-    int *map = malloc(sizeof(int) * (size_t)X->nv);
-    if (!map) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int i = 0; i < PX->nv; i++) {
-      int y = out->map[i];
-      map[kx.active ? kx.to_in[i] : i] = ky.active ? ky.to_in[y] : y;
-    }
-    if (kx.active) {
-      int nd = X->nv - PX->nv, *near = malloc(sizeof(int) * (size_t)(nd > 0 ? nd : 1));
-      double *P = malloc(sizeof(double) * 3 * (size_t)(nd > 0 ? nd : 1));
-      if (!near || !P) st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-      int j = 0;
-      for (int i = 0; !st && i < X->nv; i++)
-        if (kx.to_sub[i] < 0) memcpy(P + 3 * (size_t)j++, X->V + 3 * (size_t)i, sizeof(double) * 3);
-      if (!st) st = ss_closest_vertices(P, nd, &kx.sub, near, err);
-      j = 0;
-      for (int i = 0; !st && i < X->nv; i++)
-        if (kx.to_sub[i] < 0) map[i] = map[kx.to_in[near[j++]]];
-      free(near);
-      free(P);
-      if (st) { free(map); goto done; }
-    }
-    for (int p = 0; p < out->pairs.n; p++) {
-      if (kx.active) out->centerX[p] = kx.to_in[out->centerX[p]];
-      if (ky.active) out->centerY[p] = ky.to_in[out->centerY[p]];
-    }
-    free(out->map);
-    out->map = map;
-    out->nX = X->nv;
-  }
-  kept_warning(&kx, X, "X (the first mesh)", 1, warnings, warnings_size);
-  kept_warning(&ky, Y, "Y (the second mesh)", 0, warnings, warnings_size);
+  /* back to the input meshes' vertices: from the proxies, then from the kept components */
+  if ((st = ssi_match_lift(&cx, &cy, FX, out, err))) goto done;
+  if ((st = ssi_match_lift(&kx.sub, &ky.sub, X, out, err))) goto done;
+  ssi_kept_warning(&kx, X, "X (the first mesh)", 1, warnings, warnings_size);
+  ssi_kept_warning(&ky, Y, "Y (the second mesh)", 0, warnings, warnings_size);
 done:
   if (st) ss_match_result_free(out);
   if (have_x) ss_shape_prep_free(&pX);
@@ -1083,10 +198,10 @@ done:
   free(ly);
   free(dX);
   free(dY);
-  kept_free(&kx);
-  kept_free(&ky);
-  ssi_proxy_free(&cx);
-  ssi_proxy_free(&cy);
+  ssi_kept_free(&kx);
+  ssi_kept_free(&ky);
+  ssi_submesh_free(&cx);
+  ssi_submesh_free(&cy);
   return st;
 }
 

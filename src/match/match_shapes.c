@@ -2,7 +2,7 @@
  * meshes: what ss_match_warn does before ss_match_prepared (landmark checks, the components it keeps,
  * the eigenpairs it computes) is checked here against what the shapes carry. See match.h. */
 #include "specseg/match.h"
-#include "match/proxy.h"
+#include "match/match_submesh.h"
 #include "match/landmark_check.h"
 #include "match/hypotheses.h"
 #include "mesh/mesh_topology.h"
@@ -104,12 +104,15 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
                      "descriptors %d%s): prepare it with at least %d",
                      NAME[s], P[s]->kev, need, o.fmap.k, o.refine != SS_REFINE_NONE ? o.fmap.zoomout_kmax : 0,
                      o.fmap.descr_k, nl == 0 ? ", landmark-free pairing" : "", need);
+  /* the stored proxies as sub-meshes of the input meshes (views, not owned) */
+  const ssi_submesh vx = {X->has_proxy, X->proxy, X->to_proxy, X->proxy_src},
+                    vy = {Y->has_proxy, Y->proxy, Y->to_proxy, Y->proxy_src};
   /* landmarks on the matched meshes (the proxies' vertices where there are proxies) */
   int *lm = malloc(sizeof(int) * (size_t)(2 * nl > 0 ? 2 * nl : 1));
   if (!lm) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   for (int i = 0; i < nl; i++) {
-    lm[i] = X->has_proxy ? X->to_proxy[lmX[i]] : lmX[i];
-    lm[nl + i] = Y->has_proxy ? Y->to_proxy[lmY[i]] : lmY[i];
+    lm[i] = ssi_submesh_sub_vertex(&vx, lmX[i]);
+    lm[nl + i] = ssi_submesh_sub_vertex(&vy, lmY[i]);
   }
   ss_status cst = ssi_check_landmarks_segmented(P[0], P[1], nl, lm, lm + nl, lmX, lmY, err);
   if (cst) {
@@ -130,10 +133,8 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
     st = ssi_match_prepared_signed(&px, &py, use_x ? &sx : NULL, use_y ? &sy : NULL, nl, lm, lm + nl, &o, out, err);
   }
   free(lm);
-  /* back to the input meshes' vertices (views of the stored proxies, not owned) */
-  const ssi_proxy vx = {X->has_proxy, X->proxy, X->to_proxy, X->proxy_src},
-                  vy = {Y->has_proxy, Y->proxy, Y->to_proxy, Y->proxy_src};
-  if (!st) st = ssi_proxy_lift(&vx, &vy, X->mesh.nv, out, err);
+  /* back to the input meshes' vertices */
+  if (!st) st = ssi_match_lift(&vx, &vy, &X->mesh, out, err);
   if (st) ss_match_result_free(out);
   return st;
 }

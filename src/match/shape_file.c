@@ -5,7 +5,7 @@
 #include "specseg/streamline.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
-#include "match/proxy.h"
+#include "match/match_submesh.h"
 #include "util/blob.h"
 
 #include <errno.h>
@@ -41,12 +41,12 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
   if (seg_opts) out->seg = *seg_opts;
   else ss_segment_default_options(&out->seg);
   ss_status st = ss_mesh_copy(m, &out->mesh, err);
-  ssi_proxy px = {0};
+  ssi_submesh px = {0};
   if (!st) st = ssi_proxy_make(&out->mesh, 0, NULL, &px, err);
   if (!st && px.active) {
     /* matched through its proxy, as ss_match_warn matches it; the input keeps its own segmentation */
     out->has_proxy = 1;
-    out->proxy = px.coarse, out->to_proxy = px.to_coarse, out->proxy_src = px.src;
+    out->proxy = px.mesh, out->to_proxy = px.to_sub, out->proxy_src = px.to_in;
     memset(&px, 0, sizeof px);
     st = ss_shape_prep_compute(&out->proxy, &out->seg, kev, &out->proxy_prep, err);
     if (!st) {
@@ -59,7 +59,7 @@ ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *
   } else if (!st) {
     st = ss_shape_prep_compute(&out->mesh, &out->seg, kev, &out->prep, err);
   }
-  ssi_proxy_free(&px);
+  ssi_submesh_free(&px);
   if (st && err && !strncmp(err->msg, "match: ", 7)) { /* the shared stages' prefix: this is prepare */
     char msg[sizeof err->msg];
     snprintf(msg, sizeof msg, "prepare: %s", err->msg + 7);

@@ -8,6 +8,7 @@
 #include "specseg/streamline.h"
 #include "fill_holes.h"
 #include "streamline/decimate.h"
+#include "submesh/submesh.h"
 #include "mesh/mesh_topology.h"
 
 #include <math.h>
@@ -114,44 +115,6 @@ ss_status ss_segment(const ss_mesh *input, const ss_segment_options *opts_in, ss
   return ss_segment_warn(input, opts_in, out, NULL, 0, err);
 }
 
-/* Appends "; what" (or "what" first) to a warnings buffer, truncating. */
-/* Input vertices still unlabelled (labels[i] < 0: in no processed face, or in a component without a
- * centre) take the label of the nearest labelled input vertex (Euclidean, input positions). */
-static ss_status label_unlabelled_by_nearest(const ss_mesh *input, int *labels, ss_error *err) {
-  const int nv = input->nv;
-  int nk = 0;
-  for (int i = 0; i < nv; i++) nk += labels[i] >= 0;
-  const int nq = nv - nk;
-  if (nq == 0) return SS_OK;
-  if (nk == 0) return ss_fail(err, SS_ERR_NUMERIC, "segment: no input vertex received a label");
-  ss_mesh kept = {0};
-  double *Q = malloc(sizeof(double) * 3 * (size_t)nq);
-  int *qi = malloc(sizeof(int) * (size_t)nq), *nn = malloc(sizeof(int) * (size_t)nq);
-  int *kidx = malloc(sizeof(int) * (size_t)nk);
-  ss_status st = SS_OK;
-  if (!Q || !qi || !nn || !kidx || ss_mesh_alloc(&kept, nk, 0, NULL)) {
-    st = ss_fail(err, SS_ERR_NOMEM, "segment: out of memory");
-    goto done;
-  }
-  int a = 0, b = 0;
-  for (int i = 0; i < nv; i++) {
-    if (labels[i] >= 0) {
-      memcpy(kept.V + 3 * (size_t)a, input->V + 3 * (size_t)i, 3 * sizeof(double));
-      kidx[a++] = i;
-    } else {
-      memcpy(Q + 3 * (size_t)b, input->V + 3 * (size_t)i, 3 * sizeof(double));
-      qi[b++] = i;
-    }
-  }
-  st = ss_closest_vertices(Q, nq, &kept, nn, err);
-  if (!st)
-    for (int q = 0; q < nq; q++) labels[qi[q]] = labels[kidx[nn[q]]];
-done:
-  free(Q), free(qi), free(nn), free(kidx), ss_mesh_free(&kept);
-  return st;
-}
-
-
 ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_in, ss_segmentation *out,
                           char *warnings, size_t warnings_size, ss_error *err) {
   double t_start = ss_time();
@@ -172,9 +135,9 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
   if (o.cleanup_rings < 0) return ss_fail(err, SS_ERR_INVALID, "segment: negative clean-up radius");
 
   ss_status st = SS_OK;
-  ss_mesh clean = {0}, closed = {0}, smooth = {0}, coarse = {0};
+  ss_mesh clean = {0}, closed = {0}, smooth = {0};
+  ssi_submesh coarse = {0}; /* `closed` coarsened (active only for a very large input) */
   int *to_input = NULL; /* vertex of `proc` → input vertex (NULL: identity) */
-  int *to_coarse = NULL; /* vertex of `closed` → vertex of `coarse` (NULL: not coarsened) */
   int *pts = NULL, *count = NULL, *input_src = NULL, *psi = NULL;
   signed char *types = NULL;
   ss_graph g = {0};
@@ -229,11 +192,9 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
      * coarse mesh, and Ψ is composed input → coarse → work */
     const ss_mesh *flow_in = &closed;
     if (closed.nv > SSI_COARSEN_ABOVE_NV && closed.nf > SSI_COARSE_FACES) {
-      to_coarse = malloc(sizeof(int) * (size_t)closed.nv);
-      if (!to_coarse) goto nomem;
-      if ((st = ssi_decimate(&closed, SSI_COARSE_FACES, &coarse, to_coarse, NULL, err))) goto fail;
+      if ((st = ssi_submesh_decimate(&closed, SSI_COARSE_FACES, &coarse, err))) goto fail;
       ss_mesh_free(&closed);
-      flow_in = &coarse;
+      flow_in = &coarse.mesh;
     }
     ss_cmcf_options co;
     ss_cmcf_default_options(&co);
@@ -246,9 +207,9 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
     ro.target_faces = o.target_faces;
     if ((st = ss_remesh(&smooth, &ro, &out->work, err))) goto fail;
     double t2 = ss_time();
-    if (!to_coarse) {
+    if (!coarse.active) {
       if ((st = ss_closest_vertices(smooth.V, np, &out->work, psi, err))) goto fail;
-    } else if ((st = compose_psi(proc, to_coarse, &smooth, &out->work, psi, err))) goto fail;
+    } else if ((st = compose_psi(proc, coarse.to_sub, &smooth, &out->work, psi, err))) goto fail;
     out->t_smooth = t1 - t0; /* the coarsening of a very large input included */
     out->t_remesh = t2 - t1;
     out->t_psi = ss_time() - t2;
@@ -313,7 +274,7 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
     out->labels[i] = out->work_labels[psi[input_src[i]]];
     if (out->labels[i] < 0) nlost++; /* a component without a centre: handled below */
   }
-  if (nlost && (st = label_unlabelled_by_nearest(input, out->labels, err))) goto fail;
+  if (nlost && (st = ssi_fill_from_nearest(input, out->labels, "segment", err))) goto fail;
 
   /* 6. centres on the input: among the input vertices of segment s, the one whose smoothed twin is
    * closest to the critical point (falls back to all vertices when the segment is empty on the
@@ -322,14 +283,14 @@ ss_status ss_segment_warn(const ss_mesh *input, const ss_segment_options *opts_i
     const double *P = o.no_streamline ? proc->V : smooth.V;
     double *Pc = NULL; /* coarsened: the smoothed twin of proc vertex j is estimated as its coarse
                           vertex's smoothed position plus j's offset from that vertex before the flow */
-    if (to_coarse) {
+    if (coarse.active) {
       Pc = malloc(sizeof(double) * 3 * (size_t)np);
       if (!Pc) goto nomem;
       for (int j = 0; j < np; j++) {
-        int c = to_coarse[j];
+        int c = coarse.to_sub[j];
         for (int k = 0; k < 3; k++)
           Pc[3 * (size_t)j + k] = c < 0 ? proc->V[3 * (size_t)j + k]
-                                        : smooth.V[3 * (size_t)c + k] + proc->V[3 * (size_t)j + k] - coarse.V[3 * (size_t)c + k];
+                                        : smooth.V[3 * (size_t)c + k] + proc->V[3 * (size_t)j + k] - coarse.mesh.V[3 * (size_t)c + k];
       }
       P = Pc;
     }
@@ -372,9 +333,8 @@ done:
   ss_mesh_free(&clean);
   ss_mesh_free(&closed);
   ss_mesh_free(&smooth);
-  ss_mesh_free(&coarse);
+  ssi_submesh_free(&coarse);
   free(to_input);
-  free(to_coarse);
   free(pts);
   free(types);
   free(count);
@@ -407,31 +367,27 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
   ss_status st = SS_OK;
   const int np = proc->nv, nv = input->nv;
   double *carea = calloc((size_t)ncomp, sizeof(double));
-  int *cnv = calloc((size_t)ncomp, sizeof(int)), *cnf = calloc((size_t)ncomp, sizeof(int));
+  int *cnv = calloc((size_t)ncomp, sizeof(int));
   int *cfirst = malloc(sizeof(int) * (size_t)ncomp);
-  int *local = malloc(sizeof(int) * (size_t)np);      /* proc vertex -> index in its component */
+  unsigned char *one = calloc((size_t)ncomp, 1);      /* the component segmented now */
   int *plabel = malloc(sizeof(int) * (size_t)np);     /* proc vertex -> segment (or -1) */
   int *pwork = malloc(sizeof(int) * (size_t)np);      /* proc vertex -> work vertex (or -1) */
   ss_segmentation *part = calloc((size_t)ncomp, sizeof *part);
-  int *back = NULL;                                   /* local vertex -> proc vertex, per component */
-  ss_mesh sub = {0};
-  if (!carea || !cnv || !cnf || !cfirst || !local || !plabel || !pwork || !part) goto nomem;
+  ssi_submesh sub = {0};                              /* the component as a mesh of its own */
+  if (!carea || !cnv || !cfirst || !one || !plabel || !pwork || !part) goto nomem;
   double total = 0;
   for (int c = 0; c < ncomp; c++) cfirst[c] = -1;
   for (int i = 0; i < np; i++) {
-    if (comp[i] < 0) { local[i] = -1; continue; }
+    if (comp[i] < 0) continue;
     if (cfirst[comp[i]] < 0) cfirst[comp[i]] = i;
-    local[i] = cnv[comp[i]]++;
+    cnv[comp[i]]++;
   }
   for (int f = 0; f < proc->nf; f++) {
     int c = comp[proc->F[3 * f]];
     double a = face_area(proc, f);
     carea[c] += a;
     total += a;
-    cnf[c]++;
   }
-  back = malloc(sizeof(int) * (size_t)np);
-  if (!back) goto nomem;
   int nsig = 0, ntiny = 0, seg_off = 0, work_nv = 0, work_nf = 0, largest = -1;
   char tiny_list[256] = "";
   size_t tl = 0;
@@ -450,22 +406,14 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
       continue;
     }
     /* the component as a mesh of its own */
-    if ((st = ss_mesh_alloc(&sub, cnv[c], cnf[c], err))) goto fail;
-    for (int i = 0; i < np; i++)
-      if (comp[i] == c) {
-        memcpy(sub.V + 3 * (size_t)local[i], proc->V + 3 * (size_t)i, 3 * sizeof(double));
-        back[local[i]] = i;
-      }
-    int k = 0;
-    for (int f = 0; f < proc->nf; f++)
-      if (comp[proc->F[3 * f]] == c) {
-        for (int j = 0; j < 3; j++) sub.F[3 * k + j] = local[proc->F[3 * f + j]];
-        k++;
-      }
+    one[c] = 1;
+    st = ssi_submesh_components(proc, comp, one, &sub, err);
+    one[c] = 0;
+    if (st) goto fail;
     ss_segment_options oc = *o;
     oc.sanitize = 0; /* proc is clean already */
     char cw[256];
-    st = ss_segment_warn(&sub, &oc, &part[c], cw, sizeof cw, err);
+    st = ss_segment_warn(&sub.mesh, &oc, &part[c], cw, sizeof cw, err);
     if (!st && cw[0]) { /* e.g. its holes closed */
       char line[400];
       snprintf(line, sizeof line, "component %d (input vertex %d onwards): %s", c + 1,
@@ -481,18 +429,18 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
       goto fail;
     }
     for (int l = 0; l < cnv[c]; l++) {
-      int i = back[l];
+      int i = sub.to_in[l];
       plabel[i] = part[c].labels[l] + seg_off;
       pwork[i] = part[c].psi[l] >= 0 ? part[c].psi[l] + work_nv : -1;
     }
-    /* centres: local vertex -> proc vertex for now (input indices below) */
-    for (int s2 = 0; s2 < part[c].m; s2++) part[c].centers[s2] = back[part[c].centers[s2]];
+    /* centres: sub-mesh vertex -> proc vertex for now (input indices below) */
+    ssi_submesh_lift_indices(&sub, part[c].m, part[c].centers);
     seg_off += part[c].m;
     work_nv += part[c].work.nv;
     work_nf += part[c].work.nf;
     if (largest < 0 || carea[c] > carea[largest]) largest = c;
     nsig++;
-    ss_mesh_free(&sub);
+    ssi_submesh_free(&sub);
   }
   if (nsig == 0) {
     st = ss_fail(err, SS_ERR_INVALID, "segment: none of the %d components has a significant area", ncomp);
@@ -547,7 +495,7 @@ static ss_status segment_components(const ss_mesh *input, const ss_mesh *proc, c
     out->labels[i] = plabel[j];
     out->psi[i] = pwork[j];
   }
-  if ((st = label_unlabelled_by_nearest(input, out->labels, err))) goto fail;
+  if ((st = ssi_fill_from_nearest(input, out->labels, "segment", err))) goto fail;
   {
     char w[512];
     snprintf(w, sizeof w, "%d components: %d segmented on their own (%d segments)", ncomp, nsig, m);
@@ -569,7 +517,7 @@ fail:
 done:
   if (part)
     for (int c = 0; c < ncomp; c++) ss_segmentation_free(&part[c]);
-  ss_mesh_free(&sub);
-  free(carea), free(cnv), free(cnf), free(cfirst), free(local), free(plabel), free(pwork), free(part), free(back);
+  ssi_submesh_free(&sub);
+  free(carea), free(cnv), free(cfirst), free(one), free(plabel), free(pwork), free(part);
   return st;
 }

@@ -1,0 +1,326 @@
+/* The hypotheses of a match. Landmark-free (ss_match_prepared_auto): each pairing hypothesis of the
+ * landmark-free pairing is mapped with its paired protrusion centres as landmarks, and the map of
+ * least hypothesis energy (hypotheses.c) is kept, with the margin that says how sure that is. With
+ * landmarks and ss_autopair_options.hyp_landmarks (ssi_match_prepared_signed): the landmarks' map
+ * against the hypotheses' maps that agree with them. */
+#include "specseg/match.h"
+#include "match/autopair_internal.h"
+#include "match/hypotheses.h"
+#include "match/match_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The landmarks of a hypothesis pr: the centres of its round(keep · n) (at least 3) pairs whose X
+ * centre is farthest on average from X's other centres (the protrusions), in pair order; all pairs
+ * when keep >= 1. Returns their count. */
+static int kept_pairs(const ss_centre_signature *SX, const ss_segment_pairs *pr, double keep, const ss_shape_prep *X,
+                      const ss_shape_prep *Y, int *lx, int *ly) {
+  const int n = pr->n, m = SX->m;
+  int nk = n;
+  if (keep < 1 && n > 3) {
+    nk = (int)floor(keep * n + 0.5);
+    if (nk < 3) nk = 3;
+  }
+  int q = 0;
+  for (int p = 0; p < n; p++) {
+    double ep = 0;
+    for (int c = 0; c < m; c++) ep += SX->D[pr->sx[p] + (size_t)m * c];
+    int rank = 0;
+    for (int t = 0; t < n; t++) {
+      double et = 0;
+      for (int c = 0; c < m; c++) et += SX->D[pr->sx[t] + (size_t)m * c];
+      rank += et > ep || (et == ep && t < p);
+    }
+    if (rank < nk) lx[q] = X->seg.centers[pr->sx[p]], ly[q++] = Y->seg.centers[pr->sy[p]];
+  }
+  return q;
+}
+
+/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed) */
+static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed) {
+  return distortion + o->hyp_w_reversed * reversed;
+}
+
+/* With given landmarks, the kept pairs (kx, ky; nk) of a hypothesis that agree with them: neither
+ * centre within tol of a given landmark (that one anchors the place already), and every given
+ * landmark as far from one centre as from the other within tol (edge-graph geodesics over √area;
+ * gdX, gdY: nX x nlg and nY x nlg distances from the given landmarks). Returns their count. */
+static int agreeing_pairs(const ssi_hyp_ctx *hc, int nlg, const double *gdX, const double *gdY, int nk, const int *kx,
+                          const int *ky, double tol, int *ex, int *ey) {
+  const size_t nX = (size_t)hc->X->nv, nY = (size_t)hc->Y->nv;
+  int q = 0;
+  for (int p = 0; p < nk; p++) {
+    int keep = 1;
+    for (int i = 0; i < nlg && keep; i++) {
+      const double dx = gdX[nX * i + kx[p]] / hc->sX, dy = gdY[nY * i + ky[p]] / hc->sY;
+      keep = isfinite(dx) && isfinite(dy) && dx > tol && dy > tol && fabs(dx - dy) <= tol;
+    }
+    if (keep) ex[q] = kx[p], ey[q++] = ky[p];
+  }
+  return q;
+}
+
+static int same_set(int n, const int *a, const int *b, int m, const int *c, const int *d) {
+  if (n != m) return 0;
+  for (int i = 0; i < n; i++)
+    if (a[i] != c[i] || b[i] != d[i]) return 0;
+  return 1;
+}
+
+/* The share of X's nX vertices whose images under maps a and b (vertices of Y) lie farther apart
+ * than tol_abs (Euclidean, in Y's units: the caller scales hyp_differ_tol by √area of Y). */
+static double map_differ_share(const ss_mesh *Y, double tol_abs, int nX, const int *a, const int *b) {
+  int far = 0;
+  for (int v = 0; v < nX; v++) {
+    const double *p = Y->V + 3 * (size_t)a[v], *q = Y->V + 3 * (size_t)b[v];
+    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+    far += dx * dx + dy * dy + dz * dz > tol_abs * tol_abs;
+  }
+  return nX > 0 ? (double)far / nX : 0;
+}
+
+static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) {
+  if (a->hypotheses < 1 || a->hypotheses > SS_MAX_HYPOTHESES || !(a->hyp_gap >= 0) ||
+      !(a->hyp_w_reversed >= 0) || !isfinite(a->hyp_w_reversed) ||
+      !isfinite(a->hyp_reversed_below) || !(a->hyp_keep > 0 && a->hyp_keep <= 1) ||
+      !isfinite(a->hyp_min_margin) || !(a->hyp_landmark_tol >= 0) ||
+      a->hyp_landmarks < 0 || a->hyp_landmarks > 2 || !(a->hyp_differ_tol >= 0) || !isfinite(a->hyp_differ_tol) ||
+      !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1]",
+                   a->hypotheses, SS_MAX_HYPOTHESES);
+  return SS_OK;
+}
+
+/* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
+ * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
+ * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
+static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                  const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
+                                  const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  memset(out, 0, sizeof *out);
+  ss_match_options o;
+  if (opts_in) o = *opts_in;
+  else ss_match_default_options(&o);
+  if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
+    return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
+  if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
+  ss_centre_signature own[2];
+  memset(own, 0, sizeof own);
+  ss_segment_pairs hyp[SS_MAX_HYPOTHESES];
+  memset(hyp, 0, sizeof hyp);
+  int nh = 0;
+  ss_autopair_info info;
+  ssi_hyp_ctx hc = {0};
+  ss_match_result r;
+  memset(&r, 0, sizeof r);
+  int *lx = NULL, *ly = NULL, *cand = NULL, *maps = NULL;
+  double *segs = NULL, *gdX = NULL, *gdY = NULL;
+  ss_status st = SS_OK;
+  double t0 = ss_time();
+  if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
+  if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
+  const ss_centre_signature *SX = sigX ? sigX : &own[0], *SY = sigY ? sigY : &own[1];
+  /* with given landmarks, one candidate slot is theirs alone */
+  const int want = nlg > 0 && o.autopair.hypotheses >= SS_MAX_HYPOTHESES ? SS_MAX_HYPOTHESES - 1 : o.autopair.hypotheses;
+  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, want, hyp, &nh, &info, err))) goto done;
+  if (nlg > 0) info.used = 0;
+  if ((nh > 1 || nlg > 0) && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+  double t_pair = ss_time() - t0;
+  int mx = 1;
+  for (int h = 0; h < nh; h++)
+    if (hyp[h].n > mx) mx = hyp[h].n;
+  /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
+  const int stride = nlg + mx, ncap = 2 * nh + 1;
+  lx = malloc(sizeof(int) * (size_t)stride * ncap);
+  ly = malloc(sizeof(int) * (size_t)stride * ncap);
+  cand = malloc(sizeof(int) * (size_t)ncap);
+  segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
+  if (!lx || !ly || !cand || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
+   * candidate (hypothesis hyp_of[c]'s protrusion pairs alone) */
+  int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES], hyp_of[SS_MAX_HYPOTHESES];
+  if (nlg > 0) {
+    gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
+    gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
+    if (!gdX || !gdY) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+    for (int i = 0; i < nlg; i++)
+      if ((st = ss_graph_dijkstra(&hc.gX, &lgX[i], 1, 0, gdX + (size_t)X->mesh->nv * i, NULL, err)) ||
+          (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
+        goto done;
+    memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
+    cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, hyp_of[0] = -1, nc = 1;
+  }
+  /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
+   * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
+   * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
+  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nc < SS_MAX_HYPOTHESES; h++) {
+    cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
+    from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
+    free_of[nc] = 1, hyp_of[nc] = h;
+    nc++;
+  }
+  if (nlg > 0) {
+    int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
+    if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+    for (int h = 0; h < nh && nc < SS_MAX_HYPOTHESES; h++) {
+      int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
+      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
+      memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
+      int ne = agreeing_pairs(&hc, nlg, gdX, gdY, nk, kx, ky, o.autopair.hyp_landmark_tol, cx + nlg, cy + nlg);
+      int dup = ne == 0;
+      for (int c = 1; c < nc && !dup; c++)
+        dup = !free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
+      if (!dup) cand[nc] = nlg + ne, from_pairs[nc] = -1, free_of[nc] = 0, hyp_of[nc++] = -1;
+    }
+    free(kx), free(ky);
+  }
+  /* hyp_keep = 1 (landmark-free): the paired centres are the landmarks and the pairing is the
+   * segments'; otherwise the segments are paired from the landmarks as with given landmarks (the
+   * saddles' centres sit front or back inconsistently between shapes) */
+  ss_match_options oall = o;
+  oall.pairing.min_landmarks = 1;
+  oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
+  double best = INFINITY, t_loop = ss_time();
+  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES];
+  const size_t nX = (size_t)X->mesh->nv;
+  /* every candidate's map, to tell the candidates that differ from the returned one */
+  if (nc > 1 && !(maps = malloc(sizeof(int) * nX * (size_t)nc))) {
+    st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+    goto done;
+  }
+  for (int c = 0; c < nc; c++) {
+    const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
+    if (from_pairs[c] >= 0) {
+      if ((st = ssi_match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
+    } else {
+      ss_match_options ok = o;
+      if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
+      if ((st = ssi_match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
+    }
+    double E = 0, dist = NAN, orient = NAN, pe = NAN;
+    const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
+    if (h >= 0) {
+      pe = 0;
+      for (int p = 0; p < hyp[h].n; p++) pe += hyp[h].energy[p];
+    }
+    if (nc > 1) {
+      memcpy(maps + nX * c, r.map, sizeof(int) * nX);
+      if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
+      orient = ssi_map_orientation(SX, SY, r.map);
+      double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
+                                                &info.hyp_orientation_min[c]);
+      info.hyp_reversed[c] = rev;
+      E = hypothesis_energy(&o.autopair, dist, rev);
+    }
+    info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
+    info.hyp_energy[c] = E;
+    info.hyp_map_energy[c] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
+    /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
+     * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
+    int off = 0;
+    for (int i = 0; i < nlg; i++)
+      off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
+    eligible[c] = !free_of[c] || off <= nlg / 4, lm_off[c] = off;
+    if (c == 0 || (eligible[c] && E < best)) {
+      if (c > 0) ss_match_result_free(out);
+      *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
+    } else
+      ss_match_result_free(&r);
+    memset(&r, 0, sizeof r);
+  }
+  info.hypotheses = nc;
+  info.hyp_margin = INFINITY;
+  /* the margin against the maps that differ from the returned one: with landmarks, the landmarks'
+   * map and a right landmark-free map agree at almost equal energy, and that tie is no doubt
+   * (FAUST_r tuning pairs with gt:5: 83 of 97 flagged by it alone; docs/tuning.md) */
+  for (int c = 0; c < nc && nc > 1; c++) {
+    info.hyp_differ[c] = map_differ_share(Y->mesh, o.autopair.hyp_differ_tol * hc.sY, (int)nX, maps + nX * c,
+                                          maps + nX * info.hypothesis);
+    if (c != info.hypothesis && eligible[c] && info.hyp_differ[c] >= o.autopair.hyp_differ_share &&
+        info.hyp_energy[c] - best < info.hyp_margin)
+      info.hyp_margin = info.hyp_energy[c] - best;
+  }
+  if (nc > 1) info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
+  else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
+  /* the other hypotheses' maps count as pairing time */
+  out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
+  out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
+  out->autopair = info;
+  if (nlg > 0 && lm_off[info.hypothesis] > 0) {
+    char msg[256];
+    snprintf(msg, sizeof msg, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
+             "under the map kept (hypothesis #%d%s); check them", lm_off[info.hypothesis], nlg,
+             o.autopair.hyp_landmark_tol, info.hypothesis, free_of[info.hypothesis] ? ", landmark-free" : "");
+    ssi_match_note(out, msg);
+  }
+  if (!info.confident) {
+    char msg[240];
+    if (nc > 1)
+      snprintf(msg, sizeof msg, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
+               "hypothesis maps almost as well; the map may be wrong (%s)", nlg ? "the" : "landmark-free",
+               info.hyp_margin, o.autopair.hyp_min_margin, nlg ? "check the landmarks, add some" : "give landmarks");
+    else
+      snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
+               "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
+               o.autopair.min_mirror);
+    ssi_match_note(out, msg);
+  }
+done:
+  if (st) ss_match_result_free(out);
+  ss_match_result_free(&r);
+  ssi_hyp_ctx_free(&hc);
+  ss_centre_signature_free(&own[0]);
+  ss_centre_signature_free(&own[1]);
+  for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
+  free(lx), free(ly), free(cand), free(segs), free(gdX), free(gdY), free(maps);
+  return st;
+}
+
+ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                 const ss_centre_signature *sigY, const ss_match_options *opts_in, ss_match_result *out,
+                                 ss_error *err) {
+  return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts_in, out, err);
+}
+
+ss_status ssi_match_prepared_signed(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                    const ss_centre_signature *sigY, int nl, const int *lmX, const int *lmY,
+                                    const ss_match_options *opts, ss_match_result *out, ss_error *err) {
+  if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
+  if (nl == 0) return match_hypotheses(X, Y, sigX, sigY, 0, NULL, NULL, opts, out, err);
+  memset(out, 0, sizeof *out);
+  ss_match_options o;
+  if (opts) o = *opts;
+  else ss_match_default_options(&o);
+  if (o.autopair.hyp_landmarks < 0 || o.autopair.hyp_landmarks > 2)
+    return ss_fail(err, SS_ERR_INVALID, "match: hyp_landmarks %d (0..2)", o.autopair.hyp_landmarks);
+  /* hypotheses beside given landmarks: the refined default only, on segmented shapes */
+  if (o.autopair.hyp_landmarks && o.autopair.hypotheses > 1 && o.refine == SS_REFINE_BEST && X && Y &&
+      X->seg.centers && Y->seg.centers && X->mesh && Y->mesh) {
+    for (int i = 0; i < nl; i++)
+      if (!lmX || !lmY || lmX[i] < 0 || lmX[i] >= X->mesh->nv || lmY[i] < 0 || lmY[i] >= Y->mesh->nv)
+        return ssi_match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err); /* its own messages */
+    if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
+    /* an extra beside the landmarks' map: where it cannot be formed (a shape in several components
+     * has no pairing signature), the landmarks' map alone, with a note */
+    ss_error he = {{0}};
+    ss_status hs = match_hypotheses(X, Y, sigX, sigY, nl, lmX, lmY, &o, out, &he);
+    if (hs != SS_ERR_INVALID) {
+      if (hs && err) *err = he;
+      return hs;
+    }
+    memset(out, 0, sizeof *out);
+    ss_status cs = ssi_match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+    if (!cs) {
+      char note[200];
+      snprintf(note, sizeof note, "no hypotheses beside the landmarks (%.150s)", he.msg);
+      ssi_match_note(out, note);
+    }
+    return cs;
+  }
+  memset(out, 0, sizeof *out);
+  return ssi_match_core(X, Y, nl, lmX, lmY, NULL, opts, out, err);
+}
