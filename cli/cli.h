@@ -21,53 +21,8 @@ void cli_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 int cli_parse_int(const char *s, long lo, long hi, int *out);
 int cli_parse_double(const char *s, double *out);
 
-/* ---- Argument scanning (cli_args.c): the one option scanner every subcommand uses. ----------------
- * A subcommand declares its options in a NULL-terminated list of names; a name ending in '=' takes a
- * value ("-o=", "--steps="), one ending in "==" two ("--descriptors==": A.val and A.val2, the next two
- * arguments, or "=V1" and the next one), the others are flags ("--bbox"). A value is the next argument,
- * whatever it looks like ("--steps 3", "-o -"), or follows the first '=' of the same argument ("--steps=3").
- * Handled here once for all: -h / --help anywhere (the usage text on stdout, exit 0), unknown options,
- * "--name needs a value", "--name takes no value" (a flag given "=value"), all usage errors (exit 2).
- * Arguments that do not start with '-', and "-" itself (standard input / output), are positional.
- *
- *   static const char *const OPTS[] = {"-o=", "--steps=", "--bbox", NULL};
- *   cli_args A;
- *   cli_args_init(&A, argc, argv, USAGE, OPTS);
- *   while (cli_next(&A)) {
- *     if (A.pos) ...                            positional argument A.pos
- *     else if (cli_is(&A, "-o")) out = A.val;   option with its value
- *     else if (cli_is(&A, "--bbox")) ...        flag (A.val is NULL)
- *   }
- *   if (A.rc >= 0) return A.rc;                 help printed (0) or usage error (2)
- *
- * The usage text starts with its synopsis ("usage: specseg CMD ..." up to the first blank line), which
- * usage errors repeat; --help prints all of it. */
-typedef struct cli_args {
-  int argc;
-  char **argv;
-  int next;                 /* index of the next argument */
-  const char *cmd;          /* for messages: argv[0] ("eigs"); may be reset (e.g. "eval merge") */
-  const char *usage;        /* the subcommand's usage text */
-  const char *const *opts;  /* declared options */
-  const char *pos;          /* current positional argument, or NULL */
-  const char *opt;          /* current option, as declared without its '=' (NULL for a positional) */
-  const char *val;          /* its value (NULL for a flag) */
-  const char *val2;         /* the second value of a two-valued option ("name==") */
-  char name[64];            /* storage for opt */
-  int rc;                   /* -1 while scanning / at the end; SS_EXIT_OK after --help; SS_EXIT_USAGE */
-} cli_args;
-
-void cli_args_init(cli_args *a, int argc, char **argv, const char *usage, const char *const *opts);
-/* Next argument: 1 with pos or opt/val set; 0 at the end (rc -1), after --help (rc 0) or after a usage
- * error it reported (rc 2). */
-int cli_next(cli_args *a);
-/* Is the current argument the option `name` (as declared, without '=')? */
-int cli_is(const cli_args *a, const char *name);
-/* "specseg: usage: CMD: MESSAGE", the synopsis and a pointer to --help on stderr; sets and returns
- * a->rc = SS_EXIT_USAGE. */
-int cli_bad(cli_args *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-/* The full usage text (and the conventions shared by every subcommand) on f. */
-void cli_print_usage(const char *usage, FILE *f);
+/* ---- Options and positional arguments: cli_options.h (one table per command, cli_parse). ---------- */
+#include "cli_options.h"
 
 /* ---- Files (cli_io.c): "-" is standard input or standard output. -------------------------------
  * Standard input (named "<stdin>" in messages) and named pipes such as `<(...)` are read once, whole,
@@ -131,12 +86,14 @@ void cli_io_cleanup(void);
  * "seconds", "outputs": [...], "warnings": [...], "error" (when it failed), and the command's own
  * counts and timings}]}.
  *
- * A command declares CLI_BATCH_OPTS among its options, hands every option to cli_batch_option first
- * and every mesh to cli_batch_add, checks with cli_batch_setup, then cli_batch_run(b, job, cfg) calls
- * job(j, cfg) per mesh (j->input), possibly on several threads at once: a job only reads cfg, names its
- * outputs through cli_job_output / cli_job_extra, writes its report to cli_job_report and may add
+ * A command puts CLI_BATCH_OPTIONS(&b) in its option table (the meshes, --jobs, --json, --suffix: each
+ * mesh goes through cli_batch_add), checks with cli_batch_setup, then cli_batch_finish(b, rc, job, cfg)
+ * calls job(j, cfg) per mesh (j->input), possibly on several threads at once: a job only reads cfg, names
+ * its outputs through cli_job_output / cli_job_extra, writes its report to cli_job_report and may add
  * fields (cli_job_int / _num / _str); cli_error / cli_warn inside it are recorded in its JSON. */
-#define CLI_BATCH_OPTS "--jobs=", "--json", "--suffix="
+#define CLI_BATCH_OPTIONS(b)                                                                                    \
+  CLI_OPT_POS_FN("MESH", cli_batch_pos, (b)), CLI_OPT_INT("--jobs", &(b)->jobs, 1, 256, NULL),              \
+      CLI_OPT_FLAG("--json", &(b)->json, 1), CLI_OPT_CALL("--suffix", cli_batch_suffix, (b), NULL)
 #define CLI_BATCH_HELP                                                                                          \
   "Several meshes or folders run as a batch: -o OUTDIR receives NAME<suffix> per mesh; other outputs take a\n" \
   "suffix (e.g. --ply .ply); one mesh with -o DIR/ too. A failed mesh does not stop the others.\n"            \
@@ -183,8 +140,9 @@ typedef int (*cli_job_fn)(cli_job *j, void *cfg);
 
 void cli_batch_init(cli_batch *b, const char *cmd);
 void cli_batch_free(cli_batch *b); /* the inputs (cli_batch_run frees them itself) */
-/* 1 when the current option is --jobs, --json or --suffix (handled; a bad value sets A->rc), else 0. */
-int cli_batch_option(cli_batch *b, cli_args *A);
+/* CLI_BATCH_OPTIONS' callbacks (o->dest: the batch): a positional mesh (cli_batch_add); --suffix. */
+int cli_batch_pos(cli_args *A, const cli_opt *o, const char *mesh);
+int cli_batch_suffix(cli_args *A, const cli_opt *o, const char *suffix);
 /* A positional mesh (a folder: its mesh files and prepared shapes, .sss; other entries, subfolders
  * included, are skipped with a warning and listed in --json's "skipped"). -1 ok, else the exit code
  * (a usage error was reported). */
@@ -197,6 +155,8 @@ int cli_batch_setup(cli_batch *b, cli_args *A, const char *outdir, int need_out,
                     const char *const *extras, int nextras);
 /* Runs the job on every mesh (frees the inputs); the exit code (1 when a mesh failed). */
 int cli_batch_run(cli_batch *b, cli_job_fn fn, void *cfg);
+/* rc >= 0 (an exit code from parsing or the checks): the inputs freed, rc; else cli_batch_run. */
+int cli_batch_finish(cli_batch *b, int rc, cli_job_fn fn, void *cfg);
 /* The main output's path: `given` for one mesh, OUTDIR/NAME<suffix> in a batch (recorded for --json). */
 const char *cli_job_output(cli_job *j, const char *given, const char *suffix);
 /* Another output: `given` (NULL: none), in a batch OUTDIR/NAME<given>. */

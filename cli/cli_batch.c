@@ -295,21 +295,12 @@ void cli_batch_free(cli_batch *b) {
   b->nskipped = 0;
 }
 
-int cli_batch_option(cli_batch *b, cli_args *A) {
-  if (cli_is(A, "--jobs")) {
-    if (cli_parse_int(A->val, 1, 256, &b->jobs)) cli_bad(A, "--jobs needs an integer between 1 and 256, not '%s'", A->val);
-    return 1;
-  }
-  if (cli_is(A, "--json")) {
-    b->json = 1;
-    return 1;
-  }
-  if (cli_is(A, "--suffix")) {
-    if (A->val[0] != '.' || strchr(A->val, '/')) cli_bad(A, "--suffix takes a suffix such as .npy or .labels.txt, not '%s'", A->val);
-    b->suffix = A->val;
-    return 1;
-  }
-  return 0;
+int cli_batch_suffix(cli_args *A, const cli_opt *o, const char *suffix) {
+  cli_batch *b = o->dest;
+  b->suffix = suffix;
+  if (suffix[0] != '.' || strchr(suffix, '/'))
+    return cli_bad(A, "--suffix takes a suffix such as .npy or .labels.txt, not '%s'", suffix);
+  return -1;
 }
 
 static int push_input(cli_batch *b, const char *path) {
@@ -375,6 +366,8 @@ int cli_batch_add(cli_batch *b, cli_args *A, const char *mesh) {
   if (push_input(b, mesh)) return cli_error("out of memory");
   return -1;
 }
+
+int cli_batch_pos(cli_args *A, const cli_opt *o, const char *mesh) { return cli_batch_add(o->dest, A, mesh); }
 
 static int same_file(const char *a, const char *b) {
   struct stat x, y;
@@ -513,6 +506,12 @@ static void *worker(void *arg) {
 static int ncpu(void) {
   long n = sysconf(_SC_NPROCESSORS_ONLN);
   return n > 0 ? (int)n : 1;
+}
+
+int cli_batch_finish(cli_batch *b, int rc, cli_job_fn fn, void *cfg) {
+  if (rc < 0) return cli_batch_run(b, fn, cfg);
+  cli_batch_free(b);
+  return rc;
 }
 
 int cli_batch_run(cli_batch *b, cli_job_fn fn, void *cfg) {

@@ -26,8 +26,6 @@ static const char USAGE[] =
     "\n"
     "  -o DIR              output folder, created if missing (default specseg-demo)\n";
 
-static const char *const OPTS[] = {"-o=", NULL};
-
 #define DEMO_MAX_SHAPES 8
 #define DEMO_MAX_FILES 64
 
@@ -326,23 +324,27 @@ typedef int (*demo_stage)(demo_ctx *);
 /* Later stages (segmentation, matching) are appended here. */
 static const demo_stage stages[] = {stage_shapes, stage_spectrum, stage_pictures, stage_match};
 
+/* -o DIR: a folder */
+static int take_dir(cli_args *A, const cli_opt *o, const char *dir) {
+  if (cli_is_std(dir)) return cli_bad(A, "-o takes a folder, not standard output ('-')");
+  *(const char **)o->dest = dir;
+  return -1;
+}
+
 int cmd_demo(int argc, char **argv) {
   const char *dir = "specseg-demo";
+  const cli_opt opts[] = {CLI_OPT_CALL("-o", take_dir, &dir, NULL), CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    if (A.pos) return cli_bad(&A, "unexpected argument '%s'", A.pos);
-    if (cli_is_std(A.val)) return cli_bad(&A, "-o takes a folder, not standard output ('-')");
-    dir = A.val;
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
   if (make_dir(dir)) return cli_error("demo: cannot create directory '%s': %s", dir, strerror(errno));
 
   demo_ctx *c = calloc(1, sizeof *c);
   if (!c) return cli_error("demo: out of memory");
   c->dir = dir;
   double t0 = ss_time();
-  int rc = SS_EXIT_OK;
+  rc = SS_EXIT_OK;
   for (size_t i = 0; i < sizeof stages / sizeof stages[0] && rc == SS_EXIT_OK; i++) rc = stages[i](c);
   if (rc == SS_EXIT_OK) {
     printf("== summary ==\nwrote %d files into %s/ in %.2f s:\n", c->nfiles, dir, ss_time() - t0);

@@ -25,8 +25,6 @@ static const char USAGE[] =
     "  -k K                eigenpairs, 3 <= K < vertices (default 100: match's default --descr-k)\n"
     "  -n N                energies / times, 1..10000 (default 100)\n" CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"--wks", "--hks", "-o=", "-k=", "-n=", CLI_BATCH_OPTS, NULL};
-
 typedef struct descr_cfg {
   const char *out;
   int kind, k, n; /* kind: 1 WKS, 2 HKS */
@@ -84,27 +82,16 @@ int cmd_descriptors(int argc, char **argv) {
   descr_cfg c = {NULL, 0, 100, 100};
   cli_batch B;
   cli_batch_init(&B, "descriptors");
+  const cli_opt opts[] = {CLI_BATCH_OPTIONS(&B),
+                          CLI_OPT_FLAG1("--wks", &c.kind, 1, "choose one of --wks and --hks"),
+                          CLI_OPT_FLAG1("--hks", &c.kind, 2, "choose one of --wks and --hks"),
+                          CLI_OPT_STR("-o", &c.out),
+                          CLI_OPT_INT("-k", &c.k, 3, INT_MAX, "-k needs an integer >= 3, not '%s'"),
+                          CLI_OPT_INT("-n", &c.n, 1, 10000, NULL),
+                          CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  int rc = -1;
-  while (rc < 0 && cli_next(&A)) {
-    const char *v = A.val;
-    if (cli_batch_option(&B, &A)) continue;
-    if (A.pos) {
-      rc = cli_batch_add(&B, &A, A.pos);
-    } else if (cli_is(&A, "--wks") || cli_is(&A, "--hks")) {
-      int kk = cli_is(&A, "--wks") ? 1 : 2;
-      if (c.kind && c.kind != kk) rc = cli_bad(&A, "choose one of --wks and --hks");
-      c.kind = kk;
-    } else if (cli_is(&A, "-o")) {
-      c.out = v;
-    } else if (cli_is(&A, "-k")) {
-      if (cli_parse_int(v, 3, INT_MAX, &c.k)) rc = cli_bad(&A, "-k needs an integer >= 3, not '%s'", v);
-    } else if (cli_is(&A, "-n")) {
-      if (cli_parse_int(v, 1, 10000, &c.n)) rc = cli_bad(&A, "-n needs an integer between 1 and 10000, not '%s'", v);
-    }
-  }
-  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
   if (rc < 0 && !c.kind) rc = cli_bad(&A, "choose --wks or --hks");
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.out, 1, c.kind == 1 ? ".wks.npy" : ".hks.npy", NULL, 0);
@@ -114,9 +101,5 @@ int cmd_descriptors(int argc, char **argv) {
   if (rc < 0 && B.batch && B.suffix && !cli_is_npy(B.suffix))
     rc = cli_bad(&A, "--suffix: descriptors are written as .npy, not '%s'", B.suffix);
   if (rc < 0 && !B.batch && B.json && cli_is_std(c.out)) rc = cli_bad(&A, "--json and -o - both want standard output");
-  if (rc >= 0) {
-    cli_batch_free(&B);
-    return rc;
-  }
-  return cli_batch_run(&B, descriptors_job, &c);
+  return cli_batch_finish(&B, rc, descriptors_job, &c);
 }

@@ -25,8 +25,6 @@ static const char USAGE[] =
     "  --mass KIND         barycentric (default) or voronoi (mixed Voronoi areas)\n"
     "  --sigma S           shift: the K eigenvalues nearest S (default -1e-8)\n" CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"-k=", "-o=", "--evecs=", "--mass=", "--sigma=", CLI_BATCH_OPTS, NULL};
-
 typedef struct eigs_cfg {
   const char *evals, *evecs;
   int k;
@@ -159,30 +157,20 @@ int cmd_eigs(int argc, char **argv) {
   ss_eigs_default_options(&c.opt);
   cli_batch B;
   cli_batch_init(&B, "eigs");
+  static const int MASS[] = {SS_MASS_BARYCENTRIC, SS_MASS_VORONOI};
+  const cli_opt opts[] = {
+      CLI_BATCH_OPTIONS(&B),
+      CLI_OPT_INT("-k", &c.k, 1, INT_MAX, "-k needs a positive integer, not '%s'"),
+      CLI_OPT_STR("-o", &c.evals),
+      CLI_OPT_STR("--evecs", &c.evecs),
+      CLI_OPT_CHOICE("--mass", CLI_ENUM(&c.mass), "barycentric|voronoi", MASS,
+                     "--mass must be barycentric or voronoi, not '%s'"),
+      CLI_OPT_DOUBLE("--sigma", &c.opt.sigma, -1e308, 1e308, CLI_OPEN_LO | CLI_OPEN_HI,
+                     "--sigma needs a finite number, not '%s'"),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  int rc = -1;
-  while (rc < 0 && cli_next(&A)) {
-    const char *v = A.val;
-    if (cli_batch_option(&B, &A)) continue;
-    if (A.pos) {
-      rc = cli_batch_add(&B, &A, A.pos);
-    } else if (cli_is(&A, "-k")) {
-      if (cli_parse_int(v, 1, INT_MAX, &c.k)) rc = cli_bad(&A, "-k needs a positive integer, not '%s'", v);
-    } else if (cli_is(&A, "-o")) {
-      c.evals = v;
-    } else if (cli_is(&A, "--evecs")) {
-      c.evecs = v;
-    } else if (cli_is(&A, "--mass")) {
-      if (!strcmp(v, "barycentric")) c.mass = SS_MASS_BARYCENTRIC;
-      else if (!strcmp(v, "voronoi")) c.mass = SS_MASS_VORONOI;
-      else rc = cli_bad(&A, "--mass must be barycentric or voronoi, not '%s'", v);
-    } else if (cli_is(&A, "--sigma")) {
-      if (cli_parse_double(v, &c.opt.sigma) || !(c.opt.sigma > -1e308 && c.opt.sigma < 1e308))
-        rc = cli_bad(&A, "--sigma needs a finite number, not '%s'", v);
-    }
-  }
-  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
   if (rc < 0 && c.k < 0) rc = cli_bad(&A, "-k K is required");
   const char *extras[1] = {c.evecs};
@@ -191,9 +179,5 @@ int cmd_eigs(int argc, char **argv) {
     rc = cli_bad(&A, "--evecs -: standard output carries the eigenvalues; give a file name");
   if (rc < 0 && !B.batch && B.json && (!c.evals || cli_is_std(c.evals)))
     rc = cli_bad(&A, "--json wants standard output: write the eigenvalues with -o FILE");
-  if (rc >= 0) {
-    cli_batch_free(&B);
-    return rc;
-  }
-  return cli_batch_run(&B, eigs_job, &c);
+  return cli_batch_finish(&B, rc, eigs_job, &c);
 }

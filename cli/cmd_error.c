@@ -31,8 +31,6 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static const char *const OPTS[] = {"--gt=", "--sym=", "--x=", "-o=", "--json", NULL};
-
 /* The vertex count of a mesh or prepared shape; -1 after reporting why not. */
 static int vertex_count(const char *path, ss_mesh *keep) {
   cli_shape s;
@@ -50,26 +48,14 @@ static int vertex_count(const char *path, ss_mesh *keep) {
 int cmd_error(int argc, char **argv) {
   const char *mapf = NULL, *yf = NULL, *gtf = NULL, *symf = NULL, *outf = NULL, *xf = NULL;
   int json = 0;
+  const cli_opt opts[] = {CLI_OPT_POS("MAP.txt", &mapf, NULL), CLI_OPT_POS("Y", &yf, "too many arguments ('%s')"),
+                          CLI_OPT_STR("--gt", &gtf),   CLI_OPT_STR("--sym", &symf),
+                          CLI_OPT_STR("--x", &xf),     CLI_OPT_STR("-o", &outf),
+                          CLI_OPT_FLAG("--json", &json, 1), CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    if (A.pos) {
-      if (!mapf) mapf = A.pos;
-      else if (!yf) yf = A.pos;
-      else return cli_bad(&A, "too many arguments ('%s')", A.pos);
-    } else if (cli_is(&A, "--gt")) {
-      gtf = A.val;
-    } else if (cli_is(&A, "--sym")) {
-      symf = A.val;
-    } else if (cli_is(&A, "--x")) {
-      xf = A.val;
-    } else if (cli_is(&A, "-o")) {
-      outf = A.val;
-    } else if (cli_is(&A, "--json")) {
-      json = 1;
-    }
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
   if (!mapf || !yf) return cli_bad(&A, "needs MAP.txt and Y");
   const char *ins[5] = {mapf, yf, gtf, symf, xf};
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
@@ -85,7 +71,8 @@ int cmd_error(int argc, char **argv) {
   if (symf) cli_job_str(&J, "sym", cli_in_name(symf));
 
   ss_error err = {{0}};
-  int *map = NULL, *gt = NULL, *sym = NULL, n = 0, ngt = 0, nsym = 0, rc = SS_EXIT_OK;
+  int *map = NULL, *gt = NULL, *sym = NULL, n = 0, ngt = 0, nsym = 0;
+  rc = SS_EXIT_OK;
   int *lmap = NULL, *lgt = NULL, *lsym = NULL; /* line numbers, for the range checks */
   double *e = NULL, mean = 0;
   ss_mesh Y = {0};

@@ -79,12 +79,6 @@ static const char USAGE[] =
     "  --gallery-only      --figures: the gallery only, no map figures\n"
     "\n";
 
-static const char *const OPTS[] = {"--table1", "--coherency", "--timings", "--quiet", "--gallery-only", "--figures=",
-                                   "--gallery-count=", "--pair=", "--size=", "--data=", "--out=", "-o=", "--cache=",
-                                   "--pairs=", "--jobs=", "--k=", "--shapes=", "--error-samples=", "--seed=",
-                                   "--shard=", "--policies=", "--landmarks=", "--methods=", "--manifest=",
-                                   "--pairing=", "--json", "--candidates=", NULL};
-static const char *const MERGE_OPTS[] = {"--out=", "-o=", "--manifest=", NULL};
 
 /* the help text: the paper's evaluation, then the benchmark's (cmd_eval_benchmark.h) */
 static const char *full_usage(void) {
@@ -108,6 +102,32 @@ static int parse_set(const char *s, int (*parse)(const char *)) {
 static int parse_policy(const char *s) { return ss_pair_policy_parse(s); }
 static int parse_lm(const char *s) { return ss_lm_set_parse(s); }
 static int parse_method(const char *s) { return ss_eval_method_parse(s); }
+
+/* --policies, --landmarks, --methods: a comma list into a bit set (given: set to 1, when not NULL) */
+typedef struct set_opt {
+  int *mask, *given;
+  int (*parse)(const char *);
+  const char *msg;
+} set_opt;
+
+static int take_set(cli_args *A, const cli_opt *o, const char *v) {
+  const set_opt *s = o->dest;
+  if (s->given) *s->given = 1;
+  if ((*s->mask = parse_set(v, s->parse)) < 0) return cli_bad(A, "%s", s->msg);
+  return -1;
+}
+
+/* --pair X,Y: two different FAUST shape numbers */
+static int take_pair(cli_args *A, const cli_opt *o, const char *v) {
+  char buf[64], *c;
+  snprintf(buf, sizeof buf, "%s", v);
+  if (!(c = strchr(buf, ','))) return cli_bad(A, "--pair: X,Y (FAUST shape numbers 0..99)");
+  *c = 0;
+  int *x = o->dest, *y = o->dest2;
+  if (cli_parse_int(buf, 0, 99, x) || cli_parse_int(c + 1, 0, 99, y) || *x == *y)
+    return cli_bad(A, "--pair: X,Y (two different FAUST shape numbers 0..99)");
+  return -1;
+}
 
 /* Table 1 in the paper's layout, ours beside the paper's, the refined default's column when there
  * are such rows, and the issue's ordering checks. */
@@ -274,33 +294,43 @@ static int print_csv_table(const char *path, const ss_manifest *man, cli_job *J)
   return SS_EXIT_OK;
 }
 
+/* the rows of the CSVs merged so far */
+typedef struct merge_rows {
+  ss_eval_row *all;
+  int n, nin;
+} merge_rows;
+
+/* a CSV argument of eval merge: its rows appended */
+static int merge_csv(cli_args *A, const cli_opt *o, const char *path) {
+  merge_rows *M = o->dest;
+  ss_error e;
+  if (cli_is_std(path)) return cli_bad(A, "merge reads CSV files, not standard input ('-')");
+  ss_eval_row *r;
+  int m;
+  if (ss_eval_csv_read(path, &r, &m, &e)) return cli_error("%s", e.msg);
+  ss_eval_row *g = realloc(M->all, sizeof *M->all * (size_t)(M->n + m + 1));
+  if (!g) { free(r); return cli_error("out of memory"); }
+  M->all = g;
+  if (m) memcpy(M->all + M->n, r, sizeof *r * (size_t)m);
+  M->n += m;
+  M->nin++;
+  free(r);
+  return -1;
+}
+
 static int cmd_merge(int argc, char **argv) {
   const char *out = NULL, *mpath = NULL;
-  ss_eval_row *all = NULL;
-  int n = 0, nin = 0;
+  merge_rows M = {NULL, 0, 0};
   ss_error e;
+  const cli_opt opts[] = {CLI_OPT_POS_FN("CSV", merge_csv, &M), CLI_OPT_STR("--out|-o", &out),
+                          CLI_OPT_STR("--manifest", &mpath), CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, full_usage(), MERGE_OPTS);
+  cli_args_init(&A, argc, argv, full_usage(), opts);
   A.cmd = "eval merge";
-  while (cli_next(&A)) {
-    if (A.opt) {
-      if (cli_is(&A, "--manifest")) mpath = A.val;
-      else out = A.val;
-      continue;
-    }
-    if (cli_is_std(A.pos)) { free(all); return cli_bad(&A, "merge reads CSV files, not standard input ('-')"); }
-    ss_eval_row *r;
-    int m;
-    if (ss_eval_csv_read(A.pos, &r, &m, &e)) { free(all); return cli_error("%s", e.msg); }
-    ss_eval_row *g = realloc(all, sizeof *all * (size_t)(n + m + 1));
-    if (!g) { free(all); free(r); return cli_error("out of memory"); }
-    all = g;
-    if (m) memcpy(all + n, r, sizeof *r * (size_t)m);
-    n += m;
-    nin++;
-    free(r);
-  }
-  if (A.rc >= 0) { free(all); return A.rc; }
+  int rc = cli_parse(&A);
+  ss_eval_row *all = M.all;
+  int n = M.n, nin = M.nin;
+  if (rc >= 0) { free(all); return rc; }
   if (!nin) { free(all); return cli_bad(&A, "merge needs at least one CSV"); }
   if (ss_eval_rows_canonical(all, &n, &e)) { free(all); return cli_error("%s", e.msg); }
   FILE *report = cli_is_std(out) ? stderr : stdout; /* the table beside a CSV on stdout goes to stderr */
@@ -322,7 +352,7 @@ static int cmd_merge(int argc, char **argv) {
     return cli_error("%s", e.msg);
   }
   fprintf(report, "merged %d rows from %d files%s%s\n", n, nin, out ? " into " : "", out ? cli_out_name(out) : "");
-  int rc = SS_EXIT_OK;
+  rc = SS_EXIT_OK;
   if (mpath) {
     ss_manifest man;
     if (ss_manifest_read(mpath, &man, &e)) rc = cli_error("%s", e.msg);
@@ -710,63 +740,41 @@ int cmd_eval(int argc, char **argv) {
   const char *figures = NULL;
   int lm_given = 0, pair_x = -1, pair_y = -1, fig_w = 0, fig_h = 0, gallery = 10, gallery_only = 0, ncand = 9;
   const char *mpath = NULL;
+  set_opt sets[3] = {{&o.policies_mask, NULL, parse_policy, "--policies: comma list of random,subj,pose"},
+                     {&o.lm_mask, &lm_given, parse_lm, "--landmarks: comma list of best,gt,fps,none"},
+                     {&o.methods_mask, NULL, parse_method, "--methods: comma list of std,asa,diff,refined"}};
+  const cli_opt opts[] = {
+      CLI_OPT_FLAG("--table1", &table1, 1),
+      CLI_OPT_FLAG("--coherency", &coherency, 1),
+      CLI_OPT_FLAG("--timings", &timings, 1),
+      CLI_OPT_FLAG("--quiet", &quiet, 1),
+      CLI_OPT_FLAG("--json", &json, 1),
+      CLI_OPT_STR("--figures", &figures),
+      CLI_OPT_FLAG("--gallery-only", &gallery_only, 1),
+      CLI_OPT_INT("--candidates", &ncand, 1, 100, "--candidates: integer in [1,100]"),
+      CLI_OPT_INT("--gallery-count", &gallery, 0, 100, "--gallery-count: integer in [0,100]"),
+      CLI_OPT_CALL("--pair", take_pair, &pair_x, &pair_y),
+      CLI_OPT_WXH("--size", &fig_w, &fig_h, 16, 4096, "--size: WxH per panel, each between 16 and 4096"),
+      CLI_OPT_STR("--data", &o.data_dir),
+      CLI_OPT_STR("--manifest", &mpath),
+      CLI_OPT_CHOICE("--pairing", &o.confident_pairing, "paper|confident", NULL, "--pairing: paper or confident"),
+      CLI_OPT_STR("--out|-o", &o.out_csv),
+      CLI_OPT_STR("--cache", &o.cache_dir),
+      CLI_OPT_INT("--pairs", &o.npairs, 1, 900, "--pairs: integer in [1,900]"),
+      CLI_OPT_INT("--jobs", &o.jobs, 1, 1024, "--jobs: positive integer"),
+      CLI_OPT_INT("--k", &o.k, 3, 1000, "--k: integer in [3,1000]"),
+      CLI_OPT_INT("--shapes", &nshapes, 1, 100, "--shapes: integer in [1,100]"),
+      CLI_OPT_INT("--error-samples", &o.error_samples, 0, 3000, "--error-samples: integer in [0,3000] (0 = every vertex)"),
+      CLI_OPT_UINT64("--seed", &o.seed, "--seed: non-negative integer"),
+      CLI_OPT_SHARD(&o.shard_i, &o.shard_n),
+      CLI_OPT_CALL("--policies", take_set, &sets[0], NULL),
+      CLI_OPT_CALL("--landmarks", take_set, &sets[1], NULL),
+      CLI_OPT_CALL("--methods", take_set, &sets[2], NULL),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, usage, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) return cli_bad(&A, "unexpected argument '%s'", A.pos);
-    if (cli_is(&A, "--table1")) table1 = 1;
-    else if (cli_is(&A, "--coherency")) coherency = 1;
-    else if (cli_is(&A, "--timings")) timings = 1;
-    else if (cli_is(&A, "--quiet")) quiet = 1;
-    else if (cli_is(&A, "--json")) json = 1;
-    else if (cli_is(&A, "--figures")) figures = v;
-    else if (cli_is(&A, "--gallery-only")) gallery_only = 1;
-    else if (cli_is(&A, "--candidates")) { if (cli_parse_int(v, 1, 100, &ncand)) return cli_bad(&A, "--candidates: integer in [1,100]"); }
-    else if (cli_is(&A, "--gallery-count")) { if (cli_parse_int(v, 0, 100, &gallery)) return cli_bad(&A, "--gallery-count: integer in [0,100]"); }
-    else if (cli_is(&A, "--pair")) {
-      char buf[64], *c;
-      snprintf(buf, sizeof buf, "%s", v);
-      if (!(c = strchr(buf, ','))) return cli_bad(&A, "--pair: X,Y (FAUST shape numbers 0..99)");
-      *c = 0;
-      if (cli_parse_int(buf, 0, 99, &pair_x) || cli_parse_int(c + 1, 0, 99, &pair_y) || pair_x == pair_y)
-        return cli_bad(&A, "--pair: X,Y (two different FAUST shape numbers 0..99)");
-    } else if (cli_is(&A, "--size")) {
-      char buf[64], *c;
-      snprintf(buf, sizeof buf, "%s", v);
-      if (!(c = strchr(buf, 'x')) || (*c = 0, cli_parse_int(buf, 16, 4096, &fig_w)) || cli_parse_int(c + 1, 16, 4096, &fig_h))
-        return cli_bad(&A, "--size: WxH per panel, each between 16 and 4096");
-    }
-    else if (cli_is(&A, "--data")) o.data_dir = v;
-    else if (cli_is(&A, "--manifest")) mpath = v;
-    else if (cli_is(&A, "--pairing")) {
-      if (strcmp(v, "paper") && strcmp(v, "confident")) return cli_bad(&A, "--pairing: paper or confident");
-      o.confident_pairing = !strcmp(v, "confident");
-    }
-    else if (cli_is(&A, "--out") || cli_is(&A, "-o")) o.out_csv = v;
-    else if (cli_is(&A, "--cache")) o.cache_dir = v;
-    else if (cli_is(&A, "--pairs")) { if (cli_parse_int(v, 1, 900, &o.npairs)) return cli_bad(&A, "--pairs: integer in [1,900]"); }
-    else if (cli_is(&A, "--jobs")) { if (cli_parse_int(v, 1, 1024, &o.jobs)) return cli_bad(&A, "--jobs: positive integer"); }
-    else if (cli_is(&A, "--k")) { if (cli_parse_int(v, 3, 1000, &o.k)) return cli_bad(&A, "--k: integer in [3,1000]"); }
-    else if (cli_is(&A, "--shapes")) { if (cli_parse_int(v, 1, 100, &nshapes)) return cli_bad(&A, "--shapes: integer in [1,100]"); }
-    else if (cli_is(&A, "--error-samples")) { if (cli_parse_int(v, 0, 3000, &o.error_samples)) return cli_bad(&A, "--error-samples: integer in [0,3000] (0 = every vertex)"); }
-    else if (cli_is(&A, "--seed")) {
-      char *end;
-      errno = 0;
-      unsigned long long s = strtoull(v, &end, 10);
-      if (errno || *end || !*v || v[0] == '-') return cli_bad(&A, "--seed: non-negative integer");
-      o.seed = s;
-    } else if (cli_is(&A, "--shard")) {
-      int si, sn;
-      char tail;
-      if (sscanf(v, "%d/%d%c", &si, &sn, &tail) != 2 || sn < 1 || si < 1 || si > sn)
-        return cli_bad(&A, "--shard: I/N with 1 <= I <= N (e.g. 3/8)");
-      o.shard_i = si - 1, o.shard_n = sn;
-    } else if (cli_is(&A, "--policies")) { if ((o.policies_mask = parse_set(v, parse_policy)) < 0) return cli_bad(&A, "--policies: comma list of random,subj,pose"); }
-    else if (cli_is(&A, "--landmarks")) { lm_given = 1; if ((o.lm_mask = parse_set(v, parse_lm)) < 0) return cli_bad(&A, "--landmarks: comma list of best,gt,fps,none"); }
-    else if (cli_is(&A, "--methods")) { if ((o.methods_mask = parse_set(v, parse_method)) < 0) return cli_bad(&A, "--methods: comma list of std,asa,diff,refined"); }
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, usage, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
   if (table1 + coherency + timings + !!figures != 1)
     return cli_bad(&A, "choose one of --table1, --coherency, --timings, --figures");
   if (mpath && !table1) return cli_bad(&A, "--manifest works with --table1 (and merge)");

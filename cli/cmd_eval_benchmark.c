@@ -22,11 +22,6 @@ static const char USAGE_HEAD[] =
     "       specseg eval merge OUTDIR/pairs.csv... --out DIR [--title TEXT] [--json]\n"
     "\n";
 
-static const char *const OPTS[] = {"--benchmark=", "--out=", "-o=", "--pairs=", "--max-pairs=", "--seed=",
-                                   "--landmarks=", "--maps=", "--no-match", "--cache=", "--jobs=", "--shard=",
-                                   "--title=", "--quiet", "--json", NULL};
-static const char *const MERGE_OPTS[] = {"--out=", "-o=", "--title=", "--json", NULL};
-
 static char *usage_text(void) {
   size_t a = strlen(USAGE_HEAD), b = strlen(CLI_EVAL_BENCHMARK_HELP_TEXT);
   char *u = malloc(a + b + 1);
@@ -143,72 +138,75 @@ static void default_title(const char *dir, char *t, size_t n) {
   }
 }
 
+/* --landmarks none|gt:N */
+static int take_landmarks(cli_args *A, const cli_opt *o, const char *v) {
+  int *n = o->dest;
+  if (!strcmp(v, "none")) *n = 0;
+  else if (strncmp(v, "gt:", 3) || cli_parse_int(v + 3, 1, 64, n)) return cli_bad(A, "--landmarks: none or gt:N with N in 1..64");
+  return -1;
+}
+
+/* the --maps NAME=MAPDIR given (each a copy, cut at its '=') */
+typedef struct maps_opt {
+  const char *names[MAX_MAPS], *dirs[MAX_MAPS];
+  char *args[MAX_MAPS];
+  int n;
+} maps_opt;
+
+static int take_maps(cli_args *A, const cli_opt *o, const char *v) {
+  maps_opt *M = o->dest;
+  const char *eq = strchr(v, '=');
+  if (!eq || eq == v || !eq[1]) return cli_bad(A, "--maps: NAME=MAPDIR");
+  if (M->n == MAX_MAPS) return cli_bad(A, "--maps: at most %d folders", MAX_MAPS);
+  char *c = malloc(strlen(v) + 1);
+  if (!c) return cli_error("out of memory");
+  strcpy(c, v);
+  c[eq - v] = 0;
+  M->args[M->n] = c, M->names[M->n] = c, M->dirs[M->n] = c + (eq - v) + 1, M->n++;
+  return -1;
+}
+
 static int run_benchmark(int argc, char **argv) {
   ss_benchmark_options o;
   ss_benchmark_default_options(&o);
-  const char *names[MAX_MAPS], *dirs[MAX_MAPS], *title = NULL;
-  char *mapargs[MAX_MAPS] = {0};
-  int nmaps = 0, quiet = 0, json = 0, rc = SS_EXIT_OK;
+  const char *title = NULL;
+  maps_opt maps = {{0}, {0}, {0}, 0};
+  int quiet = 0, json = 0;
   o.out_dir = "specseg_benchmark";
   char *usage = usage_text();
   if (!usage) return cli_error("out of memory");
+  const cli_opt opts[] = {
+      CLI_OPT_STR("--benchmark", &o.dir),
+      CLI_OPT_STR("--out|-o", &o.out_dir),
+      CLI_OPT_STR("--pairs", &o.pairs_file),
+      CLI_OPT_INT("--max-pairs", &o.max_pairs, 1, 2000000000, "--max-pairs: positive integer"),
+      CLI_OPT_UINT64("--seed", &o.seed, "--seed: non-negative integer"),
+      CLI_OPT_CALL("--landmarks", take_landmarks, &o.landmarks, NULL),
+      CLI_OPT_CALL("--maps", take_maps, &maps, NULL),
+      CLI_OPT_FLAG("--no-match", &o.match, 0),
+      CLI_OPT_STR("--cache", &o.cache_dir),
+      CLI_OPT_INT("--jobs", &o.jobs, 1, 1024, "--jobs: positive integer"),
+      CLI_OPT_SHARD(&o.shard_i, &o.shard_n),
+      CLI_OPT_STR("--title", &title),
+      CLI_OPT_FLAG("--quiet", &quiet, 1),
+      CLI_OPT_FLAG("--json", &json, 1),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, usage, OPTS);
+  cli_args_init(&A, argc, argv, usage, opts);
   A.cmd = "eval --benchmark";
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) { cli_bad(&A, "unexpected argument '%s'", A.pos); break; }
-    if (cli_is(&A, "--benchmark")) o.dir = v;
-    else if (cli_is(&A, "--out") || cli_is(&A, "-o")) o.out_dir = v;
-    else if (cli_is(&A, "--pairs")) o.pairs_file = v;
-    else if (cli_is(&A, "--max-pairs")) { if (cli_parse_int(v, 1, 2000000000, &o.max_pairs)) { cli_bad(&A, "--max-pairs: positive integer"); break; } }
-    else if (cli_is(&A, "--seed")) {
-      char *end;
-      errno = 0;
-      unsigned long long s = strtoull(v, &end, 10);
-      if (errno || *end || !*v || v[0] == '-') { cli_bad(&A, "--seed: non-negative integer"); break; }
-      o.seed = s;
-    } else if (cli_is(&A, "--landmarks")) {
-      if (!strcmp(v, "none")) o.landmarks = 0;
-      else if (strncmp(v, "gt:", 3) || cli_parse_int(v + 3, 1, 64, &o.landmarks)) {
-        cli_bad(&A, "--landmarks: none or gt:N with N in 1..64");
-        break;
-      }
-    } else if (cli_is(&A, "--maps")) {
-      const char *eq = strchr(v, '=');
-      if (!eq || eq == v || !eq[1]) { cli_bad(&A, "--maps: NAME=MAPDIR"); break; }
-      if (nmaps == MAX_MAPS) { cli_bad(&A, "--maps: at most %d folders", MAX_MAPS); break; }
-      char *c = malloc(strlen(v) + 1);
-      if (!c) { rc = cli_error("out of memory"); break; }
-      strcpy(c, v);
-      c[eq - v] = 0;
-      mapargs[nmaps] = c, names[nmaps] = c, dirs[nmaps] = c + (eq - v) + 1, nmaps++;
-    } else if (cli_is(&A, "--no-match")) o.match = 0;
-    else if (cli_is(&A, "--cache")) o.cache_dir = v;
-    else if (cli_is(&A, "--jobs")) { if (cli_parse_int(v, 1, 1024, &o.jobs)) { cli_bad(&A, "--jobs: positive integer"); break; } }
-    else if (cli_is(&A, "--shard")) {
-      int si, sn;
-      char tail;
-      if (sscanf(v, "%d/%d%c", &si, &sn, &tail) != 2 || sn < 1 || si < 1 || si > sn) {
-        cli_bad(&A, "--shard: I/N with 1 <= I <= N (e.g. 3/8)");
-        break;
-      }
-      o.shard_i = si - 1, o.shard_n = sn;
-    } else if (cli_is(&A, "--title")) title = v;
-    else if (cli_is(&A, "--quiet")) quiet = 1;
-    else if (cli_is(&A, "--json")) json = 1;
-  }
-  if (rc == SS_EXIT_OK && A.rc >= 0) rc = A.rc;
-  if (rc == SS_EXIT_OK && A.rc < 0) {
+  int rc = cli_parse(&A);
+  const int nmaps = maps.n;
+  if (rc < 0) {
     const char *fold[3] = {o.dir, o.out_dir, o.cache_dir};
     if (!o.dir) rc = cli_bad(&A, "--benchmark DIR is required");
     else if (cli_count_std(fold, 3) || (o.pairs_file && cli_is_std(o.pairs_file)))
       rc = cli_bad(&A, "--benchmark, --out, --cache and --pairs take files or folders, not '-'");
     else if (!o.match && !nmaps) rc = cli_bad(&A, "--no-match needs at least one --maps NAME=MAPDIR");
   }
-  if (rc != SS_EXIT_OK || A.rc >= 0) goto done;
+  if (rc >= 0) goto done;
+  rc = SS_EXIT_OK;
   {
-    o.nmaps = nmaps, o.map_names = names, o.map_dirs = dirs;
+    o.nmaps = nmaps, o.map_names = maps.names, o.map_dirs = maps.dirs;
     char tbuf[256];
     if (!title) default_title(o.dir, tbuf, sizeof tbuf), title = tbuf;
     bench_out bo = {!quiet && isatty(2), quiet, 0};
@@ -240,7 +238,7 @@ static int run_benchmark(int argc, char **argv) {
     ss_benchmark_info_free(&info);
   }
 done:
-  for (int i = 0; i < nmaps; i++) free(mapargs[i]);
+  for (int i = 0; i < maps.n; i++) free(maps.args[i]);
   free(usage);
   return rc;
 }
@@ -281,6 +279,37 @@ static void shard_title(const char *csv, char *t, size_t n) {
   else t[0] = 0;
 }
 
+/* the rows of the shards merged so far; the title from the first one's summary.json unless --title came
+ * before it */
+typedef struct shard_rows {
+  ss_benchmark_row *all;
+  int n, nin;
+  const char **title;
+  char *tbuf; /* 256 bytes */
+} shard_rows;
+
+/* a pairs.csv (or its shard folder) argument of eval merge: its rows appended */
+static int merge_shard(cli_args *A, const cli_opt *o, const char *arg) {
+  shard_rows *M = o->dest;
+  ss_error e;
+  if (cli_is_std(arg)) return cli_bad(A, "merge reads pairs.csv files, not standard input ('-')");
+  char path[4200];
+  struct stat st;
+  if (!stat(arg, &st) && S_ISDIR(st.st_mode)) snprintf(path, sizeof path, "%s/pairs.csv", arg);
+  else snprintf(path, sizeof path, "%s", arg);
+  ss_benchmark_row *r;
+  int m;
+  if (ss_benchmark_csv_read(path, &r, &m, &e)) return cli_error("%s", e.msg);
+  ss_benchmark_row *g = realloc(M->all, sizeof *M->all * (size_t)(M->n + m + 1));
+  if (!g) { free(r); return cli_error("out of memory"); }
+  M->all = g;
+  if (m) memcpy(M->all + M->n, r, sizeof *r * (size_t)m);
+  M->n += m;
+  free(r);
+  if (!M->nin++ && !*M->title) shard_title(path, M->tbuf, 256);
+  return -1;
+}
+
 int cmd_eval_benchmark_merge(int argc, char **argv) {
   const char *out = NULL, *title = NULL;
   int json = 0, nin = 0, n = 0;
@@ -289,38 +318,19 @@ int cmd_eval_benchmark_merge(int argc, char **argv) {
   ss_error e;
   char *usage = usage_text();
   if (!usage) return cli_error("out of memory");
+  shard_rows M = {NULL, 0, 0, &title, tbuf};
+  const cli_opt opts[] = {CLI_OPT_POS_FN("CSV", merge_shard, &M), CLI_OPT_STR("--out|-o", &out),
+                          CLI_OPT_STR("--title", &title), CLI_OPT_FLAG("--json", &json, 1), CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, usage, MERGE_OPTS);
+  cli_args_init(&A, argc, argv, usage, opts);
   A.cmd = "eval merge";
-  int rc = SS_EXIT_OK;
-  while (cli_next(&A)) {
-    if (A.opt) {
-      if (cli_is(&A, "--title")) title = A.val;
-      else if (cli_is(&A, "--json")) json = 1;
-      else out = A.val;
-      continue;
-    }
-    if (cli_is_std(A.pos)) { rc = cli_bad(&A, "merge reads pairs.csv files, not standard input ('-')"); break; }
-    char path[4200];
-    struct stat st;
-    if (!stat(A.pos, &st) && S_ISDIR(st.st_mode)) snprintf(path, sizeof path, "%s/pairs.csv", A.pos);
-    else snprintf(path, sizeof path, "%s", A.pos);
-    ss_benchmark_row *r;
-    int m;
-    if (ss_benchmark_csv_read(path, &r, &m, &e)) { rc = cli_error("%s", e.msg); break; }
-    ss_benchmark_row *g = realloc(all, sizeof *all * (size_t)(n + m + 1));
-    if (!g) { free(r); rc = cli_error("out of memory"); break; }
-    all = g;
-    if (m) memcpy(all + n, r, sizeof *r * (size_t)m);
-    n += m;
-    free(r);
-    if (!nin++ && !title) shard_title(path, tbuf, sizeof tbuf);
-  }
-  if (rc == SS_EXIT_OK && A.rc >= 0) rc = A.rc;
-  if (rc == SS_EXIT_OK && A.rc < 0 && !nin) rc = cli_bad(&A, "merge needs at least one pairs.csv (or shard folder)");
-  if (rc == SS_EXIT_OK && A.rc < 0 && !out) rc = cli_bad(&A, "--out DIR: the folder of the merged pairs.csv, summary.json and curves.png");
-  if (rc == SS_EXIT_OK && A.rc < 0 && cli_is_std(out)) rc = cli_bad(&A, "--out takes a folder, not '-'");
-  if (rc != SS_EXIT_OK || A.rc >= 0) goto done;
+  int rc = cli_parse(&A);
+  all = M.all, n = M.n, nin = M.nin;
+  if (rc < 0 && !nin) rc = cli_bad(&A, "merge needs at least one pairs.csv (or shard folder)");
+  if (rc < 0 && !out) rc = cli_bad(&A, "--out DIR: the folder of the merged pairs.csv, summary.json and curves.png");
+  if (rc < 0 && cli_is_std(out)) rc = cli_bad(&A, "--out takes a folder, not '-'");
+  if (rc >= 0) goto done;
+  rc = SS_EXIT_OK;
   if (ss_benchmark_rows_canonical(all, &n, &e)) { rc = cli_error("%s", e.msg); goto done; }
   if (mkdir(out, 0755) && errno != EEXIST) { rc = cli_error("%s: cannot create: %s", out, strerror(errno)); goto done; }
   {

@@ -22,7 +22,13 @@ static const char USAGE[] =
     "  -o, --output FILE   the distances (required), text or .npy by extension; - writes them to standard\n"
     "                      output\n";
 
-static const char *const OPTS[] = {"-s=", "--source=", "--method=", "--max-dist=", "-o=", "--output=", NULL};
+/* the mesh: one positional argument */
+static int take_mesh(cli_args *A, const cli_opt *o, const char *arg) {
+  const char **path = o->dest;
+  if (*path) return cli_bad(A, "more than one mesh given ('%s', '%s')", *path, arg);
+  *path = arg;
+  return -1;
+}
 
 int cmd_geodesic(int argc, char **argv) {
   const char *path = NULL, *out = NULL;
@@ -32,30 +38,18 @@ int cmd_geodesic(int argc, char **argv) {
   int rc = SS_EXIT_OK;
   src = malloc(sizeof(int) * (size_t)(argc > 0 ? argc : 1));
   if (!src) return cli_error("out of memory");
+  static const int METHOD[] = {SS_GEODESIC_EXACT, SS_GEODESIC_GRAPH, SS_GEODESIC_EDGE};
+  const cli_opt opts[] = {
+      CLI_OPT_POS_FN("MESH", take_mesh, &path),
+      CLI_OPT_INTS("-s|--source", src, &ns, 0, 2147483647L, "--source needs a vertex index >= 0, not '%s'"),
+      CLI_OPT_CHOICE("--method", CLI_ENUM(&method), "exact|graph|edge", METHOD, "unknown method '%s' (exact, graph or edge)"),
+      CLI_OPT_DOUBLE("--max-dist", &maxd, 0, INFINITY, CLI_OPEN_LO, "--max-dist needs a positive number, not '%s'"),
+      CLI_OPT_STR("-o|--output", &out),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) {
-      if (path) { rc = cli_bad(&A, "more than one mesh given ('%s', '%s')", path, A.pos); goto done; }
-      path = A.pos;
-    } else if (cli_is(&A, "--source") || cli_is(&A, "-s")) {
-      if (cli_parse_int(v, 0, 2147483647L, &src[ns]))
-        { rc = cli_bad(&A, "--source needs a vertex index >= 0, not '%s'", v); goto done; }
-      ns++;
-    } else if (cli_is(&A, "--method")) {
-      if (!strcmp(v, "exact")) method = SS_GEODESIC_EXACT;
-      else if (!strcmp(v, "graph")) method = SS_GEODESIC_GRAPH;
-      else if (!strcmp(v, "edge")) method = SS_GEODESIC_EDGE;
-      else { rc = cli_bad(&A, "unknown method '%s' (exact, graph or edge)", v); goto done; }
-    } else if (cli_is(&A, "--max-dist")) {
-      if (cli_parse_double(v, &maxd) || !(maxd > 0))
-        { rc = cli_bad(&A, "--max-dist needs a positive number, not '%s'", v); goto done; }
-    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      out = v;
-    }
-  }
-  if (A.rc >= 0) { rc = A.rc; goto done; }
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  if ((rc = cli_parse(&A)) >= 0) goto done;
+  rc = SS_EXIT_OK;
   if (!path) { rc = cli_bad(&A, "no mesh given"); goto done; }
   {
     const char *ins[1] = {path}, *outs[1] = {out};

@@ -21,8 +21,6 @@ static const char USAGE[] =
     "  -o OUT              write the lines to OUT instead of standard output (batch: OUTDIR/NAME.info.txt)\n"
     CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"-o=", CLI_BATCH_OPTS, NULL};
-
 static int info_job(cli_job *j, void *cfg) {
   (void)cfg;
   const char *path = j->input;
@@ -93,23 +91,11 @@ int cmd_info(int argc, char **argv) {
   const char *outp = NULL;
   cli_batch B;
   cli_batch_init(&B, "info");
+  const cli_opt opts[] = {CLI_BATCH_OPTIONS(&B), CLI_OPT_STR("-o", &outp), CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  int rc = -1;
-  while (rc < 0 && cli_next(&A)) {
-    if (cli_batch_option(&B, &A)) continue;
-    if (A.pos) rc = cli_batch_add(&B, &A, A.pos);
-    else if (cli_is(&A, "-o")) outp = A.val;
-  }
-  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
   if (rc < 0) rc = cli_batch_setup(&B, &A, outp, 0, ".info.txt", NULL, 0);
-  if (rc >= 0) {
-    cli_batch_free(&B);
-    return rc;
-  }
-  if (B.json && cli_is_std(outp)) {
-    cli_batch_free(&B);
-    return cli_bad(&A, "--json and -o - both want standard output");
-  }
-  return cli_batch_run(&B, info_job, &outp);
+  if (rc < 0 && B.json && cli_is_std(outp)) rc = cli_bad(&A, "--json and -o - both want standard output");
+  return cli_batch_finish(&B, rc, info_job, &outp);
 }

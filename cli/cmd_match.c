@@ -73,11 +73,6 @@ static const char USAGE[] =
     "                      timings, warnings, errors, output paths)\n"
     "One of the output files may be - (standard output).\n";
 
-static const char *const OPTS[] = {"--landmarks=", "-o=", "--output=", "--fmap=", "--pairs=", "--probes=",
-                                   "--segment-profile=", "--k=", "--zoomout=", "--no-refine", "--descr-k=",
-                                   "--zoomout-step=", "--zoomout-samples=", "--orient=", "--timings", "--descriptors==",
-                                   "--no-wks", "--json", "--hypotheses=", NULL};
-
 /* the hypotheses of a landmark-free match as a JSON array (non-finite numbers as null) */
 static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t size) {
   size_t n = 0;
@@ -105,65 +100,35 @@ int cmd_match(int argc, char **argv) {
   ss_match_options o;
   ss_match_default_options(&o);
   o.probes = SS_PROBES_DIFF;
+  static const int PROBES[] = {SS_PROBES_STD, SS_PROBES_ASA, SS_PROBES_DIFF};
+  static const int PROFILE[] = {SS_PROFILE_INDICATOR, SS_PROFILE_TENT, SS_PROFILE_SOFT};
+  const cli_opt opts[] = {
+      CLI_OPT_POS("X", &xp, NULL),
+      CLI_OPT_POS("Y", &yp, NULL),
+      CLI_OPT_STR("--landmarks", &lmp),
+      CLI_OPT_STR("-o|--output", &outp),
+      CLI_OPT_STR("--fmap", &fmapp),
+      CLI_OPT_STR("--pairs", &pairsp),
+      CLI_OPT_CHOICE("--probes", CLI_ENUM(&o.probes), "std|asa|diff", PROBES, "--probes takes std, asa or diff, not '%s'"),
+      CLI_OPT_CHOICE("--segment-profile", CLI_ENUM(&o.segment_profile), "indicator|tent|soft", PROFILE,
+                     "--segment-profile takes indicator, tent or soft, not '%s'"),
+      CLI_OPT_INT("--k", &o.fmap.k, 3, 10000, NULL),
+      CLI_OPT_INT("--zoomout", &o.fmap.zoomout_kmax, 3, 10000, NULL),
+      CLI_OPT_FLAG("--no-refine", CLI_ENUM(&o.refine), SS_REFINE_NONE),
+      CLI_OPT_INT("--descr-k", &o.fmap.descr_k, 3, 10000, NULL),
+      CLI_OPT_INT("--zoomout-step", &o.fmap.zoomout_step, 1, 10000, NULL),
+      CLI_OPT_INT("--zoomout-samples", &o.fmap.zoomout_samples, 0, 1000000000, NULL),
+      CLI_OPT_DOUBLE("--orient", &o.fmap.w_orient, 0, 1e6, 0, "--orient needs a weight between 0 and 1e6, not '%s'"),
+      CLI_OPT_FLAG("--timings", &timings, 1),
+      CLI_OPT_STR2("--descriptors", &dxp, &dyp),
+      CLI_OPT_FLAG("--no-wks", &o.fmap.no_wks, 1),
+      CLI_OPT_FLAG("--json", &json, 1),
+      CLI_OPT_INT("--hypotheses", &o.autopair.hypotheses, 1, SS_MAX_HYPOTHESES, NULL),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) {
-      if (!xp) xp = A.pos;
-      else if (!yp) yp = A.pos;
-      else return cli_bad(&A, "unexpected argument '%s'", A.pos);
-    } else if (cli_is(&A, "--landmarks")) {
-      lmp = v;
-    } else if (cli_is(&A, "--fmap")) {
-      fmapp = v;
-    } else if (cli_is(&A, "--pairs")) {
-      pairsp = v;
-    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      outp = v;
-    } else if (cli_is(&A, "--probes")) {
-      if (!strcmp(v, "std")) o.probes = SS_PROBES_STD;
-      else if (!strcmp(v, "asa")) o.probes = SS_PROBES_ASA;
-      else if (!strcmp(v, "diff")) o.probes = SS_PROBES_DIFF;
-      else return cli_bad(&A, "--probes takes std, asa or diff, not '%s'", v);
-    } else if (cli_is(&A, "--segment-profile")) {
-      if (!strcmp(v, "indicator")) o.segment_profile = SS_PROFILE_INDICATOR;
-      else if (!strcmp(v, "tent")) o.segment_profile = SS_PROFILE_TENT;
-      else if (!strcmp(v, "soft")) o.segment_profile = SS_PROFILE_SOFT;
-      else return cli_bad(&A, "--segment-profile takes indicator, tent or soft, not '%s'", v);
-    } else if (cli_is(&A, "--k")) {
-      if (cli_parse_int(v, 3, 10000, &o.fmap.k)) return cli_bad(&A, "--k needs an integer between 3 and 10000, not '%s'", v);
-    } else if (cli_is(&A, "--zoomout")) {
-      if (cli_parse_int(v, 3, 10000, &o.fmap.zoomout_kmax))
-        return cli_bad(&A, "--zoomout needs an integer between 3 and 10000, not '%s'", v);
-    } else if (cli_is(&A, "--no-refine")) {
-      o.refine = SS_REFINE_NONE;
-    } else if (cli_is(&A, "--hypotheses")) {
-      if (cli_parse_int(v, 1, SS_MAX_HYPOTHESES, &o.autopair.hypotheses))
-        return cli_bad(&A, "--hypotheses needs an integer between 1 and %d, not '%s'", SS_MAX_HYPOTHESES, v);
-    } else if (cli_is(&A, "--zoomout-step")) {
-      if (cli_parse_int(v, 1, 10000, &o.fmap.zoomout_step))
-        return cli_bad(&A, "--zoomout-step needs an integer between 1 and 10000, not '%s'", v);
-    } else if (cli_is(&A, "--zoomout-samples")) {
-      if (cli_parse_int(v, 0, 1000000000, &o.fmap.zoomout_samples))
-        return cli_bad(&A, "--zoomout-samples needs an integer between 0 and 1000000000, not '%s'", v);
-    } else if (cli_is(&A, "--descr-k")) {
-      if (cli_parse_int(v, 3, 10000, &o.fmap.descr_k))
-        return cli_bad(&A, "--descr-k needs an integer between 3 and 10000, not '%s'", v);
-    } else if (cli_is(&A, "--orient")) {
-      if (cli_parse_double(v, &o.fmap.w_orient) || !(o.fmap.w_orient >= 0) || o.fmap.w_orient > 1e6)
-        return cli_bad(&A, "--orient needs a weight between 0 and 1e6, not '%s'", v);
-    } else if (cli_is(&A, "--timings")) {
-      timings = 1;
-    } else if (cli_is(&A, "--descriptors")) {
-      dxp = v, dyp = A.val2;
-    } else if (cli_is(&A, "--no-wks")) {
-      o.fmap.no_wks = 1;
-    } else if (cli_is(&A, "--json")) {
-      json = 1;
-    }
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
   if (!xp || !yp) return cli_bad(&A, "needs two meshes X and Y");
   if (!outp) return cli_bad(&A, "missing -o MAP.txt");
   if (o.fmap.zoomout_kmax && o.fmap.zoomout_kmax < o.fmap.k)
@@ -189,7 +154,8 @@ int cmd_match(int argc, char **argv) {
   cli_shape SX = {0}, SY = {0}; /* a mesh, or a prepared shape (then matched as such) */
   const ss_mesh *const X = &SX.ps.mesh, *const Y = &SY.ps.mesh;
   ss_match_result res = {0};
-  int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0, rc = SS_EXIT_OK;
+  int *lx = NULL, *ly = NULL, *lline = NULL, nl = 0;
+  rc = SS_EXIT_OK;
   double *DX = NULL, *DY = NULL;
   double t0 = ss_time();
   /* LM.txt: "i" or "i j" lines; their line numbers for the range checks below */

@@ -25,25 +25,15 @@ static const char USAGE[] =
     "  --timings           'timing: STAGE SECONDS' lines on stderr (pairing: CPU seconds)\n"
     "One output may be - (standard output); the report then goes to stderr.\n";
 
-static const char *const OPTS[] = {"-o=", "--output=", "--timings", NULL};
-
 int cmd_pair(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *outp = NULL;
   int timings = 0;
+  const cli_opt opts[] = {CLI_OPT_POS("X", &xp, NULL), CLI_OPT_POS("Y", &yp, NULL), CLI_OPT_STR("-o|--output", &outp),
+                          CLI_OPT_FLAG("--timings", &timings, 1), CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    if (A.pos) {
-      if (!xp) xp = A.pos;
-      else if (!yp) yp = A.pos;
-      else return cli_bad(&A, "unexpected argument '%s'", A.pos);
-    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      outp = A.val;
-    } else if (cli_is(&A, "--timings")) {
-      timings = 1;
-    }
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
   if (!xp || !yp) return cli_bad(&A, "needs two meshes X and Y");
   const char *ins[2] = {xp, yp};
   if (cli_count_std(ins, 2) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
@@ -60,7 +50,7 @@ int cmd_pair(int argc, char **argv) {
   ss_autopair_info info;
   ss_match_options mo;
   ss_match_default_options(&mo);
-  int rc = SS_EXIT_OK;
+  rc = SS_EXIT_OK;
   double t0 = ss_time();
   if (cli_read_mesh(xp, &X, &err) || cli_read_mesh(yp, &Y, &err)) {
     rc = cli_error("%s", err.msg);

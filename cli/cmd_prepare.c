@@ -27,8 +27,6 @@ static const char USAGE[] =
     "  --no-streamline     segment straight on the input (no smoothing, no remeshing)\n"
     "  --no-signature      leave out the landmark-free pairing's signature (computed by each match)\n";
 
-static const char *const OPTS[] = {"-o=", "--output=", "-k=", "--faces=", "--no-streamline", "--no-signature", NULL};
-
 int cmd_prepare(int argc, char **argv) {
   const char *in = NULL, *outp = NULL;
   int kev = ss_match_eigenpairs(NULL, 0), no_sig = 0;
@@ -36,27 +34,17 @@ int cmd_prepare(int argc, char **argv) {
   ss_segment_default_options(&so);
   ss_match_options mo;
   ss_match_default_options(&mo);
+  const cli_opt opts[] = {CLI_OPT_POS("MESH", &in, NULL),
+                          CLI_OPT_STR("-o|--output", &outp),
+                          CLI_OPT_INT("-k", &kev, 3, 10000, NULL),
+                          CLI_OPT_INT("--faces", &so.target_faces, 4, SS_REMESH_MAX_FACES, NULL),
+                          CLI_OPT_FLAG("--no-streamline", &so.no_streamline, 1),
+                          CLI_OPT_FLAG("--no-signature", &no_sig, 1),
+                          CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) {
-      if (in) return cli_bad(&A, "unexpected argument '%s'", A.pos);
-      in = A.pos;
-    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      outp = v;
-    } else if (cli_is(&A, "-k")) {
-      if (cli_parse_int(v, 3, 10000, &kev)) return cli_bad(&A, "-k needs an integer between 3 and 10000, not '%s'", v);
-    } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &so.target_faces))
-        return cli_bad(&A, "--faces needs an integer between 4 and %d, not '%s'", SS_REMESH_MAX_FACES, v);
-    } else if (cli_is(&A, "--no-streamline")) {
-      so.no_streamline = 1;
-    } else if (cli_is(&A, "--no-signature")) {
-      no_sig = 1;
-    }
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
   if (!in) return cli_bad(&A, "missing MESH");
   if (!outp) return cli_bad(&A, "missing -o SHAPE.sss");
   if (cli_is_std(outp)) return cli_bad(&A, "-o needs a file name (the prepared shape is written to a file)");
@@ -66,7 +54,7 @@ int cmd_prepare(int argc, char **argv) {
   ss_error err = {{0}};
   ss_mesh m = {0};
   ss_prepared_shape ps = {0};
-  int rc = SS_EXIT_OK;
+  rc = SS_EXIT_OK;
   if (cli_read_mesh(in, &m, &err)) return cli_error("%s", err.msg);
   if (kev >= m.nv) {
     rc = cli_error("%s: %d eigenpairs asked for, the mesh has %d vertices: use -k below %d", cli_in_name(in), kev, m.nv,

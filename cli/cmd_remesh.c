@@ -18,8 +18,6 @@ static const char USAGE[] =
     "  --faces N           target triangle count, 4..2000000 (default 15000)\n"
     "  --iterations K      remeshing rounds, 1..1000 (default 5)\n" CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"-o=", "--faces=", "--iterations=", CLI_BATCH_OPTS, NULL};
-
 typedef struct remesh_cfg {
   const char *out;
   ss_remesh_options opt;
@@ -63,31 +61,19 @@ int cmd_remesh(int argc, char **argv) {
   ss_remesh_default_options(&c.opt);
   cli_batch B;
   cli_batch_init(&B, "remesh");
+  const cli_opt opts[] = {
+      CLI_BATCH_OPTIONS(&B),
+      CLI_OPT_STR("-o", &c.out),
+      CLI_OPT_INT("--faces", &c.opt.target_faces, 4, SS_REMESH_MAX_FACES,
+                  "--faces wants an integer in [4, " CLI_STRINGIFY(SS_REMESH_MAX_FACES) "], got '%s'"),
+      CLI_OPT_INT("--iterations", &c.opt.iterations, 1, 1000, "--iterations wants an integer in [1,1000], got '%s'"),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  int rc = -1;
-  while (rc < 0 && cli_next(&A)) {
-    const char *v = A.val;
-    if (cli_batch_option(&B, &A)) continue;
-    if (A.pos) {
-      rc = cli_batch_add(&B, &A, A.pos);
-    } else if (cli_is(&A, "-o")) {
-      c.out = v;
-    } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &c.opt.target_faces))
-        rc = cli_bad(&A, "--faces wants an integer in [4, %d], got '%s'", SS_REMESH_MAX_FACES, v);
-    } else if (cli_is(&A, "--iterations")) {
-      if (cli_parse_int(v, 1, 1000, &c.opt.iterations)) rc = cli_bad(&A, "--iterations wants an integer in [1,1000], got '%s'", v);
-    }
-  }
-  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.out, 1, ".off", NULL, 0);
   if (rc < 0 && !c.out) rc = cli_bad(&A, "missing -o OUT");
   if (rc < 0 && !B.batch && B.json && cli_is_std(c.out)) rc = cli_bad(&A, "--json and -o - both want standard output");
-  if (rc >= 0) {
-    cli_batch_free(&B);
-    return rc;
-  }
-  return cli_batch_run(&B, remesh_job, &c);
+  return cli_batch_finish(&B, rc, remesh_job, &c);
 }

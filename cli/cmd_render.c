@@ -61,11 +61,6 @@ static const char USAGE[] =
     "                      sizes compare (default: common for --map / --error, else fit)\n"
     "One of the input files may be - (standard input).\n";
 
-static const char *const OPTS[] = {"--labels=", "--scalar=", "--map=", "--error=", "--centers=", "--landmarks=",
-                                   "-o=", "--output=", "--target=", "--gt=", "--sym=", "--match-colors=",
-                                   "--view=", "--size=", "--isolines=", "--cols=", "--supersample=", "--range=",
-                                   "--no-titles", "--up=", "--scale=", NULL};
-
 #define MAXM 64
 
 enum mode { MODE_PLAIN, MODE_LABELS, MODE_SCALAR, MODE_MAP, MODE_ERROR };
@@ -109,24 +104,12 @@ static void stem(const char *path, char *out, size_t n) {
   if (dot && dot != out) *dot = 0;
 }
 
-/* --up: "auto" gives 99 (decided from the meshes), else an ss_up_axis; -1 when unknown. */
-static int parse_up(const char *s, int *up) {
-  static const struct { const char *name; int up; } U[] = {
-      {"auto", 99}, {"x", SS_UP_X}, {"y", SS_UP_Y}, {"z", SS_UP_Z}, {"+x", SS_UP_X}, {"+y", SS_UP_Y},
-      {"+z", SS_UP_Z}, {"-x", SS_UP_NEG_X}, {"-y", SS_UP_NEG_Y}, {"-z", SS_UP_NEG_Z}};
-  for (size_t i = 0; i < sizeof U / sizeof U[0]; i++)
-    if (!strcmp(s, U[i].name)) {
-      *up = U[i].up;
-      return 0;
-    }
-  return -1;
-}
-
 static const char *up_name(int up) {
   static const char *names[] = {"-z", "-y", "-x", "+y", "+x", "+y", "+z"};
   return up >= -3 && up <= 3 ? names[up + 3] : "?";
 }
 
+/* --view: a named view or AZ,EL; 0, or -1 when it is neither */
 static int parse_view(const char *s, double *az, double *el) {
   static const struct { const char *name; double az, el; } V[] = {
       {"front", 0, 0}, {"back", 180, 0}, {"left", 90, 0}, {"right", -90, 0}, {"top", 0, 90}, {"bottom", 0, -90}};
@@ -145,13 +128,45 @@ static int parse_view(const char *s, double *az, double *el) {
   return 0;
 }
 
-static int parse_pair_int(const char *s, int *a, int *b) {
-  char buf[64];
-  snprintf(buf, sizeof buf, "%s", s);
-  char *x = strchr(buf, 'x');
-  if (!x) return -1;
-  *x = 0;
-  return cli_parse_int(buf, 16, 8192, a) || cli_parse_int(x + 1, 16, 8192, b) ? -1 : 0;
+static int take_view(cli_args *A, const cli_opt *o, const char *v) {
+  if (parse_view(v, o->dest, o->dest2))
+    return cli_bad(A, "--view needs front, back, left, right, top, bottom or AZ,EL (degrees, |EL| <= 90), not '%s'", v);
+  return -1;
+}
+
+/* --range LO,HI: finite, LO < HI */
+static int take_range(cli_args *A, const cli_opt *o, const char *v) {
+  double *lo = o->dest, *hi = o->dest2;
+  char buf[128];
+  snprintf(buf, sizeof buf, "%s", v);
+  char *c = strchr(buf, ',');
+  if (!c) return cli_bad(A, "--range needs LO,HI, not '%s'", v);
+  *c = 0;
+  if (cli_parse_double(buf, lo) || cli_parse_double(c + 1, hi) || !isfinite(*lo) || !isfinite(*hi) || !(*lo < *hi))
+    return cli_bad(A, "--range needs finite LO < HI, not '%s'", v);
+  return -1;
+}
+
+/* the files of an option given once or once per mesh; --labels, --scalar, --map and --error also set
+ * the picture's mode (want; MODE_PLAIN: none) */
+typedef struct file_opt {
+  list *l;
+  enum mode *mode, want;
+} file_opt;
+
+static int take_file(cli_args *A, const cli_opt *o, const char *v) {
+  const file_opt *f = o->dest;
+  if (push(f->l, v)) return cli_bad(A, "too many %s files (at most %d)", o->names, MAXM);
+  if (f->want != MODE_PLAIN) {
+    if (*f->mode != MODE_PLAIN && *f->mode != f->want)
+      return cli_bad(A, "--labels, --scalar, --map and --error exclude each other");
+    *f->mode = f->want;
+  }
+  return -1;
+}
+
+static int take_mesh(cli_args *A, const cli_opt *o, const char *v) {
+  return push(o->dest, v) ? cli_bad(A, "too many meshes (at most %d)", MAXM) : -1;
 }
 
 /* Read a label/index file and check its length. */
@@ -221,73 +236,39 @@ int cmd_render(int argc, char **argv) {
   list meshes = {0}, labels = {0}, scalars = {0}, maps = {0}, centers = {0}, landmarks = {0};
   const char *out = NULL, *target = NULL, *gt_path = NULL, *sym_path = NULL, *ref_path = NULL;
   enum mode mode = MODE_PLAIN;
-  int width = 800, height = 800, isolines = 0, cols = 0, titles = 1, ss = 2, have_range = 0, up = 99, common = -1;
+  int width = 800, height = 800, isolines = 0, cols = 0, titles = 1, ss = 2, up = 99, common = -1;
   double az = 0, el = 0, rlo = 0, rhi = 0;
+  static const int UP[] = {99, SS_UP_X, SS_UP_Y, SS_UP_Z, SS_UP_X, SS_UP_Y, SS_UP_Z, SS_UP_NEG_X, SS_UP_NEG_Y, SS_UP_NEG_Z};
+  file_opt F[6] = {{&labels, &mode, MODE_LABELS}, {&scalars, &mode, MODE_SCALAR}, {&maps, &mode, MODE_MAP},
+                   {&maps, &mode, MODE_ERROR},    {&centers, &mode, MODE_PLAIN},  {&landmarks, &mode, MODE_PLAIN}};
+  const cli_opt opts[] = {
+      CLI_OPT_POS_FN("MESH", take_mesh, &meshes),
+      CLI_OPT_CALL("--labels", take_file, &F[0], NULL),
+      CLI_OPT_CALL("--scalar", take_file, &F[1], NULL),
+      CLI_OPT_CALL("--map", take_file, &F[2], NULL),
+      CLI_OPT_CALL("--error", take_file, &F[3], NULL),
+      CLI_OPT_CALL("--centers", take_file, &F[4], NULL),
+      CLI_OPT_CALL("--landmarks", take_file, &F[5], NULL),
+      CLI_OPT_STR("-o|--output", &out),
+      CLI_OPT_STR("--target", &target),
+      CLI_OPT_STR("--gt", &gt_path),
+      CLI_OPT_STR("--sym", &sym_path),
+      CLI_OPT_STR("--match-colors", &ref_path),
+      CLI_OPT_CALL("--view", take_view, &az, &el),
+      CLI_OPT_WXH("--size", &width, &height, 16, 8192, "--size needs WxH, each between 16 and 8192, not '%s'"),
+      CLI_OPT_INT("--isolines", &isolines, 0, 1000, NULL),
+      CLI_OPT_INT("--cols", &cols, 1, MAXM, NULL),
+      CLI_OPT_INT("--supersample", &ss, 1, 4, "--supersample needs 1..4, not '%s'"),
+      CLI_OPT_CALL("--range", take_range, &rlo, &rhi),
+      CLI_OPT_FLAG("--no-titles", &titles, 0),
+      CLI_OPT_CHOICE("--up", &up, "auto|x|y|z|+x|+y|+z|-x|-y|-z", UP, "--up needs auto, x, y, z, -x, -y or -z, not '%s'"),
+      CLI_OPT_CHOICE("--scale", &common, "fit|common", NULL, "--scale needs fit or common, not '%s'"),
+      CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  while (cli_next(&A)) {
-    const char *v = A.val;
-    if (A.pos) {
-      if (push(&meshes, A.pos)) return cli_bad(&A, "too many meshes (at most %d)", MAXM);
-      continue;
-    }
-    const char *opt1[] = {"--labels", "--scalar", "--map", "--error", "--centers", "--landmarks"};
-    list *lists[] = {&labels, &scalars, &maps, &maps, &centers, &landmarks};
-    int matched = 0;
-    for (int k = 0; k < 6; k++)
-      if (cli_is(&A, opt1[k])) {
-        if (push(lists[k], v)) return cli_bad(&A, "too many %s files (at most %d)", opt1[k], MAXM);
-        enum mode want = k == 0 ? MODE_LABELS : k == 1 ? MODE_SCALAR : k == 2 ? MODE_MAP : k == 3 ? MODE_ERROR : mode;
-        if (k < 4) {
-          if (mode != MODE_PLAIN && mode != want) return cli_bad(&A, "--labels, --scalar, --map and --error exclude each other");
-          mode = want;
-        }
-        matched = 1;
-        break;
-      }
-    if (matched) continue;
-    if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      out = v;
-    } else if (cli_is(&A, "--target")) {
-      target = v;
-    } else if (cli_is(&A, "--gt")) {
-      gt_path = v;
-    } else if (cli_is(&A, "--sym")) {
-      sym_path = v;
-    } else if (cli_is(&A, "--match-colors")) {
-      ref_path = v;
-    } else if (cli_is(&A, "--view")) {
-      if (parse_view(v, &az, &el))
-        return cli_bad(&A, "--view needs front, back, left, right, top, bottom or AZ,EL (degrees, |EL| <= 90), not '%s'", v);
-    } else if (cli_is(&A, "--size")) {
-      if (parse_pair_int(v, &width, &height)) return cli_bad(&A, "--size needs WxH, each between 16 and 8192, not '%s'", v);
-    } else if (cli_is(&A, "--isolines")) {
-      if (cli_parse_int(v, 0, 1000, &isolines)) return cli_bad(&A, "--isolines needs an integer between 0 and 1000, not '%s'", v);
-    } else if (cli_is(&A, "--cols")) {
-      if (cli_parse_int(v, 1, MAXM, &cols)) return cli_bad(&A, "--cols needs an integer between 1 and %d, not '%s'", MAXM, v);
-    } else if (cli_is(&A, "--supersample")) {
-      if (cli_parse_int(v, 1, 4, &ss)) return cli_bad(&A, "--supersample needs 1..4, not '%s'", v);
-    } else if (cli_is(&A, "--range")) {
-      char buf[128];
-      snprintf(buf, sizeof buf, "%s", v);
-      char *c = strchr(buf, ',');
-      if (!c) return cli_bad(&A, "--range needs LO,HI, not '%s'", v);
-      *c = 0;
-      if (cli_parse_double(buf, &rlo) || cli_parse_double(c + 1, &rhi) || !isfinite(rlo) || !isfinite(rhi) ||
-          !(rlo < rhi))
-        return cli_bad(&A, "--range needs finite LO < HI, not '%s'", v);
-      have_range = 1;
-    } else if (cli_is(&A, "--no-titles")) {
-      titles = 0;
-    } else if (cli_is(&A, "--up")) {
-      if (parse_up(v, &up)) return cli_bad(&A, "--up needs auto, x, y, z, -x, -y or -z, not '%s'", v);
-    } else if (cli_is(&A, "--scale")) {
-      if (!strcmp(v, "fit")) common = 0;
-      else if (!strcmp(v, "common")) common = 1;
-      else return cli_bad(&A, "--scale needs fit or common, not '%s'", v);
-    }
-  }
-  if (A.rc >= 0) return A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
+  if (rc >= 0) return rc;
+  const int have_range = rlo < rhi; /* --range given (its LO < HI) */
   int nm = meshes.n;
   if (nm == 0) return cli_bad(&A, "no mesh given");
   if (!out) return cli_bad(&A, "missing -o OUT.png");
@@ -331,7 +312,8 @@ int cmd_render(int argc, char **argv) {
   const unsigned char *lm_rgb = mode == MODE_LABELS || mode == MODE_PLAIN ? LANDMARK_RGB : LANDMARK_RGB_CMAP;
 
   ss_error err = {{0}};
-  int rc = SS_EXIT_OK, np = 0, nref = 0, *ints = NULL, *refl = NULL, *gt = NULL, *sym = NULL;
+  rc = SS_EXIT_OK;
+  int np = 0, nref = 0, *ints = NULL, *refl = NULL, *gt = NULL, *sym = NULL;
   panel *P = calloc((size_t)nm + 1, sizeof(panel));
   ss_panel *SP = calloc((size_t)nm + 1, sizeof(ss_panel));
   ss_mesh Y = {0};

@@ -30,9 +30,6 @@ static const char USAGE[] =
     "  --timings           'timing: STAGE SECONDS' lines on stderr\n"
     "One of the output files may be - (standard output).\n" CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"-o=", "--output=", "--centers=", "--ply=", "--faces=", "--no-streamline",
-                                   "--timings", CLI_BATCH_OPTS, NULL};
-
 typedef struct seg_cfg {
   const char *labels, *centers, *ply;
   int timings, to_stdout;
@@ -142,30 +139,17 @@ int cmd_segment(int argc, char **argv) {
   ss_segment_default_options(&c.opt);
   cli_batch B;
   cli_batch_init(&B, "segment");
+  const cli_opt opts[] = {CLI_BATCH_OPTIONS(&B),
+                          CLI_OPT_STR("-o|--output", &c.labels),
+                          CLI_OPT_STR("--centers", &c.centers),
+                          CLI_OPT_STR("--ply", &c.ply),
+                          CLI_OPT_INT("--faces", &c.opt.target_faces, 4, SS_REMESH_MAX_FACES, NULL),
+                          CLI_OPT_FLAG("--no-streamline", &c.opt.no_streamline, 1),
+                          CLI_OPT_FLAG("--timings", &c.timings, 1),
+                          CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  int rc = -1;
-  while (rc < 0 && cli_next(&A)) {
-    const char *v = A.val;
-    if (cli_batch_option(&B, &A)) continue;
-    if (A.pos) {
-      rc = cli_batch_add(&B, &A, A.pos);
-    } else if (cli_is(&A, "-o") || cli_is(&A, "--output")) {
-      c.labels = v;
-    } else if (cli_is(&A, "--centers")) {
-      c.centers = v;
-    } else if (cli_is(&A, "--ply")) {
-      c.ply = v;
-    } else if (cli_is(&A, "--faces")) {
-      if (cli_parse_int(v, 4, SS_REMESH_MAX_FACES, &c.opt.target_faces))
-        rc = cli_bad(&A, "--faces needs an integer between 4 and %d, not '%s'", SS_REMESH_MAX_FACES, v);
-    } else if (cli_is(&A, "--no-streamline")) {
-      c.opt.no_streamline = 1;
-    } else if (cli_is(&A, "--timings")) {
-      c.timings = 1;
-    }
-  }
-  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "missing MESH");
   const char *extras[2] = {c.centers, c.ply};
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.labels, 1, ".labels.txt", extras, 2);
@@ -176,9 +160,5 @@ int cmd_segment(int argc, char **argv) {
     if (c.to_stdout > 1) rc = cli_bad(&A, "only one output can go to standard output ('-')");
     else if (c.to_stdout && B.json) rc = cli_bad(&A, "--json and an output to '-' both want standard output");
   }
-  if (rc >= 0) {
-    cli_batch_free(&B);
-    return rc;
-  }
-  return cli_batch_run(&B, segment_job, &c);
+  return cli_batch_finish(&B, rc, segment_job, &c);
 }

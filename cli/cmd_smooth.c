@@ -19,8 +19,6 @@ static const char USAGE[] =
     "  --bbox              scale to unit bounding-box diagonal instead of unit area, as the authors'\n"
     "                      code does\n" CLI_BATCH_HELP;
 
-static const char *const OPTS[] = {"-o=", "--steps=", "--dt=", "--bbox", CLI_BATCH_OPTS, NULL};
-
 typedef struct smooth_cfg {
   const char *out;
   ss_cmcf_options opt;
@@ -52,38 +50,23 @@ int cmd_smooth(int argc, char **argv) {
   smooth_cfg c;
   memset(&c, 0, sizeof c);
   ss_cmcf_default_options(&c.opt);
-  int dt_given = 0;
+  double dt = 0; /* given: > 0 */
   cli_batch B;
   cli_batch_init(&B, "smooth");
+  const cli_opt opts[] = {CLI_BATCH_OPTIONS(&B),
+                    CLI_OPT_STR("-o", &c.out),
+                    CLI_OPT_INT("--steps", &c.opt.steps, 0, 100000, "--steps wants an integer in [0,100000], got '%s'"),
+                    CLI_OPT_DOUBLE("--dt", &dt, 0, 1e6, CLI_OPEN_LO, "--dt wants a time step in (0, 1e6], got '%s'"),
+                    CLI_OPT_FLAG("--bbox", CLI_ENUM(&c.opt.normalization), SS_CMCF_UNIT_BBOX),
+                    CLI_OPT_END};
   cli_args A;
-  cli_args_init(&A, argc, argv, USAGE, OPTS);
-  int rc = -1;
-  while (rc < 0 && cli_next(&A)) {
-    const char *v = A.val;
-    if (cli_batch_option(&B, &A)) continue;
-    if (A.pos) {
-      rc = cli_batch_add(&B, &A, A.pos);
-    } else if (cli_is(&A, "-o")) {
-      c.out = v;
-    } else if (cli_is(&A, "--steps")) {
-      if (cli_parse_int(v, 0, 100000, &c.opt.steps)) rc = cli_bad(&A, "--steps wants an integer in [0,100000], got '%s'", v);
-    } else if (cli_is(&A, "--dt")) {
-      if (cli_parse_double(v, &c.opt.dt) || !(c.opt.dt > 0) || c.opt.dt > 1e6)
-        rc = cli_bad(&A, "--dt wants a time step in (0, 1e6], got '%s'", v);
-      dt_given = 1;
-    } else if (cli_is(&A, "--bbox")) {
-      c.opt.normalization = SS_CMCF_UNIT_BBOX;
-    }
-  }
-  if (rc < 0 && A.rc >= 0) rc = A.rc;
+  cli_args_init(&A, argc, argv, USAGE, opts);
+  int rc = cli_parse(&A);
   if (rc < 0 && B.nin == 0) rc = cli_bad(&A, "no mesh given");
   if (rc < 0) rc = cli_batch_setup(&B, &A, c.out, 1, ".off", NULL, 0);
   if (rc < 0 && !c.out) rc = cli_bad(&A, "missing -o OUT");
   if (rc < 0 && !B.batch && B.json && cli_is_std(c.out)) rc = cli_bad(&A, "--json and -o - both want standard output");
-  if (rc >= 0) {
-    cli_batch_free(&B);
-    return rc;
-  }
-  if (c.opt.normalization == SS_CMCF_UNIT_BBOX && !dt_given) c.opt.dt = 1e-5;
-  return cli_batch_run(&B, smooth_job, &c);
+  if (dt > 0) c.opt.dt = dt;
+  else if (c.opt.normalization == SS_CMCF_UNIT_BBOX) c.opt.dt = 1e-5;
+  return cli_batch_finish(&B, rc, smooth_job, &c);
 }
