@@ -126,9 +126,13 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   const ss_centre_signature *SX = sigX ? sigX : &own[0], *SY = sigY ? sigY : &own[1];
   /* with given landmarks, one candidate slot is theirs alone */
   const int want = nlg > 0 && o.autopair.hypotheses >= SS_MAX_HYPOTHESES ? SS_MAX_HYPOTHESES - 1 : o.autopair.hypotheses;
-  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, want, hyp, &nh, &info, err))) goto done;
+  /* the search gives every hypothesis it has; one whose landmarks (its kept protrusion pairs) are an
+   * earlier one's would give the same map and is skipped below, so the `want` maps differ (on
+   * TOSCA_r's 14-centre shapes the pairings of the first four often differ only in pairs that are
+   * not kept) */
+  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, SS_MAX_HYPOTHESES, hyp, &nh, &info, err))) goto done;
   if (nlg > 0) info.used = 0;
-  if ((nh > 1 || nlg > 0) && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+  if (((want > 1 && nh > 1) || nlg > 0) && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
   double t_pair = ss_time() - t0;
   int mx = 1;
   for (int h = 0; h < nh; h++)
@@ -157,16 +161,23 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
    * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
    * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
-  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nc < SS_MAX_HYPOTHESES; h++) {
-    cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, lx + (size_t)stride * nc, ly + (size_t)stride * nc);
+  int nfree = 0, hused = nh < want ? nh : want; /* hypotheses looked at (the agreeing pairs below use as many) */
+  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nfree < want && nc < SS_MAX_HYPOTHESES; h++) {
+    int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
+    cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, cx, cy);
+    hused = h + 1;
+    int dup = 0;
+    for (int c = 0; c < nc && !dup; c++)
+      dup = free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, cand[nc], cx, cy);
+    if (dup) continue;
     from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
     free_of[nc] = 1, hyp_of[nc] = h;
-    nc++;
+    nc++, nfree++;
   }
   if (nlg > 0) {
     int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
     if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int h = 0; h < nh && nc < SS_MAX_HYPOTHESES; h++) {
+    for (int h = 0; h < hused && nc < SS_MAX_HYPOTHESES; h++) {
       int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
       int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
       memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
