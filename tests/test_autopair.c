@@ -237,6 +237,8 @@ static void test_permuted_and_mirrored(void) {
     ss_match_options mo;
     ss_match_default_options(&mo);
     mo.fmap.zoomout_kmax = kev; /* the eigenpairs prepared */
+    const double dflt_w_reversed = mo.autopair.hyp_w_reversed;
+    CHECK(mo.autopair.hyp_min_orientation == 0 && mo.autopair.hyp_confident_orientation == 0.45);
     ss_match_result res;
     if (ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e)) {
       printf("match: %s\n", e.msg);
@@ -255,6 +257,38 @@ static void test_permuted_and_mirrored(void) {
       CHECK(right > n / 2);
     }
     ss_match_result_free(&res);
+    /* the orientation rule: without the reversed-segment term the mirror map (an isometry of the
+     * symmetric shape) may have the least energy; a candidate below hyp_min_orientation never wins
+     * over one above it, and among those above it the least energy wins */
+    for (int rule = 0; rule < 2; rule++) {
+      mo.autopair.hyp_w_reversed = 0;
+      mo.autopair.hyp_min_orientation = rule ? 0.0 : -1.0;
+      CHECK_MSG(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
+      const ss_autopair_info *ai = &res.autopair;
+      int any = 0;
+      for (int h = 0; h < ai->hypotheses; h++) any |= ai->hyp_orientation[h] >= 0;
+      printf("reflection, no reversed-segment term, orientation rule %s: #%d of %d kept, orientation %.3f\n",
+             rule ? "on" : "off", ai->hypothesis, ai->hypotheses, ai->hyp_orientation[ai->hypothesis]);
+      for (int h = 0; h < ai->hypotheses; h++) {
+        const int same_class = !rule || (ai->hyp_orientation[h] >= 0) == (ai->hyp_orientation[ai->hypothesis] >= 0);
+        if (same_class) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
+      }
+      if (rule && any) CHECK(ai->hyp_orientation[ai->hypothesis] >= 0);
+      /* confident maps reach hyp_confident_orientation */
+      CHECK(!ai->confident || ai->hyp_orientation[ai->hypothesis] >= mo.autopair.hyp_confident_orientation);
+      ss_match_result_free(&res);
+    }
+    mo.autopair.hyp_w_reversed = dflt_w_reversed, mo.autopair.hyp_min_orientation = 0;
+    mo.autopair.hyp_confident_orientation = 0.99; /* no map reaches it: flagged, with a note saying why */
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+    CHECK(!res.autopair.confident);
+    CHECK_MSG(strstr(res.notes, "orientation score") != NULL, "notes '%s'", res.notes);
+    ss_match_result_free(&res);
+    mo.autopair.hyp_confident_orientation = 1.5;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_confident_orientation = 0.45, mo.autopair.hyp_min_orientation = -1.5;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_min_orientation = 0;
     /* one hypothesis: the pairing's answer alone, as before the hypotheses */
     mo.autopair.hypotheses = 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);

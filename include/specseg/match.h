@@ -266,6 +266,15 @@ typedef struct ss_autopair_options {
    * landmark-free map agree); 0: every candidate counts */
   double hyp_differ_tol;
   double hyp_differ_share;
+  /* a candidate whose whole-map orientation score (ss_autopair_info.hyp_orientation, in [-1, 1]) is
+   * below hyp_min_orientation (default 0: the map reverses orientation on most of X) is kept only
+   * when no candidate reaches it, and a returned map below it is not confident; both meshes must be
+   * wound consistently (outward or inward alike). -1: off */
+  double hyp_min_orientation;
+  /* a returned map whose whole-map orientation score is below hyp_confident_orientation (default
+   * 0.45) is not confident: on the tuning split right maps score 0.51 and more, mirrored or partly
+   * mirrored ones down to -0.65 (docs/tuning.md) */
+  double hyp_confident_orientation;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8

@@ -129,7 +129,8 @@ class ss_autopair_options(C.Structure):
                 ("hyp_reversed_below", C.c_double), ("hyp_keep", C.c_double),
                 ("hyp_min_margin", C.c_double), ("hyp_landmarks", C.c_int),
                 ("hyp_landmark_tol", C.c_double), ("hyp_differ_tol", C.c_double),
-                ("hyp_differ_share", C.c_double)]
+                ("hyp_differ_share", C.c_double), ("hyp_min_orientation", C.c_double),
+                ("hyp_confident_orientation", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):

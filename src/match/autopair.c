@@ -47,6 +47,8 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_landmark_tol = 0.1;
   o->hyp_differ_tol = 0.1;
   o->hyp_differ_share = 0.05;
+  o->hyp_min_orientation = 0.0;
+  o->hyp_confident_orientation = 0.45;
 }
 
 void ss_centre_signature_free(ss_centre_signature *s) {

@@ -88,8 +88,10 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !isfinite(a->hyp_reversed_below) || !(a->hyp_keep > 0 && a->hyp_keep <= 1) ||
       !isfinite(a->hyp_min_margin) || !(a->hyp_landmark_tol >= 0) ||
       a->hyp_landmarks < 0 || a->hyp_landmarks > 2 || !(a->hyp_differ_tol >= 0) || !isfinite(a->hyp_differ_tol) ||
-      !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1]",
+      !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1) ||
+      !(a->hyp_min_orientation >= -1 && a->hyp_min_orientation <= 1) ||
+      !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1]",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -196,7 +198,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   oall.pairing.min_landmarks = 1;
   oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
   double best = INFINITY, t_loop = ss_time();
-  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES];
+  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES], best_oriented = 0;
   const size_t nX = (size_t)X->mesh->nv;
   /* every candidate's map, to tell the candidates that differ from the returned one */
   if (nc > 1 && !(maps = malloc(sizeof(int) * nX * (size_t)nc))) {
@@ -218,10 +220,13 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       pe = 0;
       for (int p = 0; p < hyp[h].n; p++) pe += hyp[h].energy[p];
     }
+    orient = ssi_map_orientation(SX, SY, r.map);
+    /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
+     * whole mirror has the lower distortion and even the lower reversed-segment share; docs/tuning.md) */
+    oriented[c] = !(orient < o.autopair.hyp_min_orientation);
     if (nc > 1) {
       memcpy(maps + nX * c, r.map, sizeof(int) * nX);
       if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
-      orient = ssi_map_orientation(SX, SY, r.map);
       double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
                                                 &info.hyp_orientation_min[c]);
       info.hyp_reversed[c] = rev;
@@ -236,9 +241,9 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     for (int i = 0; i < nlg; i++)
       off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
     eligible[c] = !free_of[c] || off <= nlg / 4, lm_off[c] = off;
-    if (c == 0 || (eligible[c] && E < best)) {
+    if (c == 0 || (eligible[c] && (oriented[c] > best_oriented || (oriented[c] == best_oriented && E < best)))) {
       if (c > 0) ss_match_result_free(out);
-      *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
+      *out = r, best = E, best_oriented = oriented[c], info.hypothesis = c, info.hyp_landmarks = nl;
     } else
       ss_match_result_free(&r);
     memset(&r, 0, sizeof r);
@@ -251,12 +256,15 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   for (int c = 0; c < nc && nc > 1; c++) {
     info.hyp_differ[c] = map_differ_share(Y->mesh, o.autopair.hyp_differ_tol * hc.sY, (int)nX, maps + nX * c,
                                           maps + nX * info.hypothesis);
-    if (c != info.hypothesis && eligible[c] && info.hyp_differ[c] >= o.autopair.hyp_differ_share &&
-        info.hyp_energy[c] - best < info.hyp_margin)
+    if (c != info.hypothesis && eligible[c] && oriented[c] == best_oriented &&
+        info.hyp_differ[c] >= o.autopair.hyp_differ_share && info.hyp_energy[c] - best < info.hyp_margin)
       info.hyp_margin = info.hyp_energy[c] - best;
   }
   if (nc > 1) info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
   else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
+  const double kept_orient = info.hyp_orientation[info.hypothesis];
+  const int low_orient = best_oriented && kept_orient < o.autopair.hyp_confident_orientation;
+  if (!best_oriented || low_orient) info.confident = 0;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
@@ -268,7 +276,18 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
              o.autopair.hyp_landmark_tol, info.hypothesis, free_of[info.hypothesis] ? ", landmark-free" : "");
     ssi_match_note(out, msg);
   }
-  if (!info.confident) {
+  if (!best_oriented) {
+    char msg[240];
+    snprintf(msg, sizeof msg, "map NOT confident: it reverses orientation (whole-map orientation score %.2f, below %.2g, "
+             "and no hypothesis reaches it): it may be a mirror image (%s)", info.hyp_orientation[info.hypothesis],
+             o.autopair.hyp_min_orientation, nlg ? "check the landmarks" : "give landmarks");
+    ssi_match_note(out, msg);
+  } else if (low_orient) {
+    char msg[240];
+    snprintf(msg, sizeof msg, "map NOT confident: its orientation score %.2f is below %.2g (part of it may be mirrored; %s)",
+             kept_orient, o.autopair.hyp_confident_orientation, nlg ? "check the landmarks" : "give landmarks");
+    ssi_match_note(out, msg);
+  } else if (!info.confident) {
     char msg[240];
     if (nc > 1)
       snprintf(msg, sizeof msg, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
