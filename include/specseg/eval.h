@@ -133,8 +133,8 @@ typedef struct ss_table1_none {
 } ss_table1_none;
 SS_API ss_status ss_table1_none_aggregate(const ss_eval_row *rows, int n, ss_table1_none *t, ss_error *err);
 
-/* ---- Manifests: Table 1 on any data set (manifest.c; format in README.md, "Evaluation on any data
- * set") ------------------------------------------------------------------------------------------ */
+/* ---- Manifests: Table 1 on any data set (manifest.c; format in docs/evaluation.md, "Any data
+ * set") ------------------------------------------------------------------------------------------- */
 
 /* how the pairs of a group are chosen */
 typedef enum ss_manifest_pairs {

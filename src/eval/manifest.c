@@ -1,7 +1,7 @@
 /* The manifest of a data set for the Table 1 runner: meshes in groups, each group's ground truth
  * (identity or per-pair map files), landmarks (files or the paper's FPS procedure), optional
  * symmetry maps and the pairs to run. Line-based text, parsed and checked here; the files it names
- * are read by the runner (manifest_data.c). The format is documented in README.md. */
+ * are read by the runner (manifest_data.c). The format is documented in docs/evaluation.md ("Any data set"). */
 #include "specseg/eval.h"
 
 #include <errno.h>
