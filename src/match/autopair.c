@@ -64,7 +64,6 @@ void ss_centre_signature_free(ss_centre_signature *s) {
 }
 
 static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err);
-static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo);
 
 static double cpu_now(void) {
   struct timespec t;
@@ -165,7 +164,7 @@ ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_
   {
     ss_fmap_match_options fo;
     const int kt = o.recheck_margin > 0 && o.recheck_zoomout <= o.recheck_k && o.recheck_k > o.orient_k ? o.recheck_k : o.orient_k;
-    orient_fmap_options(kt, o.orient_descr_k, p->kev, &fo);
+    ssi_orient_fmap_options(kt, o.orient_descr_k, p->kev, &fo);
     ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
     ss_fmap_probes pr;
     if ((st = ss_fmap_base_probes(&fs, m, out->centers, &fo, 1, &pr, err))) goto done;
@@ -235,7 +234,7 @@ double ssi_map_orientation_reversed(const ss_centre_signature *A, const ss_centr
 }
 
 /* The median over A's segments of s1 − s2 (segments scored in both), 0 when none */
-static double median_margin(int m, const double *s1, const double *s2, double *tmp) {
+double ssi_median_margin(int m, const double *s1, const double *s2, double *tmp) {
   int q = 0;
   for (int a = 0; a < m; a++)
     if (isfinite(s1[a]) && isfinite(s2[a])) {
@@ -251,22 +250,9 @@ static double median_margin(int m, const double *s1, const double *s2, double *t
 
 /* ---- the search ----------------------------------------------------------------------------- */
 
-#define TOPK 8 /* leaves kept by the exact search (self-symmetry candidates, runner-ups) */
 #define SELF_CANDIDATES 6
 
-typedef struct search {
-  int na, nb;
-  const double *U;  /* na x nb unary costs, U[a * nb + b] (weighted) */
-  const double *DA, *DB;
-  double wg;        /* weight of a squared distance difference */
-  const double *minU; /* minU[t] = Σ_{a ≥ t} min_b U[a][b] */
-  int *cur, *used;
-  int ntop;                 /* leaves kept (1..TOPK) */
-  double top_e[TOPK];       /* ascending */
-  int *top_p[TOPK];
-} search;
-
-static double pair_inc(const search *S, int t, int b) {
+static double pair_inc(const ssi_search *S, int t, int b) {
   double c = S->U[(size_t)t * S->nb + b];
   for (int s = 0; s < t; s++) {
     double d = S->DA[s + (size_t)S->na * t] - S->DB[S->cur[s] + (size_t)S->nb * b];
@@ -275,7 +261,7 @@ static double pair_inc(const search *S, int t, int b) {
   return c;
 }
 
-static void keep_leaf(search *S, const int *p, double e) {
+static void keep_leaf(ssi_search *S, const int *p, double e) {
   int k = S->ntop - 1;
   if (!(e < S->top_e[k])) return;
   int *slot = S->top_p[k];
@@ -289,7 +275,7 @@ static void keep_leaf(search *S, const int *p, double e) {
   memcpy(slot, p, sizeof(int) * (size_t)S->na);
 }
 
-static void dfs(search *S, int t, double partial) {
+static void dfs(ssi_search *S, int t, double partial) {
   if (t == S->na) {
     keep_leaf(S, S->cur, partial);
     return;
@@ -306,7 +292,7 @@ static void dfs(search *S, int t, double partial) {
 }
 
 /* energy of an assignment p (A index -> B index); share (may be NULL): per-centre shares */
-static double full_energy(const search *S, const int *p, double *share) {
+double ssi_full_energy(const ssi_search *S, const int *p, double *share) {
   const int na = S->na, nb = S->nb;
   double E = 0;
   for (int a = 0; a < na; a++) {
@@ -372,7 +358,7 @@ static int dbl_cmp(const void *a, const void *b) {
 /* The relaxation: Hungarian on unary + distance-profile costs, then swaps / moves to free centres
  * while the energy decreases; top[0] = that local minimum, top[1..] = its best single-move
  * neighbours. */
-static int relaxed(search *S, int self) {
+static int relaxed(ssi_search *S, int self) {
   const int na = S->na, nb = S->nb, q = na - 1, lq = q > 0 ? q : 1;
   double *C = malloc(sizeof(double) * (size_t)na * nb), *pa = malloc(sizeof(double) * (size_t)na * lq);
   double *pb = malloc(sizeof(double) * (size_t)nb * lq), *tmp = malloc(sizeof(double) * (size_t)nb);
@@ -401,14 +387,14 @@ static int relaxed(search *S, int self) {
       C[(size_t)a * nb + b] = S->U[(size_t)a * nb + b] + S->wg * s / 2;
     }
   if (hungarian(na, nb, C, p)) goto out;
-  double E = self ? INFINITY : full_energy(S, p, NULL);
+  double E = self ? INFINITY : ssi_full_energy(S, p, NULL);
   if (self) { /* A with itself: the identity is the trivial optimum; start from the best swap */
     for (int a = 0; a < na; a++) p[a] = a;
     int ba = -1, bc = -1;
     for (int a = 0; a < na; a++)
       for (int c = a + 1; c < na; c++) {
         p[a] = c, p[c] = a;
-        double e = full_energy(S, p, NULL);
+        double e = ssi_full_energy(S, p, NULL);
         if (e < E) E = e, ba = a, bc = c;
         p[a] = a, p[c] = c;
       }
@@ -424,7 +410,7 @@ static int relaxed(search *S, int self) {
         int c = inv[b], old = p[a];
         p[a] = b;
         if (c >= 0) p[c] = old;
-        double e = full_energy(S, p, NULL);
+        double e = ssi_full_energy(S, p, NULL);
         if (e < E - 1e-15 * fabs(E)) E = e, improved = 1;
         else {
           p[a] = old;
@@ -443,7 +429,7 @@ static int relaxed(search *S, int self) {
       if (c >= 0 && c < a) continue; /* each swap once */
       p[a] = b;
       if (c >= 0) p[c] = old;
-      keep_leaf(S, p, full_energy(S, p, NULL));
+      keep_leaf(S, p, ssi_full_energy(S, p, NULL));
       p[a] = old;
       if (c >= 0) p[c] = b;
     }
@@ -453,15 +439,15 @@ out:
   return rc;
 }
 
-static double count_injections(int na, int nb) {
+double ssi_count_injections(int na, int nb) {
   double c = 1;
   for (int i = 0; i < na; i++) c *= nb - i;
   return c;
 }
 
-static void run_search(search *S, int exact, int ntop, int self, int *status) {
+void ssi_run_search(ssi_search *S, int exact, int ntop, int self, int *status) {
   S->ntop = ntop;
-  for (int k = 0; k < TOPK; k++) S->top_e[k] = INFINITY;
+  for (int k = 0; k < SSI_TOPK; k++) S->top_e[k] = INFINITY;
   for (int b = 0; b < S->nb; b++) S->used[b] = 0;
   if (exact) dfs(S, 0, 0.0);
   else if (relaxed(S, self)) *status = 1;
@@ -553,34 +539,14 @@ static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
   }
 }
 
-/* ---- the orientation test with probes shared by the candidates ------------------------------- *
- * Every candidate's functional map has the same probes on A (WKS + the kept centres of A, in A's
- * order) and, on B, the WKS and the wave-kernel maps of B's centres in the candidate's order: B's
- * probes are built once for all of its centres and each candidate takes its columns (the probe list
- * keeps every descr_step-th of n_energies columns per item, the same columns in every item when
- * descr_step divides n_energies). What ss_fmap_match would compute, for a fraction of the cost. */
-typedef struct orient_ctx {
-  const ss_centre_signature *A, *B;
-  ss_fmap_match_options fo;
-  ss_fmap_shape sA, sB;
-  ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B (when built here) */
-  const double *bA, *bP;  /* B's probes: pB's, or its signature's (basis bk >= fo.k) */
-  int bk;
-  ss_fmap_weights w;
-  int na, nb, per;        /* kept centres of A, centres of B, probe columns per item */
-  int *kept;              /* na indices of A's kept centres, ascending */
-  double *Abuf, *Pbuf;    /* a candidate's B probes */
-  int *T;
-} orient_ctx;
-
-static void orient_ctx_free(orient_ctx *c) {
+void ssi_orient_ctx_free(ssi_orient_ctx *c) {
   ss_fmap_probes_free(&c->pA), ss_fmap_probes_free(&c->pB);
   free(c->kept), free(c->Abuf), free(c->Pbuf), free(c->T);
   memset(c, 0, sizeof *c);
 }
 
 /* the orientation test's functional-map options for shapes with kmin eigenpairs */
-static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo) {
+void ssi_orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo) {
   ss_fmap_match_default_options(fo);
   fo->k = k < kmin ? k : kmin;
   fo->descr_k = descr_k < kmin ? descr_k : kmin;
@@ -606,13 +572,13 @@ static void copy_probe_columns(int ks, const double *A, const double *P, int c0,
   }
 }
 
-static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
-                                orient_ctx *c, ss_error *err) {
+ss_status ssi_orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
+                             ssi_orient_ctx *c, ss_error *err) {
   memset(c, 0, sizeof *c);
   const ss_shape_prep *pA = A->prep, *pB = B->prep;
   const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
   c->A = A, c->B = B;
-  orient_fmap_options(k, descr_k, kmin, &c->fo);
+  ssi_orient_fmap_options(k, descr_k, kmin, &c->fo);
   if (c->fo.n_energies % c->fo.descr_step) return ss_fail(err, SS_ERR_INVALID, "autopair: descr_step must divide n_energies");
   c->per = c->fo.n_energies / c->fo.descr_step;
   c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0, NULL, 0};
@@ -655,12 +621,12 @@ static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_si
   if (!st && (c->pA.p != per * (1 + c->na) || (c->pB.A && c->pB.p != per * (1 + B->m))))
     st = ss_fail(err, SS_ERR_INVALID, "autopair: unexpected probe layout");
   free(mask), free(lA);
-  if (st) orient_ctx_free(c);
+  if (st) ssi_orient_ctx_free(c);
   return st;
 }
 
 /* the point map A -> B of candidate p (A index -> B index) into c->T, and its orientation score */
-static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, double *seg, ss_error *err) {
+ss_status ssi_orient_ctx_score(ssi_orient_ctx *c, const int *p, double *score, double *seg, ss_error *err) {
   const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per, np = per * (1 + c->na);
   for (int i = 0; i <= c->na; i++) { /* item 0: the WKS; item i: centre p[kept[i-1]] of B */
     const int src = i == 0 ? 0 : 1 + p[c->kept[i - 1]];
@@ -682,16 +648,16 @@ static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, do
 
 ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,
                           int descr_k, double keep, double *r1, double *r2, double *med, ss_error *err) {
-  orient_ctx c;
-  ss_status st = orient_ctx_new(A, B, k, descr_k, keep, &c, err);
+  ssi_orient_ctx c;
+  ss_status st = ssi_orient_ctx_new(A, B, k, descr_k, keep, &c, err);
   double *s1 = malloc(sizeof(double) * 2 * (size_t)A->m), *s2 = malloc(sizeof(double) * 2 * (size_t)A->m);
   double *tmp = malloc(sizeof(double) * (size_t)A->m);
   if (!st && (!s1 || !s2 || !tmp)) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  if (!st) st = orient_ctx_score(&c, p1, r1, s1, err);
-  if (!st) st = orient_ctx_score(&c, p2, r2, s2, err);
-  if (!st && med) *med = median_margin(A->m, s1, s2, tmp);
+  if (!st) st = ssi_orient_ctx_score(&c, p1, r1, s1, err);
+  if (!st) st = ssi_orient_ctx_score(&c, p2, r2, s2, err);
+  if (!st && med) *med = ssi_median_margin(A->m, s1, s2, tmp);
   free(s1), free(s2), free(tmp);
-  orient_ctx_free(&c);
+  ssi_orient_ctx_free(&c);
   return st;
 }
 
@@ -709,8 +675,8 @@ ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_cent
 static int same(const int *a, const int *b, int n) { return !memcmp(a, b, sizeof(int) * (size_t)n); }
 
 /* unary costs of A's centres against Q's and their suffix minima (the search's bound) */
-static void fill_unary(search *S, double *U, double *minU, const ss_centre_signature *A, const ss_centre_signature *Q,
-                       double w_descr) {
+void ssi_fill_unary(ssi_search *S, double *U, double *minU, const ss_centre_signature *A, const ss_centre_signature *Q,
+                    double w_descr) {
   const int na = A->m, nq = Q->m, nd = A->nd;
   S->nb = nq, S->DB = Q->D;
   for (int a = 0; a < na; a++)
@@ -730,15 +696,15 @@ static void fill_unary(search *S, double *U, double *minU, const ss_centre_signa
   }
 }
 
-static void init_search(search *S, const ss_centre_signature *A, const ss_autopair_options *o, double *U, double *minU,
-                        int *cur, int *used, int *buf) {
+void ssi_init_search(ssi_search *S, const ss_centre_signature *A, const ss_autopair_options *o, double *U, double *minU,
+                     int *cur, int *used, int *buf) {
   const int na = A->m;
   double d2 = 0;
   for (int a = 0; a < na; a++)
     for (int c = a + 1; c < na; c++) d2 += A->D[a + (size_t)na * c] * A->D[a + (size_t)na * c];
   memset(S, 0, sizeof *S);
   S->na = na, S->U = U, S->DA = A->D, S->wg = d2 > 0 ? o->w_geo / d2 : 0.0, S->minU = minU, S->cur = cur, S->used = used;
-  for (int k = 0; k < TOPK; k++) S->top_p[k] = buf + (size_t)na * k;
+  for (int k = 0; k < SSI_TOPK; k++) S->top_p[k] = buf + (size_t)na * k;
 }
 
 /* σ: of the SELF_CANDIDATES best non-identity pairings of the centres with themselves (intrinsic
@@ -751,21 +717,21 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
   if (m < 2) return SS_OK;
   double *U = malloc(sizeof(double) * (size_t)m * m), *minU = malloc(sizeof(double) * ((size_t)m + 1));
   int *cur = malloc(sizeof(int) * (size_t)m), *used = malloc(sizeof(int) * (size_t)m);
-  int *buf = malloc(sizeof(int) * (size_t)m * TOPK);
+  int *buf = malloc(sizeof(int) * (size_t)m * SSI_TOPK);
   ss_status st = SS_OK;
-  int status = 0, moved[TOPK];
-  double sc_k[TOPK], best_sc = INFINITY;
+  int status = 0, moved[SSI_TOPK];
+  double sc_k[SSI_TOPK], best_sc = INFINITY;
   if (!U || !minU || !cur || !used || !buf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  search S;
+  ssi_search S;
   S.ntop = 0;
   if (!st) {
-    init_search(&S, sg, o, U, minU, cur, used, buf);
-    fill_unary(&S, U, minU, sg, sg, o->w_descr);
-    const int exact = m <= o->exact_max && count_injections(m, m) <= 5e7;
-    run_search(&S, exact, SELF_CANDIDATES + 1 < TOPK ? SELF_CANDIDATES + 1 : TOPK, 1, &status);
+    ssi_init_search(&S, sg, o, U, minU, cur, used, buf);
+    ssi_fill_unary(&S, U, minU, sg, sg, o->w_descr);
+    const int exact = m <= o->exact_max && ssi_count_injections(m, m) <= 5e7;
+    ssi_run_search(&S, exact, SELF_CANDIDATES + 1 < SSI_TOPK ? SELF_CANDIDATES + 1 : SSI_TOPK, 1, &status);
     if (status) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   }
-  orient_ctx oc = {0};
+  ssi_orient_ctx oc = {0};
   int have_ctx = 0;
   for (int k = 0; !st && k < S.ntop; k++) {
     if (!isfinite(S.top_e[k])) break;
@@ -773,9 +739,9 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     for (int a = 0; a < m && id; a++) id = S.top_p[k][a] == a;
     if (id) continue;
     double sc = 0;
-    if (!have_ctx && (st = orient_ctx_new(sg, sg, o->orient_k, o->orient_descr_k, 1.0, &oc, err))) break;
+    if (!have_ctx && (st = ssi_orient_ctx_new(sg, sg, o->orient_k, o->orient_descr_k, 1.0, &oc, err))) break;
     have_ctx = 1;
-    if ((st = orient_ctx_score(&oc, S.top_p[k], &sc, NULL, err))) break;
+    if ((st = ssi_orient_ctx_score(&oc, S.top_p[k], &sc, NULL, err))) break;
     sc_k[k] = sc;
     moved[k] = 0;
     for (int a = 0; a < m; a++) moved[k] += S.top_p[k][a] != a;
@@ -790,14 +756,14 @@ static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_option
     if (pick < 0 || moved[k] > moved[pick] || (moved[k] == moved[pick] && sc_k[k] < sc_k[pick])) pick = k;
   }
   if (pick >= 0) sg->sigma_score = sc_k[pick], memcpy(sg->sigma, S.top_p[pick], sizeof(int) * (size_t)m);
-  orient_ctx_free(&oc);
+  ssi_orient_ctx_free(&oc);
   free(U), free(minU), free(cur), free(used), free(buf);
   return st;
 }
 
 /* The energy of the best leaf of the search other than p1 and p2 (INFINITY: none), copied to other */
-static double best_other(const search *S, const int *p1, const int *p2, int *other) {
-  for (int k = 0; k < TOPK; k++)
+static double best_other(const ssi_search *S, const int *p1, const int *p2, int *other) {
+  for (int k = 0; k < SSI_TOPK; k++)
     if (isfinite(S->top_e[k]) && !same(S->top_p[k], p1, S->na) && !same(S->top_p[k], p2, S->na)) {
       memcpy(other, S->top_p[k], sizeof(int) * (size_t)S->na);
       return S->top_e[k];
@@ -807,12 +773,12 @@ static double best_other(const search *S, const int *p1, const int *p2, int *oth
 
 /* The mirror candidate of p: p∘σ_A or σ_B∘p, whichever has the lower energy (a mirror is an
  * isometry; a wrong σ costs energy); p itself when neither differs from it. */
-static void mirror_candidate(const search *S, const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+static void mirror_candidate(const ssi_search *S, const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
                              int *mir, int *tmp) {
   const int na = A->m;
   for (int a = 0; a < na; a++) mir[a] = p[A->sigma[a]], tmp[a] = B->sigma[p[a]];
   const int id2 = same(mir, p, na), idb = same(tmp, p, na);
-  if (!idb && (id2 || full_energy(S, tmp, NULL) < full_energy(S, mir, NULL))) memcpy(mir, tmp, sizeof(int) * (size_t)na);
+  if (!idb && (id2 || ssi_full_energy(S, tmp, NULL) < ssi_full_energy(S, mir, NULL))) memcpy(mir, tmp, sizeof(int) * (size_t)na);
 }
 
 /* The first left / right test of p1 against p2: both maps' whole-shape scores r1, r2 (r2 = r1 when
@@ -820,21 +786,21 @@ static void mirror_candidate(const search *S, const ss_centre_signature *A, cons
  * score difference (the torso saddles' segments follow their centres front or back, the
  * protrusions' are too small to map well: a few segments vote wrong, the median is robust to them);
  * ties: the whole-shape scores. seg1, seg2: 2·A->m scratch (per-segment scores), dtmp: A->m. */
-static ss_status first_test(orient_ctx *oc, const int *p1, const int *p2, double *seg1, double *seg2, double *dtmp,
+static ss_status first_test(ssi_orient_ctx *oc, const int *p1, const int *p2, double *seg1, double *seg2, double *dtmp,
                             double *r1, double *r2, double *med, ss_error *err) {
   const int na = oc->A->m;
-  ss_status st = orient_ctx_score(oc, p1, r1, seg1, err);
+  ss_status st = ssi_orient_ctx_score(oc, p1, r1, seg1, err);
   if (st) return st;
   if (same(p1, p2, na)) *r2 = *r1, memcpy(seg2, seg1, sizeof(double) * (size_t)na);
-  else if ((st = orient_ctx_score(oc, p2, r2, seg2, err))) return st;
-  *med = median_margin(na, seg1, seg2, dtmp);
+  else if ((st = ssi_orient_ctx_score(oc, p2, r2, seg2, err))) return st;
+  *med = ssi_median_margin(na, seg1, seg2, dtmp);
   if (*med == 0) *med = *r1 - *r2;
   return SS_OK;
 }
 
 /* A near-tie pairing p against its own mirror by the first test: win / lose (A->m each) receive
  * the one the test picks and the other, sw / sl their whole-shape scores, *med the margin (>= 0). */
-static ss_status decide_family(orient_ctx *oc, const search *S, const int *p, int *win, int *lose, double *seg1,
+static ss_status decide_family(ssi_orient_ctx *oc, const ssi_search *S, const int *p, int *win, int *lose, double *seg1,
                                double *seg2, double *dtmp, double *sw, double *sl, double *med, ss_error *err) {
   const int na = oc->A->m;
   mirror_candidate(S, oc->A, oc->B, p, lose, win);
@@ -944,23 +910,23 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   const int na = A->m, nb = B->m;
   ss_status st = SS_OK;
   int status = 0, nh = 0, *hyp = NULL;
-  const int nbuf = TOPK + 4;
+  const int nbuf = SSI_TOPK + 4;
   double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
   double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
   double *seg2 = malloc(sizeof(double) * 2 * (size_t)na);
   int *cur = malloc(sizeof(int) * (size_t)nb), *used = malloc(sizeof(int) * (size_t)nb);
-  int *buf = malloc(sizeof(int) * (size_t)na * nbuf), *alt_seen = malloc(sizeof(int) * (size_t)na * 2 * TOPK);
-  search S;
-  orient_ctx oc = {0};
+  int *buf = malloc(sizeof(int) * (size_t)na * nbuf), *alt_seen = malloc(sizeof(int) * (size_t)na * 2 * SSI_TOPK);
+  ssi_search S;
+  ssi_orient_ctx oc = {0};
   if (!U || !minU || !share || !seg1 || !seg2 || !cur || !used || !buf || !alt_seen) {
     st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
     goto done;
   }
-  init_search(&S, A, &o, U, minU, cur, used, buf);
-  int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
-  const int exact = na <= o.exact_max && count_injections(na, nb) <= 5e7;
-  fill_unary(&S, U, minU, A, B, o.w_descr);
-  run_search(&S, exact, TOPK, 0, &status);
+  ssi_init_search(&S, A, &o, U, minU, cur, used, buf);
+  int *pi1 = buf + (size_t)na * SSI_TOPK, *pi2 = pi1 + na, *third = pi2 + na;
+  const int exact = na <= o.exact_max && ssi_count_injections(na, nb) <= 5e7;
+  ssi_fill_unary(&S, U, minU, A, B, o.w_descr);
+  ssi_run_search(&S, exact, SSI_TOPK, 0, &status);
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
   if (!isfinite(S.top_e[0])) { /* no leaf kept (energies not finite): S.top_p[0] is unset */
     st = ss_fail(err, SS_ERR_INVALID, "autopair: no pairing of finite energy (the signatures' values are not finite)");
@@ -968,12 +934,12 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
   mirror_candidate(&S, A, B, pi1, pi2, third);
-  double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
+  double e1 = ssi_full_energy(&S, pi1, NULL), e2 = ssi_full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
   /* left / right: the candidate whose map preserves orientation */
   if (same(pi1, pi2, na) && isfinite(e3)) /* no symmetry found: the runner-up is the other candidate */
     memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
   double r1 = 0, r2 = 0, med = 0;
-  if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
+  if ((st = ssi_orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
   if ((st = first_test(&oc, pi1, pi2, seg1, seg2, share, &r1, &r2, &med, err))) goto done;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
@@ -983,13 +949,13 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
       if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
       med = r1 - r2;
     } else { /* the protrusions' landmarks only: the mean of both tests' medians */
-      orient_ctx oc2;
-      if ((st = orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc2, err))) goto done;
-      st = orient_ctx_score(&oc2, pi1, &r1, seg1, err);
-      if (!st) st = orient_ctx_score(&oc2, pi2, &r2, seg2, err);
-      orient_ctx_free(&oc2);
+      ssi_orient_ctx oc2;
+      if ((st = ssi_orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc2, err))) goto done;
+      st = ssi_orient_ctx_score(&oc2, pi1, &r1, seg1, err);
+      if (!st) st = ssi_orient_ctx_score(&oc2, pi2, &r2, seg2, err);
+      ssi_orient_ctx_free(&oc2);
       if (st) goto done;
-      med = 0.5 * (med + median_margin(na, seg1, seg2, share));
+      med = 0.5 * (med + ssi_median_margin(na, seg1, seg2, share));
     }
     rechecked = 1;
   }
@@ -1009,8 +975,8 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
    * two torso saddles is a partial mirror: its map reverses orientation there; where the second
    * test decided, the first test's scores of the pair are both weak) */
   int n_alt = 0, alt = 0;
-  const int amax = o.alt_max < TOPK ? o.alt_max : TOPK;
-  for (int k = 0; k < TOPK && n_alt < amax; k++) {
+  const int amax = o.alt_max < SSI_TOPK ? o.alt_max : SSI_TOPK;
+  for (int k = 0; k < SSI_TOPK && n_alt < amax; k++) {
     if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.alt_gap)) break;
     const int *c = S.top_p[k];
     int seen = same(c, pi1, na) || same(c, pi2, na);
@@ -1023,11 +989,11 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     if (sw >= o.alt_min_score && sw > (f1 > f2 ? f1 : f2) + o.alt_margin) {
       memcpy(pi1, win, sizeof(int) * (size_t)na), memcpy(pi2, lose, sizeof(int) * (size_t)na);
       r1 = f1 = sw, r2 = f2 = sl, med = am, rechecked = 0, alt = 1;
-      e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL);
+      e1 = ssi_full_energy(&S, pi1, NULL), e2 = ssi_full_energy(&S, pi2, NULL);
     }
   }
   if (alt) e3 = best_other(&S, pi1, pi2, third); /* the search's best, now the runner-up */
-  (void)full_energy(&S, pi1, share);
+  (void)ssi_full_energy(&S, pi1, share);
   if ((st = pairs_of_assignment(X, Y, swap, pi1, share, out, err))) goto done;
   if (maxh > 0) { /* the answer, its mirror, then the search's next leaves, each followed by its mirror */
     if (!(hyp = malloc(sizeof(int) * (size_t)na * ((size_t)maxh + 1)))) {
@@ -1037,14 +1003,14 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     int *mir = hyp + (size_t)na * maxh;
     add_hypothesis(na, pi1, maxh, hyp, &nh);
     add_hypothesis(na, pi2, maxh, hyp, &nh);
-    for (int k = 0; k < TOPK && nh < maxh; k++) {
+    for (int k = 0; k < SSI_TOPK && nh < maxh; k++) {
       if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.hyp_gap)) break;
       add_hypothesis(na, S.top_p[k], maxh, hyp, &nh);
       mirror_candidate(&S, A, B, S.top_p[k], mir, third);
       add_hypothesis(na, mir, maxh, hyp, &nh);
     }
     for (int h = 0; h < nh; h++) {
-      (void)full_energy(&S, hyp + (size_t)na * h, share);
+      (void)ssi_full_energy(&S, hyp + (size_t)na * h, share);
       if ((st = pairs_of_assignment(X, Y, swap, hyp + (size_t)na * h, share, &hyp_out[h], err))) {
         for (int g = 0; g < h; g++) ss_segment_pairs_free(&hyp_out[g]);
         nh = 0;
@@ -1074,7 +1040,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     info->alternative = alt;
   }
 done:
-  orient_ctx_free(&oc);
+  ssi_orient_ctx_free(&oc);
   free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf), free(alt_seen);
   free(hyp);
   if (st) ss_segment_pairs_free(out);
