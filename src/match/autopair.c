@@ -1,13 +1,11 @@
-/* Landmark-free pairing of the segments of two shapes (match.h): per-shape centre signatures
- * (WKS at the centres, centre-to-centre exact geodesics, the intrinsic orientation tensor) and the
- * search for the pairing of least energy (exact branch and bound, or Hungarian + local moves). */
-#include "specseg/fmap.h"
-#include "specseg/geodesic.h"
+/* Landmark-free pairing of the segments of two shapes (match.h), the decision and the public entry
+ * points: the search's best pairing (pairing_search.c) against its mirror candidate by the first
+ * left / right test (pairing_orientation.c), a second test on a close call, the near-tie
+ * alternatives, the hypotheses, the segment pairs and the pairing's confidence; the options'
+ * defaults. The centres' signatures: centre_signature.c. */
 #include "specseg/match.h"
 #include "match/autopair_internal.h"
-#include "mesh/mesh_topology.h"
 
-#include <cblas.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,753 +49,17 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_confident_orientation = 0.45;
 }
 
-void ss_centre_signature_free(ss_centre_signature *s) {
-  if (!s) return;
-  free(s->centers);
-  free(s->descr);
-  free(s->D);
-  free(s->normals);
-  free(s->sigma);
-  free(s->probe_A);
-  free(s->probe_P);
-  memset(s, 0, sizeof *s);
-}
-
-static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err);
-static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo);
-
 static double cpu_now(void) {
   struct timespec t;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_options *o_in, ss_centre_signature *out,
-                                      ss_error *err) {
-  if (!out) return ss_fail(err, SS_ERR_INVALID, "autopair: NULL output");
-  memset(out, 0, sizeof *out);
-  ss_autopair_options o;
-  if (o_in) o = *o_in;
-  else ss_autopair_default_options(&o);
-  if (!p || !p->mesh || !p->evecs || !p->evals || !p->M || !p->seg.centers || p->seg.m < 1)
-    return ss_fail(err, SS_ERR_INVALID, "autopair: shape not prepared");
-  if (o.n_energies < 1 || !(o.sigma_factor > 0) || !(o.descr_radius >= 0) || o.descr_k < 3 || o.orient_k < 3 ||
-      o.orient_descr_k < 3)
-    return ss_fail(err, SS_ERR_INVALID, "autopair: bad descriptor options");
-  const ss_mesh *mesh = p->mesh;
-  const int n = mesh->nv, nf = mesh->nf, m = p->seg.m, ne = o.n_energies;
-  const int kw = o.descr_k < p->kev ? o.descr_k : p->kev;
-  for (int a = 0; a < m; a++)
-    if (p->seg.centers[a] < 0 || p->seg.centers[a] >= n)
-      return ss_fail(err, SS_ERR_INVALID, "autopair: centre %d out of range", a);
-  ss_status st = SS_OK;
-  ss_geodesic_mesh *gm = NULL;
-  double *F = malloc(sizeof(double) * (size_t)n * m), *W = malloc(sizeof(double) * (size_t)n * ne);
-  out->m = m;
-  out->nd = ne;
-  out->prep = p;
-  out->centers = malloc(sizeof(int) * (size_t)m);
-  out->descr = malloc(sizeof(double) * (size_t)m * ne);
-  out->D = malloc(sizeof(double) * (size_t)m * m);
-  out->normals = calloc((size_t)n * 3, sizeof(double));
-  out->sigma = malloc(sizeof(int) * (size_t)m);
-  if (!F || !W || !out->centers || !out->descr || !out->D || !out->normals || !out->sigma) {
-    st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-    goto done;
-  }
-  memcpy(out->centers, p->seg.centers, sizeof(int) * (size_t)m);
-  const double area = ss_mesh_area(mesh), scale = 1.0 / sqrt(area);
-  /* 1. exact fields from the centres, scaled */
-  if ((st = ss_geodesic_mesh_build(mesh, &gm, err))) goto done;
-  if ((st = ss_geodesic_fields(gm, out->centers, m, 0.0, F, err))) goto done;
-  for (size_t i = 0; i < (size_t)n * m; i++) {
-    if (!isfinite(F[i])) {
-      st = ss_fail(err, SS_ERR_INVALID, "autopair: a segment centre does not reach every vertex (several components)");
-      goto done;
-    }
-    F[i] *= scale;
-  }
-  for (int a = 0; a < m; a++)
-    for (int b = 0; b < m; b++)
-      out->D[a + (size_t)m * b] = 0.5 * (F[out->centers[b] + (size_t)n * a] + F[out->centers[a] + (size_t)n * b]);
-  /* 2. WKS averaged over a disc around each centre, unit length */
-  if ((st = ss_wks(n, kw, p->evals, p->evecs, p->M, ne, o.sigma_factor, W, err))) goto done;
-  for (int a = 0; a < m; a++) {
-    double *d = out->descr + (size_t)a * ne, wsum = 0;
-    memset(d, 0, sizeof(double) * (size_t)ne);
-    if (o.descr_radius > 0) {
-      for (int v = 0; v < n; v++)
-        if (F[v + (size_t)n * a] <= o.descr_radius) {
-          wsum += p->M[v];
-          for (int j = 0; j < ne; j++) d[j] += p->M[v] * W[v + (size_t)n * j];
-        }
-    }
-    if (!(wsum > 0))
-      for (int j = 0; j < ne; j++) d[j] = W[out->centers[a] + (size_t)n * j];
-    double nn = 0;
-    for (int j = 0; j < ne; j++) nn += d[j] * d[j];
-    nn = nn > 0 ? 1.0 / sqrt(nn) : 0.0;
-    for (int j = 0; j < ne; j++) d[j] *= nn;
-  }
-  /* 3. orientation: the signed volume's sign makes the normals outward; faces of a mesh that is not
-   * consistently oriented are taken as the consistent orientation of their component (majority)
-   * would have them, so the normals do not depend on the faces' own winding */
-  {
-    int *Fo = NULL;
-    if ((st = ssi_mesh_orient_copy(mesh, &Fo, NULL, err))) goto done;
-    const int *FF = Fo ? Fo : mesh->F;
-    const double vol = ssi_mesh_signed_volume6(mesh, FF) / 6.0;
-    for (int f = 0; f < nf; f++) {
-      const int *t = FF + 3 * (size_t)f;
-      const double *p0 = mesh->V + 3 * (size_t)t[0], *p1 = mesh->V + 3 * (size_t)t[1], *p2 = mesh->V + 3 * (size_t)t[2];
-      double u[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-      double N[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-      for (int c = 0; c < 3; c++)
-        for (int d = 0; d < 3; d++) out->normals[3 * (size_t)t[c] + d] += N[d];
-    }
-    free(Fo);
-    out->volume_ratio = vol / (area * sqrt(area));
-    out->orient_sign = vol < 0 ? -1.0 : 1.0;
-    for (size_t i = 0; i < (size_t)n * 3; i++) out->normals[i] *= out->orient_sign;
-  }
-  /* 4. the orientation tests' probes (WKS + every centre's wave kernels), once per shape, in the
-   * larger of the two tests' bases (the other takes its leading block) */
-  {
-    ss_fmap_match_options fo;
-    const int kt = o.recheck_margin > 0 && o.recheck_zoomout <= o.recheck_k && o.recheck_k > o.orient_k ? o.recheck_k : o.orient_k;
-    orient_fmap_options(kt, o.orient_descr_k, p->kev, &fo);
-    ss_fmap_shape fs = {mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
-    ss_fmap_probes pr;
-    if ((st = ss_fmap_base_probes(&fs, m, out->centers, &fo, 1, &pr, err))) goto done;
-    out->probe_k = fo.k, out->probe_descr_k = fo.descr_k, out->probe_p = pr.p, out->probe_A = pr.A, out->probe_P = pr.P;
-  }
-  /* 5. the centres' own left-right symmetry */
-  st = self_symmetry(out, &o, err);
-done:
-  ss_geodesic_mesh_free(gm);
-  free(F), free(W);
-  if (st) ss_centre_signature_free(out);
-  return st;
-}
-
-/* The orientation score of T over A's faces (those of segments in segmask, NULL: all) and, in seg (A->m,
- * may be NULL), that of each segment's faces (a face belongs to its first vertex's segment; NAN for a
- * segment without a counted face). */
-static double map_orientation_seg(const ss_centre_signature *A, const ss_centre_signature *B, const int *T,
-                                  const int *segmask, double *seg) {
-  const ss_mesh *mA = A->prep->mesh, *mB = B->prep->mesh;
-  const int *lab = A->prep->seg.labels, m = A->m;
-  double pos = 0, tot = 0;
-  if (seg)
-    for (int a = 0; a < 2 * m; a++) seg[a] = 0; /* scratch: m counts then m positives, see below */
-  double *cnt = seg, *cpos = seg ? seg + m : NULL;
-  for (int f = 0; f < mA->nf; f++) {
-    const int *t = mA->F + 3 * (size_t)f;
-    if (segmask && !(segmask[lab[t[0]]] && segmask[lab[t[1]]] && segmask[lab[t[2]]])) continue;
-    const double *q0 = mB->V + 3 * (size_t)T[t[0]], *q1 = mB->V + 3 * (size_t)T[t[1]], *q2 = mB->V + 3 * (size_t)T[t[2]];
-    const double *nr = B->normals + 3 * (size_t)T[t[0]];
-    double u[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]}, w[3] = {q2[0] - q0[0], q2[1] - q0[1], q2[2] - q0[2]};
-    double x = nr[0] * (u[1] * w[2] - u[2] * w[1]) + nr[1] * (u[2] * w[0] - u[0] * w[2]) + nr[2] * (u[0] * w[1] - u[1] * w[0]);
-    { /* the face's own orientation against A's outward normals (not its winding: see the signature) */
-      const double *p0 = mA->V + 3 * (size_t)t[0], *p1 = mA->V + 3 * (size_t)t[1], *p2 = mA->V + 3 * (size_t)t[2];
-      const double *n0 = A->normals + 3 * (size_t)t[0], *n1 = A->normals + 3 * (size_t)t[1], *n2 = A->normals + 3 * (size_t)t[2];
-      double a[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, b[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-      double y = (n0[0] + n1[0] + n2[0]) * (a[1] * b[2] - a[2] * b[1]) + (n0[1] + n1[1] + n2[1]) * (a[2] * b[0] - a[0] * b[2]) +
-                 (n0[2] + n1[2] + n2[2]) * (a[0] * b[1] - a[1] * b[0]);
-      if (y < 0) x = -x;
-      else if (!(y > 0)) continue;
-    }
-    if (x == 0) continue;
-    tot += 1, pos += x > 0;
-    if (seg) cnt[lab[t[0]]] += 1, cpos[lab[t[0]]] += x > 0;
-  }
-  if (seg)
-    for (int a = 0; a < m; a++) seg[a] = cnt[a] > 0 ? (2 * cpos[a] - cnt[a]) / cnt[a] : NAN;
-  return tot > 0 ? (2 * pos - tot) / tot : 0.0;
-}
-
-double ssi_map_orientation(const ss_centre_signature *A, const ss_centre_signature *B, const int *T) {
-  return map_orientation_seg(A, B, T, NULL, NULL);
-}
-
-double ssi_map_orientation_reversed(const ss_centre_signature *A, const ss_centre_signature *B, const int *T, double thr,
-                                    double *seg, double *smin) {
-  (void)map_orientation_seg(A, B, T, NULL, seg);
-  double mn = INFINITY;
-  int scored = 0, below = 0;
-  for (int a = 0; a < A->m; a++)
-    if (isfinite(seg[a])) {
-      scored++, below += seg[a] < thr;
-      if (seg[a] < mn) mn = seg[a];
-    }
-  if (smin) *smin = isfinite(mn) ? mn : 0.0;
-  return scored ? (double)below / scored : 1.0;
-}
-
-/* The median over A's segments of s1 − s2 (segments scored in both), 0 when none */
-static double median_margin(int m, const double *s1, const double *s2, double *tmp) {
-  int q = 0;
-  for (int a = 0; a < m; a++)
-    if (isfinite(s1[a]) && isfinite(s2[a])) {
-      double d = s1[a] - s2[a];
-      int j = q++;
-      for (; j > 0 && tmp[j - 1] > d; j--) tmp[j] = tmp[j - 1];
-      tmp[j] = d;
-    }
-  if (q == 0) return 0.0;
-  return q % 2 ? tmp[q / 2] : 0.5 * (tmp[q / 2 - 1] + tmp[q / 2]);
-}
-
-
-/* ---- the search ----------------------------------------------------------------------------- */
-
-#define TOPK 8 /* leaves kept by the exact search (self-symmetry candidates, runner-ups) */
-#define SELF_CANDIDATES 6
-
-typedef struct search {
-  int na, nb;
-  const double *U;  /* na x nb unary costs, U[a * nb + b] (weighted) */
-  const double *DA, *DB;
-  double wg;        /* weight of a squared distance difference */
-  const double *minU; /* minU[t] = Σ_{a ≥ t} min_b U[a][b] */
-  int *cur, *used;
-  int ntop;                 /* leaves kept (1..TOPK) */
-  double top_e[TOPK];       /* ascending */
-  int *top_p[TOPK];
-} search;
-
-static double pair_inc(const search *S, int t, int b) {
-  double c = S->U[(size_t)t * S->nb + b];
-  for (int s = 0; s < t; s++) {
-    double d = S->DA[s + (size_t)S->na * t] - S->DB[S->cur[s] + (size_t)S->nb * b];
-    c += S->wg * d * d;
-  }
-  return c;
-}
-
-static void keep_leaf(search *S, const int *p, double e) {
-  int k = S->ntop - 1;
-  if (!(e < S->top_e[k])) return;
-  int *slot = S->top_p[k];
-  while (k > 0 && e < S->top_e[k - 1]) {
-    S->top_e[k] = S->top_e[k - 1];
-    S->top_p[k] = S->top_p[k - 1];
-    k--;
-  }
-  S->top_e[k] = e;
-  S->top_p[k] = slot;
-  memcpy(slot, p, sizeof(int) * (size_t)S->na);
-}
-
-static void dfs(search *S, int t, double partial) {
-  if (t == S->na) {
-    keep_leaf(S, S->cur, partial);
-    return;
-  }
-  for (int b = 0; b < S->nb; b++) {
-    if (S->used[b]) continue;
-    double c = partial + pair_inc(S, t, b);
-    if (!(c + S->minU[t + 1] < S->top_e[S->ntop - 1])) continue;
-    S->cur[t] = b;
-    S->used[b] = 1;
-    dfs(S, t + 1, c);
-    S->used[b] = 0;
-  }
-}
-
-/* energy of an assignment p (A index -> B index); share (may be NULL): per-centre shares */
-static double full_energy(const search *S, const int *p, double *share) {
-  const int na = S->na, nb = S->nb;
-  double E = 0;
-  for (int a = 0; a < na; a++) {
-    E += S->U[(size_t)a * nb + p[a]];
-    if (share) share[a] = S->U[(size_t)a * nb + p[a]];
-  }
-  for (int a = 0; a < na; a++)
-    for (int c = a + 1; c < na; c++) {
-      double d = S->DA[a + (size_t)na * c] - S->DB[p[a] + (size_t)nb * p[c]], e = S->wg * d * d;
-      E += e;
-      if (share) share[a] += e / 2, share[c] += e / 2;
-    }
-  return E;
-}
-
-/* Hungarian algorithm (shortest augmenting paths, O(n² m)) for an n x m cost matrix, n <= m,
- * C[i * m + j]; assign[i] receives the column of row i. */
-static int hungarian(int n, int m, const double *C, int *assign) {
-  double *u = calloc((size_t)n + 1, sizeof(double)), *v = calloc((size_t)m + 1, sizeof(double));
-  double *minv = malloc(sizeof(double) * ((size_t)m + 1));
-  int *p = calloc((size_t)m + 1, sizeof(int)), *way = calloc((size_t)m + 1, sizeof(int));
-  char *usedc = malloc((size_t)m + 1);
-  if (!u || !v || !minv || !p || !way || !usedc) {
-    free(u), free(v), free(minv), free(p), free(way), free(usedc);
-    return 1;
-  }
-  for (int i = 1; i <= n; i++) {
-    p[0] = i;
-    int j0 = 0;
-    for (int j = 0; j <= m; j++) minv[j] = INFINITY, usedc[j] = 0;
-    do {
-      usedc[j0] = 1;
-      int i0 = p[j0], j1 = 0;
-      double delta = INFINITY;
-      for (int j = 1; j <= m; j++)
-        if (!usedc[j]) {
-          double cur = C[(size_t)(i0 - 1) * m + (j - 1)] - u[i0] - v[j];
-          if (cur < minv[j]) minv[j] = cur, way[j] = j0;
-          if (minv[j] < delta) delta = minv[j], j1 = j;
-        }
-      for (int j = 0; j <= m; j++)
-        if (usedc[j]) u[p[j]] += delta, v[j] -= delta;
-        else minv[j] -= delta;
-      j0 = j1;
-    } while (p[j0] != 0);
-    do {
-      int j1 = way[j0];
-      p[j0] = p[j1];
-      j0 = j1;
-    } while (j0);
-  }
-  for (int j = 1; j <= m; j++)
-    if (p[j]) assign[p[j] - 1] = j - 1;
-  free(u), free(v), free(minv), free(p), free(way), free(usedc);
-  return 0;
-}
-
-static int dbl_cmp(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-/* The relaxation: Hungarian on unary + distance-profile costs, then swaps / moves to free centres
- * while the energy decreases; top[0] = that local minimum, top[1..] = its best single-move
- * neighbours. */
-static int relaxed(search *S, int self) {
-  const int na = S->na, nb = S->nb, q = na - 1, lq = q > 0 ? q : 1;
-  double *C = malloc(sizeof(double) * (size_t)na * nb), *pa = malloc(sizeof(double) * (size_t)na * lq);
-  double *pb = malloc(sizeof(double) * (size_t)nb * lq), *tmp = malloc(sizeof(double) * (size_t)nb);
-  int *p = malloc(sizeof(int) * (size_t)na), *inv = malloc(sizeof(int) * (size_t)nb);
-  int rc = 1;
-  if (!C || !pa || !pb || !tmp || !p || !inv) goto out;
-  for (int side = 0; side < 2; side++) { /* sorted distance profiles: the q smallest distances */
-    const int n = side ? nb : na;
-    const double *D = side ? S->DB : S->DA;
-    double *prof = side ? pb : pa;
-    for (int a = 0; a < n; a++) {
-      int c = 0;
-      for (int x = 0; x < n; x++)
-        if (x != a) tmp[c++] = D[a + (size_t)n * x];
-      qsort(tmp, (size_t)c, sizeof(double), dbl_cmp);
-      for (int i = 0; i < q; i++) prof[(size_t)a * lq + i] = i < c ? tmp[i] : 0.0;
-    }
-  }
-  for (int a = 0; a < na; a++)
-    for (int b = 0; b < nb; b++) {
-      double s = 0;
-      for (int i = 0; i < q; i++) {
-        double d = pa[(size_t)a * lq + i] - pb[(size_t)b * lq + i];
-        s += d * d;
-      }
-      C[(size_t)a * nb + b] = S->U[(size_t)a * nb + b] + S->wg * s / 2;
-    }
-  if (hungarian(na, nb, C, p)) goto out;
-  double E = self ? INFINITY : full_energy(S, p, NULL);
-  if (self) { /* A with itself: the identity is the trivial optimum; start from the best swap */
-    for (int a = 0; a < na; a++) p[a] = a;
-    int ba = -1, bc = -1;
-    for (int a = 0; a < na; a++)
-      for (int c = a + 1; c < na; c++) {
-        p[a] = c, p[c] = a;
-        double e = full_energy(S, p, NULL);
-        if (e < E) E = e, ba = a, bc = c;
-        p[a] = a, p[c] = c;
-      }
-    if (ba >= 0) p[ba] = bc, p[bc] = ba;
-  }
-  for (int improved = 1; improved && !self;) {
-    improved = 0;
-    for (int b = 0; b < nb; b++) inv[b] = -1;
-    for (int a = 0; a < na; a++) inv[p[a]] = a;
-    for (int a = 0; a < na && !improved; a++)
-      for (int b = 0; b < nb && !improved; b++) {
-        if (b == p[a]) continue;
-        int c = inv[b], old = p[a];
-        p[a] = b;
-        if (c >= 0) p[c] = old;
-        double e = full_energy(S, p, NULL);
-        if (e < E - 1e-15 * fabs(E)) E = e, improved = 1;
-        else {
-          p[a] = old;
-          if (c >= 0) p[c] = b;
-        }
-      }
-  }
-  for (int k = 0; k < S->ntop; k++) S->top_e[k] = INFINITY;
-  keep_leaf(S, p, E);
-  for (int b = 0; b < nb; b++) inv[b] = -1;
-  for (int a = 0; a < na; a++) inv[p[a]] = a;
-  for (int a = 0; a < na; a++)
-    for (int b = 0; b < nb; b++) {
-      if (b == p[a]) continue;
-      int c = inv[b], old = p[a];
-      if (c >= 0 && c < a) continue; /* each swap once */
-      p[a] = b;
-      if (c >= 0) p[c] = old;
-      keep_leaf(S, p, full_energy(S, p, NULL));
-      p[a] = old;
-      if (c >= 0) p[c] = b;
-    }
-  rc = 0;
-out:
-  free(C), free(pa), free(pb), free(tmp), free(p), free(inv);
-  return rc;
-}
-
-static double count_injections(int na, int nb) {
-  double c = 1;
-  for (int i = 0; i < na; i++) c *= nb - i;
-  return c;
-}
-
-static void run_search(search *S, int exact, int ntop, int self, int *status) {
-  S->ntop = ntop;
-  for (int k = 0; k < TOPK; k++) S->top_e[k] = INFINITY;
-  for (int b = 0; b < S->nb; b++) S->used[b] = 0;
-  if (exact) dfs(S, 0, 0.0);
-  else if (relaxed(S, self)) *status = 1;
-}
-
-/* The orientation test of a pairing p (A index -> B index): score of the map A -> B of a small
- * functional map (k eigenfunctions, descriptors from descr_k eigenpairs, ZoomOut up to zk when
- * zk > k, on ns samples of A) with the paired centres as landmarks. */
-static ss_status orient_score_T(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k,
-                                int descr_k, int zk, int ns, double keep, double *score, int *Tout, ss_error *err) {
-  const ss_shape_prep *pA = A->prep, *pB = B->prep;
-  const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
-  ss_fmap_match_options fo;
-  ss_fmap_match_default_options(&fo);
-  fo.k = k < kmin ? k : kmin;
-  fo.descr_k = descr_k < kmin ? descr_k : kmin;
-  if (fo.descr_k < fo.k) fo.descr_k = fo.k;
-  fo.zoomout_kmax = 0;
-  if (zk > fo.k) {
-    fo.zoomout_kmax = zk < kmin ? zk : kmin;
-    fo.zoomout_step = 5;
-    fo.zoomout_samples = ns > 0 && ns < pA->mesh->nv ? ns : 0;
-    if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
-  }
-  int *lA = malloc(sizeof(int) * (size_t)m), *lB = malloc(sizeof(int) * (size_t)m);
-  int *T = malloc(sizeof(int) * (size_t)pA->mesh->nv), *ord = malloc(sizeof(int) * (size_t)m);
-  double *ecc = malloc(sizeof(double) * (size_t)m);
-  ss_status st = SS_OK;
-  int na = m;
-  if (!lA || !lB || !T || !ord || !ecc) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  if (!st) {
-    /* keep < 1: only the round(keep · m) (at least 3) centres of A farthest on average from the
-     * others (the protrusions: head, hands, feet on a body), in A's order */
-    if (keep > 0 && keep < 1 && m > 3) {
-      na = (int)floor(keep * m + 0.5);
-      if (na < 3) na = 3;
-      if (na > m) na = m;
-    }
-    for (int a = 0; a < m; a++) {
-      ecc[a] = 0;
-      for (int c = 0; c < m; c++) ecc[a] += A->D[a + (size_t)m * c];
-      ord[a] = a;
-    }
-    for (int i = 1; i < m; i++) /* insertion sort by eccentricity, descending (ties: lower index) */
-      for (int j = i; j > 0 && ecc[ord[j]] > ecc[ord[j - 1]]; j--) {
-        int t = ord[j];
-        ord[j] = ord[j - 1], ord[j - 1] = t;
-      }
-    int q = 0;
-    for (int a = 0; a < m; a++) {
-      int kept = 0;
-      for (int i = 0; i < na; i++) kept |= ord[i] == a;
-      if (kept) lA[q] = A->centers[a], lB[q++] = B->centers[p[a]];
-    }
-    ss_fmap_shape sA = {pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0, NULL, 0},
-                  sB = {pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0, NULL, 0};
-    st = ss_fmap_match(&sA, &sB, na, lA, lB, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
-  }
-  if (!st && score) *score = ssi_map_orientation(A, B, T);
-  if (!st && Tout) memcpy(Tout, T, sizeof(int) * (size_t)pA->mesh->nv);
-  free(lA), free(lB), free(T), free(ord), free(ecc);
-  return st;
-}
-
-static ss_status orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p, int k, int descr_k,
-                              int zk, int ns, double keep, double *score, ss_error *err) {
-  return orient_score_T(A, B, p, k, descr_k, zk, ns, keep, score, NULL, err);
-}
-
-/* kept[a] = 1 for the round(keep · m) (at least 3) centres farthest on average from the others */
-static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
-  const int m = A->m;
-  int na = m;
-  if (keep > 0 && keep < 1 && m > 3) {
-    na = (int)floor(keep * m + 0.5);
-    if (na < 3) na = 3;
-    if (na > m) na = m;
-  }
-  for (int a = 0; a < m; a++) {
-    double ea = 0;
-    for (int c = 0; c < m; c++) ea += A->D[a + (size_t)m * c];
-    int rank = 0;
-    for (int b = 0; b < m; b++) {
-      double eb = 0;
-      for (int c = 0; c < m; c++) eb += A->D[b + (size_t)m * c];
-      rank += eb > ea || (eb == ea && b < a);
-    }
-    kept[a] = rank < na;
-  }
-}
-
-/* ---- the orientation test with probes shared by the candidates ------------------------------- *
- * Every candidate's functional map has the same probes on A (WKS + the kept centres of A, in A's
- * order) and, on B, the WKS and the wave-kernel maps of B's centres in the candidate's order: B's
- * probes are built once for all of its centres and each candidate takes its columns (the probe list
- * keeps every descr_step-th of n_energies columns per item, the same columns in every item when
- * descr_step divides n_energies). What ss_fmap_match would compute, for a fraction of the cost. */
-typedef struct orient_ctx {
-  const ss_centre_signature *A, *B;
-  ss_fmap_match_options fo;
-  ss_fmap_shape sA, sB;
-  ss_fmap_probes pA, pB; /* pA: WKS + A's kept centres; pB: WKS + every centre of B (when built here) */
-  const double *bA, *bP;  /* B's probes: pB's, or its signature's (basis bk >= fo.k) */
-  int bk;
-  ss_fmap_weights w;
-  int na, nb, per;        /* kept centres of A, centres of B, probe columns per item */
-  int *kept;              /* na indices of A's kept centres, ascending */
-  double *Abuf, *Pbuf;    /* a candidate's B probes */
-  int *T;
-} orient_ctx;
-
-static void orient_ctx_free(orient_ctx *c) {
-  ss_fmap_probes_free(&c->pA), ss_fmap_probes_free(&c->pB);
-  free(c->kept), free(c->Abuf), free(c->Pbuf), free(c->T);
-  memset(c, 0, sizeof *c);
-}
-
-/* the orientation test's functional-map options for shapes with kmin eigenpairs */
-static void orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo) {
-  ss_fmap_match_default_options(fo);
-  fo->k = k < kmin ? k : kmin;
-  fo->descr_k = descr_k < kmin ? descr_k : kmin;
-  if (fo->descr_k < fo->k) fo->descr_k = fo->k;
-  fo->zoomout_kmax = 0;
-}
-
-/* the signature's own probes when they were built with these options and at least this basis: the
- * probe functions do not depend on the basis (they are synthesised from descr_k eigenpairs), so the
- * coefficients in the first k eigenfunctions are the first k rows, and the packed operators of the
- * first k the first k(k+1)/2 entries of each column */
-static int have_probes(const ss_centre_signature *s, const ss_fmap_match_options *fo, int per) {
-  return s->probe_A && s->probe_P && s->probe_k >= fo->k && s->probe_descr_k == fo->descr_k && s->probe_p == per * (1 + s->m);
-}
-
-/* columns [c0, c0 + nc) of probes with basis ks (coefficients A, packed operators P) into the basis
- * k <= ks (dA, dP: nc columns) */
-static void copy_probe_columns(int ks, const double *A, const double *P, int c0, int nc, int k, double *dA, double *dP) {
-  const size_t kps = (size_t)ks * (ks + 1) / 2, kp = (size_t)k * (k + 1) / 2;
-  for (int j = 0; j < nc; j++) {
-    memcpy(dA + (size_t)k * j, A + (size_t)ks * (c0 + j), sizeof(double) * (size_t)k);
-    memcpy(dP + kp * j, P + kps * (c0 + j), sizeof(double) * kp);
-  }
-}
-
-static ss_status orient_ctx_new(const ss_centre_signature *A, const ss_centre_signature *B, int k, int descr_k, double keep,
-                                orient_ctx *c, ss_error *err) {
-  memset(c, 0, sizeof *c);
-  const ss_shape_prep *pA = A->prep, *pB = B->prep;
-  const int m = A->m, kmin = pA->kev < pB->kev ? pA->kev : pB->kev;
-  c->A = A, c->B = B;
-  orient_fmap_options(k, descr_k, kmin, &c->fo);
-  if (c->fo.n_energies % c->fo.descr_step) return ss_fail(err, SS_ERR_INVALID, "autopair: descr_step must divide n_energies");
-  c->per = c->fo.n_energies / c->fo.descr_step;
-  c->sA = (ss_fmap_shape){pA->mesh, pA->M, pA->evals, pA->evecs, pA->kev, NULL, 0, NULL, 0};
-  c->sB = (ss_fmap_shape){pB->mesh, pB->M, pB->evals, pB->evecs, pB->kev, NULL, 0, NULL, 0};
-  const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per;
-  int *mask = malloc(sizeof(int) * (size_t)m), *lA = malloc(sizeof(int) * (size_t)m);
-  c->kept = malloc(sizeof(int) * (size_t)m);
-  c->T = malloc(sizeof(int) * (size_t)pA->mesh->nv);
-  ss_status st = SS_OK;
-  if (!mask || !lA || !c->kept || !c->T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  if (!st) {
-    kept_centres(A, keep, mask);
-    for (int a = 0; a < m; a++)
-      if (mask[a]) lA[c->na] = A->centers[a], c->kept[c->na++] = a;
-    c->nb = B->m;
-    const int p = per * (1 + c->na);
-    c->Abuf = malloc(sizeof(double) * (size_t)kk * p);
-    c->Pbuf = malloc(sizeof(double) * (size_t)kp * p);
-    if (!c->Abuf || !c->Pbuf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  }
-  /* B: its signature's probes, or built here */
-  if (!st && have_probes(B, &c->fo, per)) c->bA = B->probe_A, c->bP = B->probe_P, c->bk = B->probe_k;
-  else if (!st && !(st = ss_fmap_base_probes(&c->sB, B->m, B->centers, &c->fo, 1, &c->pB, err)))
-    c->bA = c->pB.A, c->bP = c->pB.P, c->bk = kk;
-  /* A: the WKS and its kept centres, in A's order, from its signature's probes or built here */
-  if (!st && have_probes(A, &c->fo, per)) {
-    c->pA = (ss_fmap_probes){kk, per * (1 + c->na), per * (1 + c->na), NULL, NULL, 0, NULL};
-    c->pA.A = malloc(sizeof(double) * (size_t)kk * c->pA.p);
-    c->pA.P = malloc(sizeof(double) * (size_t)kp * c->pA.p);
-    if (!c->pA.A || !c->pA.P) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-    for (int i = 0; !st && i <= c->na; i++) {
-      const int src = i == 0 ? 0 : 1 + c->kept[i - 1];
-      copy_probe_columns(A->probe_k, A->probe_A, A->probe_P, per * src, per, kk, c->pA.A + (size_t)kk * per * i,
-                         c->pA.P + (size_t)kp * per * i);
-    }
-  } else if (!st) {
-    st = ss_fmap_base_probes(&c->sA, c->na, lA, &c->fo, 1, &c->pA, err);
-  }
-  if (!st) st = ss_fmap_pair_weights(&c->sA, &c->sB, &c->fo, &c->w, err);
-  if (!st && (c->pA.p != per * (1 + c->na) || (c->pB.A && c->pB.p != per * (1 + B->m))))
-    st = ss_fail(err, SS_ERR_INVALID, "autopair: unexpected probe layout");
-  free(mask), free(lA);
-  if (st) orient_ctx_free(c);
-  return st;
-}
-
-/* the point map A -> B of candidate p (A index -> B index) into c->T, and its orientation score */
-static ss_status orient_ctx_score(orient_ctx *c, const int *p, double *score, double *seg, ss_error *err) {
-  const int kk = c->fo.k, kp = kk * (kk + 1) / 2, per = c->per, np = per * (1 + c->na);
-  for (int i = 0; i <= c->na; i++) { /* item 0: the WKS; item i: centre p[kept[i-1]] of B */
-    const int src = i == 0 ? 0 : 1 + p[c->kept[i - 1]];
-    copy_probe_columns(c->bk, c->bA, c->bP, per * src, per, kk, c->Abuf + (size_t)kk * per * i, c->Pbuf + (size_t)kp * per * i);
-  }
-  ss_fmap_probes pb = {kk, np, np, c->Abuf, c->Pbuf, 0, NULL};
-  ss_fmap_system *sys = NULL;
-  double *Ck = malloc(sizeof(double) * (size_t)kk * kk);
-  ss_status st = Ck ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  /* source B, target A: C maps functions on B to functions on A, its point map is A -> B */
-  if (!st) st = ss_fmap_system_new(kk, kk, c->sB.evals, c->sA.evals, &pb, &c->pA, &c->w, &sys, err);
-  if (!st) st = ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, Ck, err);
-  if (!st) st = ss_fmap_match_finish(&c->sA, &c->sB, &c->fo, Ck, c->T, NULL, err);
-  if (!st && score) *score = map_orientation_seg(c->A, c->B, c->T, NULL, seg);
-  ss_fmap_system_free(sys);
-  free(Ck);
-  return st;
-}
-
-ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signature *B, const int *p1, const int *p2, int k,
-                          int descr_k, double keep, double *r1, double *r2, double *med, ss_error *err) {
-  orient_ctx c;
-  ss_status st = orient_ctx_new(A, B, k, descr_k, keep, &c, err);
-  double *s1 = malloc(sizeof(double) * 2 * (size_t)A->m), *s2 = malloc(sizeof(double) * 2 * (size_t)A->m);
-  double *tmp = malloc(sizeof(double) * (size_t)A->m);
-  if (!st && (!s1 || !s2 || !tmp)) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  if (!st) st = orient_ctx_score(&c, p1, r1, s1, err);
-  if (!st) st = orient_ctx_score(&c, p2, r2, s2, err);
-  if (!st && med) *med = median_margin(A->m, s1, s2, tmp);
-  free(s1), free(s2), free(tmp);
-  orient_ctx_free(&c);
-  return st;
-}
-
-ss_status ssi_autopair_orient_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                                    const ss_autopair_options *o, double *score, ss_error *err) {
-  return orient_score(A, B, p, o->orient_k, o->orient_descr_k, 0, 0, 1.0, score, err);
-}
-
-ss_status ssi_autopair_recheck_score(const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
-                                     const ss_autopair_options *o, double *score, ss_error *err) {
-  return orient_score(A, B, p, o->recheck_k, o->orient_descr_k, o->recheck_zoomout, o->recheck_samples, o->orient_keep,
-                      score, err);
-}
-
 static int same(const int *a, const int *b, int n) { return !memcmp(a, b, sizeof(int) * (size_t)n); }
 
-/* unary costs of A's centres against Q's and their suffix minima (the search's bound) */
-static void fill_unary(search *S, double *U, double *minU, const ss_centre_signature *A, const ss_centre_signature *Q,
-                       double w_descr) {
-  const int na = A->m, nq = Q->m, nd = A->nd;
-  S->nb = nq, S->DB = Q->D;
-  for (int a = 0; a < na; a++)
-    for (int b = 0; b < nq; b++) {
-      double s = 0;
-      for (int j = 0; j < nd; j++) {
-        double d = A->descr[(size_t)a * nd + j] - Q->descr[(size_t)b * nd + j];
-        s += d * d;
-      }
-      U[(size_t)a * nq + b] = w_descr * s / na;
-    }
-  minU[na] = 0;
-  for (int a = na - 1; a >= 0; a--) {
-    double mn = INFINITY;
-    for (int b = 0; b < nq; b++) mn = U[(size_t)a * nq + b] < mn ? U[(size_t)a * nq + b] : mn;
-    minU[a] = minU[a + 1] + mn;
-  }
-}
-
-static void init_search(search *S, const ss_centre_signature *A, const ss_autopair_options *o, double *U, double *minU,
-                        int *cur, int *used, int *buf) {
-  const int na = A->m;
-  double d2 = 0;
-  for (int a = 0; a < na; a++)
-    for (int c = a + 1; c < na; c++) d2 += A->D[a + (size_t)na * c] * A->D[a + (size_t)na * c];
-  memset(S, 0, sizeof *S);
-  S->na = na, S->U = U, S->DA = A->D, S->wg = d2 > 0 ? o->w_geo / d2 : 0.0, S->minU = minU, S->cur = cur, S->used = used;
-  for (int k = 0; k < TOPK; k++) S->top_p[k] = buf + (size_t)na * k;
-}
-
-/* σ: of the SELF_CANDIDATES best non-identity pairings of the centres with themselves (intrinsic
- * energy), the one whose map is the most clearly orientation-reversing (a mirror); identity when
- * none reverses (score ≥ 0). */
-static ss_status self_symmetry(ss_centre_signature *sg, const ss_autopair_options *o, ss_error *err) {
-  const int m = sg->m;
-  for (int a = 0; a < m; a++) sg->sigma[a] = a;
-  sg->sigma_score = 1.0;
-  if (m < 2) return SS_OK;
-  double *U = malloc(sizeof(double) * (size_t)m * m), *minU = malloc(sizeof(double) * ((size_t)m + 1));
-  int *cur = malloc(sizeof(int) * (size_t)m), *used = malloc(sizeof(int) * (size_t)m);
-  int *buf = malloc(sizeof(int) * (size_t)m * TOPK);
-  ss_status st = SS_OK;
-  int status = 0, moved[TOPK];
-  double sc_k[TOPK], best_sc = INFINITY;
-  if (!U || !minU || !cur || !used || !buf) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  search S;
-  S.ntop = 0;
-  if (!st) {
-    init_search(&S, sg, o, U, minU, cur, used, buf);
-    fill_unary(&S, U, minU, sg, sg, o->w_descr);
-    const int exact = m <= o->exact_max && count_injections(m, m) <= 5e7;
-    run_search(&S, exact, SELF_CANDIDATES + 1 < TOPK ? SELF_CANDIDATES + 1 : TOPK, 1, &status);
-    if (status) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
-  }
-  orient_ctx oc = {0};
-  int have_ctx = 0;
-  for (int k = 0; !st && k < S.ntop; k++) {
-    if (!isfinite(S.top_e[k])) break;
-    int id = 1;
-    for (int a = 0; a < m && id; a++) id = S.top_p[k][a] == a;
-    if (id) continue;
-    double sc = 0;
-    if (!have_ctx && (st = orient_ctx_new(sg, sg, o->orient_k, o->orient_descr_k, 1.0, &oc, err))) break;
-    have_ctx = 1;
-    if ((st = orient_ctx_score(&oc, S.top_p[k], &sc, NULL, err))) break;
-    sc_k[k] = sc;
-    moved[k] = 0;
-    for (int a = 0; a < m; a++) moved[k] += S.top_p[k][a] != a;
-    if (sc < best_sc) best_sc = sc;
-  }
-  /* a partial swap (e.g. the hands only) reverses orientation too: of the candidates that reverse
-   * it clearly (score ≤ half the most negative one), the one moving the most centres, then the
-   * lowest score */
-  int pick = -1;
-  for (int k = 0; !st && k < S.ntop && best_sc < 0; k++) {
-    if (!isfinite(S.top_e[k]) || moved[k] == 0 || !(sc_k[k] <= 0.5 * best_sc)) continue;
-    if (pick < 0 || moved[k] > moved[pick] || (moved[k] == moved[pick] && sc_k[k] < sc_k[pick])) pick = k;
-  }
-  if (pick >= 0) sg->sigma_score = sc_k[pick], memcpy(sg->sigma, S.top_p[pick], sizeof(int) * (size_t)m);
-  orient_ctx_free(&oc);
-  free(U), free(minU), free(cur), free(used), free(buf);
-  return st;
-}
-
 /* The energy of the best leaf of the search other than p1 and p2 (INFINITY: none), copied to other */
-static double best_other(const search *S, const int *p1, const int *p2, int *other) {
-  for (int k = 0; k < TOPK; k++)
+static double best_other(const ssi_search *S, const int *p1, const int *p2, int *other) {
+  for (int k = 0; k < SSI_TOPK; k++)
     if (isfinite(S->top_e[k]) && !same(S->top_p[k], p1, S->na) && !same(S->top_p[k], p2, S->na)) {
       memcpy(other, S->top_p[k], sizeof(int) * (size_t)S->na);
       return S->top_e[k];
@@ -807,12 +69,12 @@ static double best_other(const search *S, const int *p1, const int *p2, int *oth
 
 /* The mirror candidate of p: p∘σ_A or σ_B∘p, whichever has the lower energy (a mirror is an
  * isometry; a wrong σ costs energy); p itself when neither differs from it. */
-static void mirror_candidate(const search *S, const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
+static void mirror_candidate(const ssi_search *S, const ss_centre_signature *A, const ss_centre_signature *B, const int *p,
                              int *mir, int *tmp) {
   const int na = A->m;
   for (int a = 0; a < na; a++) mir[a] = p[A->sigma[a]], tmp[a] = B->sigma[p[a]];
   const int id2 = same(mir, p, na), idb = same(tmp, p, na);
-  if (!idb && (id2 || full_energy(S, tmp, NULL) < full_energy(S, mir, NULL))) memcpy(mir, tmp, sizeof(int) * (size_t)na);
+  if (!idb && (id2 || ssi_full_energy(S, tmp, NULL) < ssi_full_energy(S, mir, NULL))) memcpy(mir, tmp, sizeof(int) * (size_t)na);
 }
 
 /* The first left / right test of p1 against p2: both maps' whole-shape scores r1, r2 (r2 = r1 when
@@ -820,21 +82,21 @@ static void mirror_candidate(const search *S, const ss_centre_signature *A, cons
  * score difference (the torso saddles' segments follow their centres front or back, the
  * protrusions' are too small to map well: a few segments vote wrong, the median is robust to them);
  * ties: the whole-shape scores. seg1, seg2: 2·A->m scratch (per-segment scores), dtmp: A->m. */
-static ss_status first_test(orient_ctx *oc, const int *p1, const int *p2, double *seg1, double *seg2, double *dtmp,
+static ss_status first_test(ssi_orient_ctx *oc, const int *p1, const int *p2, double *seg1, double *seg2, double *dtmp,
                             double *r1, double *r2, double *med, ss_error *err) {
   const int na = oc->A->m;
-  ss_status st = orient_ctx_score(oc, p1, r1, seg1, err);
+  ss_status st = ssi_orient_ctx_score(oc, p1, r1, seg1, err);
   if (st) return st;
   if (same(p1, p2, na)) *r2 = *r1, memcpy(seg2, seg1, sizeof(double) * (size_t)na);
-  else if ((st = orient_ctx_score(oc, p2, r2, seg2, err))) return st;
-  *med = median_margin(na, seg1, seg2, dtmp);
+  else if ((st = ssi_orient_ctx_score(oc, p2, r2, seg2, err))) return st;
+  *med = ssi_median_margin(na, seg1, seg2, dtmp);
   if (*med == 0) *med = *r1 - *r2;
   return SS_OK;
 }
 
 /* A near-tie pairing p against its own mirror by the first test: win / lose (A->m each) receive
  * the one the test picks and the other, sw / sl their whole-shape scores, *med the margin (>= 0). */
-static ss_status decide_family(orient_ctx *oc, const search *S, const int *p, int *win, int *lose, double *seg1,
+static ss_status decide_family(ssi_orient_ctx *oc, const ssi_search *S, const int *p, int *win, int *lose, double *seg1,
                                double *seg2, double *dtmp, double *sw, double *sl, double *med, ss_error *err) {
   const int na = oc->A->m;
   mirror_candidate(S, oc->A, oc->B, p, lose, win);
@@ -944,23 +206,23 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   const int na = A->m, nb = B->m;
   ss_status st = SS_OK;
   int status = 0, nh = 0, *hyp = NULL;
-  const int nbuf = TOPK + 4;
+  const int nbuf = SSI_TOPK + 4;
   double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
   double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
   double *seg2 = malloc(sizeof(double) * 2 * (size_t)na);
   int *cur = malloc(sizeof(int) * (size_t)nb), *used = malloc(sizeof(int) * (size_t)nb);
-  int *buf = malloc(sizeof(int) * (size_t)na * nbuf), *alt_seen = malloc(sizeof(int) * (size_t)na * 2 * TOPK);
-  search S;
-  orient_ctx oc = {0};
+  int *buf = malloc(sizeof(int) * (size_t)na * nbuf), *alt_seen = malloc(sizeof(int) * (size_t)na * 2 * SSI_TOPK);
+  ssi_search S;
+  ssi_orient_ctx oc = {0};
   if (!U || !minU || !share || !seg1 || !seg2 || !cur || !used || !buf || !alt_seen) {
     st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
     goto done;
   }
-  init_search(&S, A, &o, U, minU, cur, used, buf);
-  int *pi1 = buf + (size_t)na * TOPK, *pi2 = pi1 + na, *third = pi2 + na;
-  const int exact = na <= o.exact_max && count_injections(na, nb) <= 5e7;
-  fill_unary(&S, U, minU, A, B, o.w_descr);
-  run_search(&S, exact, TOPK, 0, &status);
+  ssi_init_search(&S, A, &o, U, minU, cur, used, buf);
+  int *pi1 = buf + (size_t)na * SSI_TOPK, *pi2 = pi1 + na, *third = pi2 + na;
+  const int exact = na <= o.exact_max && ssi_count_injections(na, nb) <= 5e7;
+  ssi_fill_unary(&S, U, minU, A, B, o.w_descr);
+  ssi_run_search(&S, exact, SSI_TOPK, 0, &status);
   if (status) { st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory"); goto done; }
   if (!isfinite(S.top_e[0])) { /* no leaf kept (energies not finite): S.top_p[0] is unset */
     st = ss_fail(err, SS_ERR_INVALID, "autopair: no pairing of finite energy (the signatures' values are not finite)");
@@ -968,12 +230,12 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   }
   memcpy(pi1, S.top_p[0], sizeof(int) * (size_t)na);
   mirror_candidate(&S, A, B, pi1, pi2, third);
-  double e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
+  double e1 = ssi_full_energy(&S, pi1, NULL), e2 = ssi_full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
   /* left / right: the candidate whose map preserves orientation */
   if (same(pi1, pi2, na) && isfinite(e3)) /* no symmetry found: the runner-up is the other candidate */
     memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
   double r1 = 0, r2 = 0, med = 0;
-  if ((st = orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
+  if ((st = ssi_orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
   if ((st = first_test(&oc, pi1, pi2, seg1, seg2, share, &r1, &r2, &med, err))) goto done;
   const double r1_first = r1, r2_first = r2;
   int rechecked = 0;
@@ -983,13 +245,13 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
       if ((st = ssi_autopair_recheck_score(A, B, pi2, &o, &r2, err))) goto done;
       med = r1 - r2;
     } else { /* the protrusions' landmarks only: the mean of both tests' medians */
-      orient_ctx oc2;
-      if ((st = orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc2, err))) goto done;
-      st = orient_ctx_score(&oc2, pi1, &r1, seg1, err);
-      if (!st) st = orient_ctx_score(&oc2, pi2, &r2, seg2, err);
-      orient_ctx_free(&oc2);
+      ssi_orient_ctx oc2;
+      if ((st = ssi_orient_ctx_new(A, B, o.recheck_k, o.orient_descr_k, o.recheck_keep, &oc2, err))) goto done;
+      st = ssi_orient_ctx_score(&oc2, pi1, &r1, seg1, err);
+      if (!st) st = ssi_orient_ctx_score(&oc2, pi2, &r2, seg2, err);
+      ssi_orient_ctx_free(&oc2);
       if (st) goto done;
-      med = 0.5 * (med + median_margin(na, seg1, seg2, share));
+      med = 0.5 * (med + ssi_median_margin(na, seg1, seg2, share));
     }
     rechecked = 1;
   }
@@ -1009,8 +271,8 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
    * two torso saddles is a partial mirror: its map reverses orientation there; where the second
    * test decided, the first test's scores of the pair are both weak) */
   int n_alt = 0, alt = 0;
-  const int amax = o.alt_max < TOPK ? o.alt_max : TOPK;
-  for (int k = 0; k < TOPK && n_alt < amax; k++) {
+  const int amax = o.alt_max < SSI_TOPK ? o.alt_max : SSI_TOPK;
+  for (int k = 0; k < SSI_TOPK && n_alt < amax; k++) {
     if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.alt_gap)) break;
     const int *c = S.top_p[k];
     int seen = same(c, pi1, na) || same(c, pi2, na);
@@ -1023,11 +285,11 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     if (sw >= o.alt_min_score && sw > (f1 > f2 ? f1 : f2) + o.alt_margin) {
       memcpy(pi1, win, sizeof(int) * (size_t)na), memcpy(pi2, lose, sizeof(int) * (size_t)na);
       r1 = f1 = sw, r2 = f2 = sl, med = am, rechecked = 0, alt = 1;
-      e1 = full_energy(&S, pi1, NULL), e2 = full_energy(&S, pi2, NULL);
+      e1 = ssi_full_energy(&S, pi1, NULL), e2 = ssi_full_energy(&S, pi2, NULL);
     }
   }
   if (alt) e3 = best_other(&S, pi1, pi2, third); /* the search's best, now the runner-up */
-  (void)full_energy(&S, pi1, share);
+  (void)ssi_full_energy(&S, pi1, share);
   if ((st = pairs_of_assignment(X, Y, swap, pi1, share, out, err))) goto done;
   if (maxh > 0) { /* the answer, its mirror, then the search's next leaves, each followed by its mirror */
     if (!(hyp = malloc(sizeof(int) * (size_t)na * ((size_t)maxh + 1)))) {
@@ -1037,14 +299,14 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     int *mir = hyp + (size_t)na * maxh;
     add_hypothesis(na, pi1, maxh, hyp, &nh);
     add_hypothesis(na, pi2, maxh, hyp, &nh);
-    for (int k = 0; k < TOPK && nh < maxh; k++) {
+    for (int k = 0; k < SSI_TOPK && nh < maxh; k++) {
       if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.hyp_gap)) break;
       add_hypothesis(na, S.top_p[k], maxh, hyp, &nh);
       mirror_candidate(&S, A, B, S.top_p[k], mir, third);
       add_hypothesis(na, mir, maxh, hyp, &nh);
     }
     for (int h = 0; h < nh; h++) {
-      (void)full_energy(&S, hyp + (size_t)na * h, share);
+      (void)ssi_full_energy(&S, hyp + (size_t)na * h, share);
       if ((st = pairs_of_assignment(X, Y, swap, hyp + (size_t)na * h, share, &hyp_out[h], err))) {
         for (int g = 0; g < h; g++) ss_segment_pairs_free(&hyp_out[g]);
         nh = 0;
@@ -1074,7 +336,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     info->alternative = alt;
   }
 done:
-  orient_ctx_free(&oc);
+  ssi_orient_ctx_free(&oc);
   free(U), free(minU), free(share), free(seg1), free(seg2), free(cur), free(used), free(buf), free(alt_seen);
   free(hyp);
   if (st) ss_segment_pairs_free(out);
