@@ -12,8 +12,14 @@
 extern "C" {
 #endif
 
-/* sizeof the core library's public struct named e.g. "ss_mesh", "ss_segmentation"; 0 for an unknown
- * name. The render library's structs: ss_render_struct_size (render.h). */
+/* sizeof of one of the core library's public structs, by name, so that a binding that mirrors the
+ * struct field by field can compare its mirror's size at load time.
+ *
+ * Inputs:
+ *   name     the struct's name, e.g. "ss_mesh", "ss_segmentation" (NULL allowed)
+ * Returns: its size in bytes; 0 for NULL or an unknown name. The render library's structs:
+ *   ss_render_struct_size (render.h).
+ */
 SS_API size_t ss_struct_size(const char *name);
 
 #ifdef __cplusplus

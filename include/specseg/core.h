@@ -48,16 +48,32 @@ typedef enum ss_status {
   SS_ERR_UNSUPPORTED = 6
 } ss_status;
 
+/* A one-line error message, filled by every failing call that is given one. */
 typedef struct ss_error {
   char msg[1024];
 } ss_error;
 
-/* printf-style; does nothing when e is NULL. Returns `code` so callers can `return ss_fail(...)`. */
+/* Writes a printf-style message into e (truncated to 1023 bytes) and returns `code`, so that a
+ * function can end with `return ss_fail(err, SS_ERR_INVALID, "...", ...)`.
+ *
+ * Inputs:
+ *   e        the error to fill (NULL: nothing is written)
+ *   code     the status to return
+ *   fmt, ...  printf format and arguments
+ * Returns: code.
+ */
 SS_API ss_status ss_fail(ss_error *e, ss_status code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+/* Short English name of a status ("ok", "invalid input", ...; "unknown status" for a value
+ * outside the enum).
+ *
+ * Inputs:
+ *   s        a status
+ * Returns: a static string (never NULL; do not free).
+ */
 SS_API const char *ss_status_name(ss_status s);
 
 /* Triangle mesh: nv vertices (V, 3*nv doubles), nf triangles (F, 3*nf ints, 0-based). */
@@ -67,14 +83,48 @@ typedef struct ss_mesh {
   int *F;
 } ss_mesh;
 
+/* Allocates a mesh of nv vertices and nf faces; V and F are left uninitialised.
+ *
+ * Inputs:
+ *   nv, nf   vertex and face counts (>= 0)
+ * Outputs:
+ *   m        zeroed first, then V (3*nv doubles) and F (3*nf ints) malloc'd; free with ss_mesh_free
+ * Errors: SS_ERR_INVALID when nv or nf is negative; SS_ERR_NOMEM (m is then zeroed).
+ */
 SS_API ss_status ss_mesh_alloc(ss_mesh *m, int nv, int nf, ss_error *err); /* V, F uninitialised */
+/* Deep copy of a mesh.
+ *
+ * Inputs:
+ *   src      the mesh to copy
+ * Outputs:
+ *   dst      a new mesh with src's nv, nf, V and F (free with ss_mesh_free)
+ * Errors: those of ss_mesh_alloc (SS_ERR_NOMEM).
+ */
 SS_API ss_status ss_mesh_copy(const ss_mesh *src, ss_mesh *dst, ss_error *err);
+/* Frees V and F and zeroes the struct; safe on a zeroed struct and on NULL.
+ *
+ * Inputs:
+ *   m        a mesh from ss_mesh_alloc or any call that fills one
+ */
 SS_API void ss_mesh_free(ss_mesh *m); /* frees arrays, zeroes the struct; safe on a zeroed struct */
+/* Total surface area: the sum of the triangles' areas (indices are not checked).
+ *
+ * Inputs:
+ *   m        the mesh
+ * Returns: the area (0 for a mesh without faces).
+ */
 SS_API double ss_mesh_area(const ss_mesh *m);
+/* Length of the diagonal of the axis-aligned bounding box of all nv vertices (referenced or not).
+ *
+ * Inputs:
+ *   m        the mesh
+ * Returns: the diagonal (0 for a mesh without vertices).
+ */
 SS_API double ss_mesh_bbox_diagonal(const ss_mesh *m);
 
 /* Sparse matrix in compressed sparse column form, row indices sorted within each column.
- * Symmetric matrices store both triangles. */
+ * Symmetric matrices store both triangles.
+ */
 typedef struct ss_sparse {
   int nrows, ncols;
   int *colptr;  /* ncols+1 */
@@ -82,14 +132,38 @@ typedef struct ss_sparse {
   double *val;  /* colptr[ncols] */
 } ss_sparse;
 
-/* Build from (I[k], J[k], X[k]) triplets, summing duplicates. */
+/* Builds a sparse matrix from (I[k], J[k], X[k]) triplets, summing duplicates.
+ *
+ * Inputs:
+ *   nrows, ncols  the size (>= 0)
+ *   nnz      number of triplets
+ *   I, J, X  nnz row indices (in [0, nrows)), column indices (in [0, ncols)) and values
+ * Outputs:
+ *   out      zeroed first, then the CSC matrix (arrays malloc'd; free with ss_sparse_free)
+ * Errors: SS_ERR_INVALID on a negative size or an index out of range; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_sparse_from_triplets(int nrows, int ncols, size_t nnz, const int *I, const int *J,
                                          const double *X, ss_sparse *out, ss_error *err);
+/* Frees the arrays of A and zeroes it; safe on a zeroed struct and on NULL.
+ *
+ * Inputs:
+ *   A        a matrix from ss_sparse_from_triplets or any call that fills one
+ */
 SS_API void ss_sparse_free(ss_sparse *A);
-/* y = A x */
+/* y = A x.
+ *
+ * Inputs:
+ *   A        nrows x ncols sparse matrix
+ *   x        ncols values
+ * Outputs:
+ *   y        nrows values (overwritten; must not alias x)
+ */
 SS_API void ss_sparse_matvec(const ss_sparse *A, const double *x, double *y);
 
-/* Wall-clock seconds (monotonic). */
+/* Wall-clock seconds from a monotonic clock (for differences only).
+ *
+ * Returns: seconds since an arbitrary fixed point.
+ */
 SS_API double ss_time(void);
 
 #ifdef __cplusplus

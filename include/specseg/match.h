@@ -16,6 +16,9 @@ extern "C" {
 
 /* ---- Pairing of segments (pairing.c) ------------------------------------------------------------ */
 
+/* Pairs of segments of two shapes (X, Y), from the pairing with landmarks or the landmark-free one.
+ * Free with ss_segment_pairs_free.
+ */
 typedef struct ss_segment_pairs {
   int n;          /* number of pairs */
   int *sx, *sy;   /* n: segment index on X / on Y of each pair */
@@ -46,36 +49,95 @@ typedef struct ss_pairing_options {
   double min_map_share;
 } ss_pairing_options;
 
+/* Fills o with the library's confidence rules (ss_pairing_options above; values chosen in
+ * docs/tuning.md).
+ *
+ * Outputs:
+ *   o        every field written
+ */
 SS_API void ss_pairing_default_options(ss_pairing_options *o);
-/* The paper's rule: every confidence test off, min_landmarks 1. */
+/* Fills o with the paper's rule: every confidence test off, min_landmarks 1.
+ *
+ * Outputs:
+ *   o        every field written
+ */
 SS_API void ss_pairing_paper_options(ss_pairing_options *o);
 
-/* §6.1. lmX/lmY: nl corresponding landmarks given as INPUT vertices (< X->nv, < Y->nv); Ψ carries
- * them to the work meshes. Exact (VTP) fields from each landmark on both work meshes, each divided
- * by √area(work). For every critical point x of the shape with fewer of them (X on ties) the
- * critical point y* of the other shape minimising ‖(d_X^i(x) − d_Y^i(y))_i‖₂; when several x choose
- * the same y*, only the one with the smallest energy keeps it (the paper's conservative rule).
- * Output pairs sorted by sx. Needs nl ≥ 1. Segmentations must come from ss_segment on an input that
- * its sanitizer left unchanged (psi indexed by input vertex). Free with ss_segment_pairs_free. */
+/* Pairs the segments of two shapes through landmark distance fields (§6.1): exact (VTP) fields from
+ * each landmark on both work meshes, each divided by √area(work); for every critical point x of the
+ * shape with fewer of them (X on ties) the critical point y* of the other shape minimising
+ * ‖(d_X^i(x) − d_Y^i(y))_i‖₂; when several x choose the same y*, only the one with the smallest energy
+ * keeps it (the paper's conservative rule).
+ *
+ * Inputs:
+ *   X, Y     segmentations from ss_segment on inputs its sanitizer left unchanged (psi indexed by
+ *            input vertex)
+ *   nl       number of landmarks (>= 1)
+ *   lmX, lmY nl corresponding INPUT vertices (< X->nv, < Y->nv); Ψ carries them to the work meshes
+ * Outputs:
+ *   out      pairs sorted by sx (free with ss_segment_pairs_free)
+ * Errors: SS_ERR_INVALID on a NULL output, an incomplete segmentation, no landmark or a landmark out
+ *   of range; errors of the geodesic fields; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_pair_segments(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
                                   const int *lmY, ss_segment_pairs *out, ss_error *err);
-/* The same from precomputed landmark fields at the critical points: dX (mx x nl, column-major,
- * dX[s + mx·i] = scaled distance from landmark i to critical point s of X), likewise dY (my x nl). */
+/* The pairing of ss_pair_segments from precomputed landmark fields at the critical points.
+ *
+ * Inputs:
+ *   mx, my   critical points (segments) on X and Y
+ *   nl       number of landmarks (>= 1)
+ *   dX       mx x nl, column-major: dX[s + mx·i] = scaled distance from landmark i to critical point s
+ *   dY       my x nl, likewise
+ * Outputs:
+ *   out      pairs sorted by sx (free with ss_segment_pairs_free)
+ * Errors: SS_ERR_INVALID on a NULL output or bad sizes; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_pair_critical_points(int mx, int my, int nl, const double *dX, const double *dY,
                                          ss_segment_pairs *out, ss_error *err);
-/* The same two with the confidence rules of po (NULL: the paper's rule, as the calls above). */
+/* ss_pair_critical_points with the confidence rules of po.
+ *
+ * Inputs:
+ *   mx, my, nl, dX, dY  as ss_pair_critical_points
+ *   po       the rules (NULL: the paper's rule, as ss_pair_critical_points)
+ * Outputs:
+ *   out      pairs sorted by sx (free with ss_segment_pairs_free)
+ * Errors: SS_ERR_INVALID on a NULL output or bad sizes; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_pair_critical_points_conf(int mx, int my, int nl, const double *dX, const double *dY,
                                               const ss_pairing_options *po, ss_segment_pairs *out, ss_error *err);
+/* ss_pair_segments with the confidence rules of po.
+ *
+ * Inputs:
+ *   X, Y, nl, lmX, lmY  as ss_pair_segments
+ *   po       the rules (NULL: the paper's rule, as ss_pair_segments)
+ * Outputs:
+ *   out      pairs sorted by sx (free with ss_segment_pairs_free)
+ * Errors: as ss_pair_segments.
+ */
 SS_API ss_status ss_pair_segments_conf(const ss_segmentation *X, const ss_segmentation *Y, int nl, const int *lmX,
                                        const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
                                        ss_error *err);
+/* Frees the arrays of p and zeroes it; safe on a zeroed struct.
+ *
+ * Inputs:
+ *   p        pairs from any pairing call
+ */
 SS_API void ss_segment_pairs_free(ss_segment_pairs *p);
 /* The check of min_map_share: for each pair p, share_p = Σ M(x) over the vertices x of X's segment
- * sx[p] whose image map[x] lies in Y's segment sy[p], divided by Σ M(x) over that segment (M: MX, X's
- * vertex masses, NULL: every vertex 1; labels: the segmentations' iVd labels of the input vertices).
- * share (may be NULL): pairs->n values, the shares before dropping. Pairs with share_p < min_share are
- * removed from pairs in place (order kept); *dropped (may be NULL) receives how many. map: X->nv
- * vertices of Y. */
+ * sx[p] whose image map[x] lies in Y's segment sy[p], divided by Σ M(x) over that segment; pairs with
+ * share_p < min_share are removed from pairs in place (order kept).
+ *
+ * Inputs:
+ *   X, Y     the segmentations (their iVd labels of the input vertices are used)
+ *   MX       X's vertex masses (NULL: every vertex 1)
+ *   map      X->nv vertices of Y
+ *   min_share  the threshold
+ *   pairs    the pairs (updated in place)
+ * Outputs:
+ *   share    (may be NULL) pairs->n values: the shares before dropping
+ *   dropped  (may be NULL) how many pairs were removed
+ * Errors: SS_ERR_INVALID on incomplete input or a pair out of range; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_segment_pairs_check_map(const ss_segmentation *X, const ss_segmentation *Y, const double *MX,
                                             const int *map, double min_share, ss_segment_pairs *pairs, double *share,
                                             int *dropped, ss_error *err);
@@ -92,14 +154,28 @@ typedef enum ss_segment_profile {
                                arg-max is the segment itself */
 } ss_segment_profile;
 
-/* The probe functions of paired segments on one shape: E (malloc'd, sg->nv x npairs, column-major),
- * column p is segment seg[p] of sg in the given profile. The tent needs the segmentation's distances
- * (work_dist, psi), the soft profile its work mesh and critical points (m graph Dijkstras). */
+/* The probe functions of paired segments on one shape: column p is segment seg[p] in the given
+ * profile. The tent needs the segmentation's distances (work_dist, psi), the soft profile its work
+ * mesh and critical points (m graph Dijkstras).
+ *
+ * Inputs:
+ *   sg       the segmentation, nv input vertices
+ *   npairs   number of columns
+ *   seg      npairs segment indices in [0, sg->m)
+ *   profile  SS_PROFILE_INDICATOR, SS_PROFILE_TENT or SS_PROFILE_SOFT
+ * Outputs:
+ *   E        *E: malloc'd nv x npairs, column-major (free())
+ * Errors: SS_ERR_INVALID on an unknown profile, a segment out of range or a segmentation without what
+ *   the profile needs; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_segment_probes(const ss_segmentation *sg, int npairs, const int *seg, ss_segment_profile profile,
                                    double **E, ss_error *err);
 
 /* ---- Per-shape preparation (shape_prep.c) ------------------------------------------------------- */
 
+/* What a match needs from one shape alone (segmentation, unit-area eigenpairs, optional caches),
+ * computed once by ss_shape_prep_compute and reused across pairs. Free with ss_shape_prep_free.
+ */
 typedef struct ss_shape_prep {
   const ss_mesh *mesh;  /* the input mesh (borrowed: must outlive the prep) */
   ss_segmentation seg;  /* ss_segment of the input */
@@ -125,32 +201,77 @@ typedef struct ss_shape_prep {
   int nprobe_cache;
 } ss_shape_prep;
 
-/* Segments `m` (seg_opts may be NULL) and computes its first kev Laplace–Beltrami eigenpairs (then
- * scaled to unit area, above). The result depends only on the shape, so it can be computed once and
- * reused across pairs. Fails with SS_ERR_INVALID on a mesh the sanitizer would change (non-manifold or
- * degenerate input): repair it first (its vertex indices are what landmarks and maps refer to).
- * With two or more OpenMP threads (outside a parallel region) the segmentation and the eigenpairs
- * run side by side, one thread each, with the same results as one after the other. */
+/* Segments m and computes its first kev Laplace–Beltrami eigenpairs, then scaled to unit area
+ * (ss_shape_prep above). The result depends only on the shape, so it can be computed once and reused
+ * across pairs. With two or more OpenMP threads (outside a parallel region) the segmentation and the
+ * eigenpairs run side by side, one thread each, with the same results as one after the other.
+ *
+ * Inputs:
+ *   m        triangle mesh (borrowed: must outlive out) that the sanitizer would leave unchanged (no
+ *            non-manifold or degenerate input: repair it first, its vertex indices are what landmarks
+ *            and maps refer to)
+ *   seg_opts segmentation options (NULL: ss_segment_default_options)
+ *   kev      eigenpairs, 3 <= kev < nv
+ * Outputs:
+ *   out      the prep (free with ss_shape_prep_free)
+ * Errors: SS_ERR_INVALID on an empty mesh, kev out of range or a mesh the sanitizer would change;
+ *   those of ss_segment and ss_eigs (SS_ERR_UNSUPPORTED, SS_ERR_NUMERIC); SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_shape_prep_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev, ss_shape_prep *out,
                                        ss_error *err);
-/* The same without the segmentation (seg left empty): what a match with STD probes and landmarks
- * needs (ss_match_options.std_pairs), about half the cost. */
+/* ss_shape_prep_compute without the segmentation (seg left empty): what a match with STD probes and
+ * landmarks needs (ss_match_options.std_pairs), about half the cost.
+ *
+ * Inputs:
+ *   m, kev   as ss_shape_prep_compute
+ * Outputs:
+ *   out      the prep (free with ss_shape_prep_free)
+ * Errors: as ss_shape_prep_compute, less the segmentation's.
+ */
 SS_API ss_status ss_shape_prep_compute_spectral(const ss_mesh *m, int kev, ss_shape_prep *out, ss_error *err);
+/* Frees everything p owns (segmentation, spectral data, caches; not the borrowed mesh) and zeroes
+ * it; safe on a zeroed struct.
+ *
+ * Inputs:
+ *   p        from ss_shape_prep_compute / ss_shape_prep_compute_spectral
+ */
 SS_API void ss_shape_prep_free(ss_shape_prep *p);
-/* Fills p->crit_fields (above) when it is NULL: seg.m exact single-source fields on seg.work
+/* Fills p->crit_fields when it is NULL: seg.m exact single-source fields on seg.work
  * (ss_geodesic_fields, in parallel). Worth it for a shape matched more than once (specseg prepare,
- * Python Shape); a match computes nl fields per shape otherwise. */
+ * Python Shape); a match computes nl fields per shape otherwise.
+ *
+ * Inputs:
+ *   p        a prep with a segmentation (updated in place)
+ * Errors: SS_ERR_INVALID on a NULL prep or an incomplete segmentation; errors of the geodesic fields;
+ *   SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_shape_prep_crit_fields(ss_shape_prep *p, ss_error *err);
 /* ss_pair_segments_conf of two prepared shapes: the landmark-to-centre distances are read from a
  * shape's crit_fields when it has them (the same distances, up to rounding: d(l, c) = d(c, l)) and
- * propagated from its landmarks otherwise. */
+ * propagated from its landmarks otherwise.
+ *
+ * Inputs:
+ *   X, Y     prepared shapes with segmentations
+ *   nl, lmX, lmY  as ss_pair_segments (input vertices)
+ *   po       the rules (NULL: the paper's rule)
+ * Outputs:
+ *   out      pairs sorted by sx (free with ss_segment_pairs_free)
+ * Errors: as ss_pair_segments (SS_ERR_INVALID also for a NULL shape).
+ */
 SS_API ss_status ss_pair_segments_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
                                            const int *lmY, const ss_pairing_options *po, ss_segment_pairs *out,
                                            ss_error *err);
-/* In place: eigenpairs (kev, eigenvectors nv x kev) and masses (nv) of a shape of the given area become
- * those of the shape scaled to unit area (λ·area, φ·√area, M/area); any pointer may be NULL. What
- * ss_shape_prep_compute applies, for callers that fill an ss_shape_prep themselves (more eigenpairs of
- * the same shape: scale them with the prep's `area`). */
+/* In place: eigenpairs and masses of a shape of the given area become those of the shape scaled to
+ * unit area (λ·area, φ·√area, M/area). What ss_shape_prep_compute applies, for callers that fill an
+ * ss_shape_prep themselves (more eigenpairs of the same shape: scale them with the prep's `area`).
+ *
+ * Inputs:
+ *   area     the shape's area
+ *   nv, kev  vertices and eigenpairs
+ *   evals    (may be NULL) kev eigenvalues, scaled in place
+ *   evecs    (may be NULL) nv x kev, column-major, scaled in place
+ *   M        (may be NULL) nv masses, scaled in place
+ */
 SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals, double *evecs, double *M);
 
 /* ---- Landmark-free pairing of the segments (autopair.c) ---------------------------------------- *
@@ -188,6 +309,7 @@ SS_API void ss_shape_prep_unit_area(double area, int nv, int kev, double *evals,
  *    isometry.
  * Confidence: gap = (E₃ − E₁) / E₁ with E₃ the best intrinsic energy of a pairing other than the
  * answer and its mirror, and the orientation margin mirror_margin. */
+/* Options of the landmark-free pairing (start from ss_autopair_default_options; the method above). */
 typedef struct ss_autopair_options {
   int descr_k;         /* eigenpairs of the WKS (default 100; min with what the shapes have) */
   int n_energies;      /* WKS energies (default 100) */
@@ -206,13 +328,13 @@ typedef struct ss_autopair_options {
    * the decision is then the mean of the two tests' median segment margins. With recheck_zoomout >
    * recheck_k instead: ZoomOut-refined maps up to recheck_zoomout (step 5 on recheck_samples samples
    * of the smaller-count shape, then once on every vertex), orient_keep's landmarks, and that test's
-   * whole-shape scores decide alone (no gain on the tuning split). docs/tuning.md. */
+   * whole-shape scores decide alone. docs/tuning.md has the measurements. */
   double recheck_margin;
   int recheck_k;
   /* The left / right test (both tests) uses only round(orient_keep · m), at least 3, of the smaller
    * shape's centres as landmarks: those with the largest summed geodesic distance to the others
    * (the protrusions; the torso saddles fall front or back inconsistently between shapes). Default
-   * 1 (all): 5 of 8 on FAUST was cheaper but not more often right (docs/tuning.md). */
+   * 1 (all); docs/tuning.md has the measurements. */
   double orient_keep;
   int recheck_zoomout;
   int recheck_samples;
@@ -272,13 +394,18 @@ typedef struct ss_autopair_options {
    * wound consistently (outward or inward alike). -1: off */
   double hyp_min_orientation;
   /* a returned map whose whole-map orientation score is below hyp_confident_orientation (default
-   * 0.45) is not confident: on the tuning split right maps score 0.51 and more, mirrored or partly
-   * mirrored ones down to -0.65 (docs/tuning.md) */
+   * 0.45) is not confident (right maps score above it, mirrored or partly mirrored ones below;
+   * docs/tuning.md has the measurements) */
   double hyp_confident_orientation;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
 
+/* Fills o with the landmark-free pairing's defaults (the values named in ss_autopair_options).
+ *
+ * Outputs:
+ *   o        every field written
+ */
 SS_API void ss_autopair_default_options(ss_autopair_options *o);
 
 /* What the pairing needs from one shape (m exact fields and one WKS). */
@@ -304,10 +431,31 @@ typedef struct ss_centre_signature {
   double *probe_A, *probe_P;
 } ss_centre_signature;
 
+/* The landmark-free pairing's signature of one prepared shape: the WKS descriptor of each segment
+ * centre, the centre-to-centre geodesic distances, outward normals, the centres' own left-right
+ * symmetry and the orientation test's probes.
+ *
+ * Inputs:
+ *   p        a prepared shape with a segmentation and >= min(descr_k, orient_descr_k) eigenpairs
+ *            (borrowed: must outlive out)
+ *   o        options (NULL: defaults from ss_autopair_default_options)
+ * Outputs:
+ *   out      the signature (free with ss_centre_signature_free)
+ * Errors: SS_ERR_INVALID on bad options or an unprepared shape; errors of the geodesic fields and the
+ *   functional maps; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_centre_signature_compute(const ss_shape_prep *p, const ss_autopair_options *o,
                                              ss_centre_signature *out, ss_error *err);
+/* Frees the arrays of s and zeroes it; safe on a zeroed struct.
+ *
+ * Inputs:
+ *   s        from ss_centre_signature_compute
+ */
 SS_API void ss_centre_signature_free(ss_centre_signature *s);
 
+/* What the landmark-free pairing (and a match's hypotheses) report: energies, orientation scores and
+ * confidence.
+ */
 typedef struct ss_autopair_info {
   int used;             /* 1: the pairing was landmark-free (then the fields below are set) */
   int exact;            /* 1: exact search, 0: the relaxation */
@@ -351,16 +499,35 @@ typedef struct ss_autopair_info {
   double hyp_differ[SS_MAX_HYPOTHESES];
 } ss_autopair_info;
 
-/* Pairs every centre of the shape with fewer (X on ties) with a distinct centre of the other. out:
- * pairs sorted by sx, energy[p] the pair's own terms (descriptor + its share of the distance and
- * orientation terms). info may be NULL. */
+/* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the
+ * shape with fewer (X on ties) with a distinct centre of the other.
+ *
+ * Inputs:
+ *   X, Y     the shapes' signatures (ss_centre_signature_compute)
+ *   o        options (NULL: defaults)
+ * Outputs:
+ *   out      pairs sorted by sx, energy[p] the pair's own terms (descriptor + its share of the distance
+ *            and orientation terms); free with ss_segment_pairs_free
+ *   info     (may be NULL) energies, orientation scores and confidence
+ * Errors: SS_ERR_INVALID on bad options or signatures; errors of the functional maps; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_pair_centres_auto(const ss_centre_signature *X, const ss_centre_signature *Y,
                                       const ss_autopair_options *o, ss_segment_pairs *out, ss_autopair_info *info,
                                       ss_error *err);
 
-/* The pairing hypotheses of ss_pair_centres_auto (ss_autopair_options.hypotheses): hyp[0] its
- * answer, then distinct others (see the options). hyp: room for maxh (1..SS_MAX_HYPOTHESES) pairings,
- * filled as ss_pair_centres_auto fills its out (free each with ss_segment_pairs_free); *nh: how many. */
+/* The pairing hypotheses of ss_pair_centres_auto (ss_autopair_options.hypotheses): hyp[0] its answer,
+ * then distinct others (the answer's mirror, then near-best pairings each followed by its mirror).
+ *
+ * Inputs:
+ *   X, Y, o  as ss_pair_centres_auto
+ *   maxh     room in hyp, 1..SS_MAX_HYPOTHESES
+ * Outputs:
+ *   hyp      *nh pairings, filled as ss_pair_centres_auto fills its out (free each with
+ *            ss_segment_pairs_free)
+ *   nh       how many
+ *   info     (may be NULL) as ss_pair_centres_auto
+ * Errors: SS_ERR_INVALID on bad options, maxh out of range or bad signatures; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_pair_centres_hypotheses(const ss_centre_signature *X, const ss_centre_signature *Y,
                                             const ss_autopair_options *o, int maxh, ss_segment_pairs *hyp, int *nh,
                                             ss_autopair_info *info, ss_error *err);
@@ -390,6 +557,7 @@ typedef enum ss_refine_mode {
                             by that energy. No ground truth. */
 } ss_refine_mode;
 
+/* Options of the matching pipeline (start from ss_match_default_options or ss_match_paper_options). */
 typedef struct ss_match_options {
   ss_probe_set probes;        /* default DIFF */
   ss_fmap_match_options fmap; /* k, WKS, weights, descr_k; fmap.zoomout_kmax: size of the refinement */
@@ -421,17 +589,37 @@ typedef struct ss_match_options {
   int std_pairs;
 } ss_match_options;
 
-/* Fills p->probe_cache (ss_shape_prep) for matches with options opts (NULL: defaults), replacing
- * what it held: the WKS columns of each descriptor basis the functional maps use and the triple
- * products for the largest (none with the caller's own descriptors or no_wks). Worth it for a shape
- * matched more than once (specseg prepare, Python Shape). */
+/* Fills p->probe_cache (ss_shape_prep) for matches with options opts, replacing what it held: the WKS
+ * columns of each descriptor basis the functional maps use and the triple products for the largest
+ * (none with the caller's own descriptors or no_wks). Worth it for a shape matched more than once
+ * (specseg prepare, Python Shape).
+ *
+ * Inputs:
+ *   p        a prepared shape (updated in place)
+ *   opts     options (NULL: defaults)
+ * Errors: SS_ERR_INVALID on bad options or too few eigenpairs; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_shape_prep_probe_cache(ss_shape_prep *p, const ss_match_options *opts, ss_error *err);
 
+/* Fills o with the library's defaults: DIFF probes, the refined output (SS_REFINE_BEST), the
+ * library's pairing rules, the landmark-free pairing's defaults (values named in the fields above).
+ *
+ * Outputs:
+ *   o        every field written
+ */
 SS_API void ss_match_default_options(ss_match_options *o);
-/* The paper's STD / ASA / DIFF as the paper defines them (what specseg eval's Table 1 uses): the
- * defaults with descr_k = k, the paper's pairing rule (ss_pairing_paper_options) and no refinement. */
+/* Fills o with the paper's STD / ASA / DIFF as the paper defines them (what specseg eval's Table 1
+ * uses): the defaults with descr_k = k, the paper's pairing rule (ss_pairing_paper_options) and no
+ * refinement.
+ *
+ * Outputs:
+ *   o        every field written
+ */
 SS_API void ss_match_paper_options(ss_match_options *o);
 
+/* The result of a match: the point map X -> Y, the functional map, the segment pairs, timings and
+ * notes. Free with ss_match_result_free.
+ */
 typedef struct ss_match_result {
   int nX;           /* vertices of X */
   int *map;         /* nX: map[i] = vertex of Y, image of vertex i of X */
@@ -453,61 +641,126 @@ typedef struct ss_match_result {
   ss_autopair_info autopair;
 } ss_match_result;
 
-/* Matches two prepared shapes (each with ≥ max(k, zoomout_kmax, descr_k) eigenpairs; zoomout_kmax
- * only with refinement). lmX/lmY: nl input vertices; nl = 0 (lmX, lmY may be NULL): landmark-free,
- * see ss_match_prepared_auto. With STD the segments are not paired (unless opts->std_pairs: then
- * paired and reported, not used; the shapes must be segmented); with fewer than pairing.min_landmarks landmarks, or no segment paired, ASA
- * and DIFF fall back to STD and say so in notes. */
+/* Matches two prepared shapes: probes by opts->probes (STD: WKS + landmarks; ASA / DIFF: + the
+ * segments paired through the landmarks), Eq. (1), then the refinement of opts->refine. With STD the
+ * segments are not paired (unless opts->std_pairs: then paired and reported, not used; the shapes
+ * must be segmented); with fewer than pairing.min_landmarks landmarks, or no segment paired, ASA and
+ * DIFF fall back to STD and say so in notes.
+ *
+ * Inputs:
+ *   X, Y     prepared shapes, each with >= ss_match_eigenpairs(opts, nl) eigenpairs
+ *   nl       landmarks (<= SS_MAX_LANDMARKS); 0 (lmX, lmY may be NULL): landmark-free, see
+ *            ss_match_prepared_auto
+ *   lmX, lmY nl corresponding input vertices of X and Y
+ *   opts     options (NULL: defaults from ss_match_default_options)
+ * Outputs:
+ *   out      the result (free with ss_match_result_free)
+ * Errors: SS_ERR_INVALID on a NULL output, unprepared shapes, too few eigenpairs, landmarks out of
+ *   range or given two partners (ss_landmarks_check), bad options; errors of the stages
+ *   (SS_ERR_NUMERIC); SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_match_prepared(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                                    const ss_match_options *opts, ss_match_result *out, ss_error *err);
 
-/* The same with the pairing given instead of computed (e.g. by ss_pair_critical_points_conf from
- * landmark fields cached per shape, as specseg eval does; opts->pairing is then not used, except
- * min_landmarks and min_map_share): pairs (sx < X->seg.m, sy < Y->seg.m) is copied into out->pairs
- * (less the pairs the map check drops). With the pairing
- * ss_match_prepared would compute, the result is the same. */
+/* ss_match_prepared with the segment pairing given instead of computed (e.g. by
+ * ss_pair_critical_points_conf from landmark fields cached per shape, as specseg eval does;
+ * opts->pairing is then not used, except min_landmarks and min_map_share). With the pairing
+ * ss_match_prepared would compute, the result is the same.
+ *
+ * Inputs:
+ *   X, Y, nl, lmX, lmY, opts  as ss_match_prepared (nl >= 1)
+ *   pairs    the pairing (sx < X->seg.m, sy < Y->seg.m), copied into out->pairs (less the pairs the
+ *            map check drops)
+ * Outputs:
+ *   out      the result (free with ss_match_result_free)
+ * Errors: as ss_match_prepared; SS_ERR_INVALID also for NULL or out-of-range pairs.
+ */
 SS_API ss_status ss_match_prepared_pairs(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
                                          const int *lmY, const ss_segment_pairs *pairs, const ss_match_options *opts,
                                          ss_match_result *out, ss_error *err);
 
-/* Landmark-free (nl = 0 in ss_match_prepared / ss_match, or this call with the shapes' signatures,
- * NULL: computed here): the segments are paired by ss_pair_centres_auto (opts->autopair), then the
- * paired centres serve as the landmarks and the pairing as the segment pairing of the pipeline above
- * (same probes, refinement and selection). out->autopair holds the pairing's energies and confidence;
- * when it is not confident (autopair.min_gap / min_mirror) notes says so: the map may be wrong (a
- * segment pair or the left-right mirror), never silently. The orientation decision needs both meshes
- * consistently oriented (outward normals after the signed-volume convention). */
+/* Landmark-free match of two prepared shapes: the segments are paired by ss_pair_centres_auto
+ * (opts->autopair), then each pairing hypothesis's paired centres serve as the landmarks and the
+ * pairing as the segment pairing of ss_match_prepared (same probes, refinement and selection); the
+ * map of least hypothesis energy is returned. When it is not confident notes says so: the map may be
+ * wrong (a segment pair or the left-right mirror), never silently. The orientation decision needs
+ * both meshes consistently oriented (outward normals after the signed-volume convention).
+ *
+ * Inputs:
+ *   X, Y     prepared shapes with segmentations and enough eigenpairs (ss_match_eigenpairs(opts, 0))
+ *   sigX, sigY  their signatures (NULL: computed here)
+ *   opts     options (NULL: defaults)
+ * Outputs:
+ *   out      the result; out->autopair holds the pairing's energies and confidence (free with
+ *            ss_match_result_free)
+ * Errors: SS_ERR_INVALID on a NULL output, unprepared shapes, bad options; errors of the pairing and
+ *   of ss_match_prepared; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
                                         const ss_centre_signature *sigY, const ss_match_options *opts,
                                         ss_match_result *out, ss_error *err);
 
 /* The landmark-free pairing from two meshes: prepare both (opts->seg, max(autopair.descr_k,
- * autopair.orient_k) eigenpairs), their signatures, ss_pair_centres_auto (opts->autopair). opts may
- * be NULL. centerX / centerY (may be NULL): malloc'd pairs->n input vertices at the paired centres
- * (free()). */
+ * autopair.orient_k) eigenpairs), their signatures, ss_pair_centres_auto (opts->autopair).
+ *
+ * Inputs:
+ *   X, Y     triangle meshes
+ *   opts     options (NULL: defaults)
+ * Outputs:
+ *   pairs    the pairing (free with ss_segment_pairs_free)
+ *   centerX, centerY  (may be NULL) malloc'd pairs->n input vertices at the paired centres (free())
+ *   info     (may be NULL) energies and confidence
+ * Errors: SS_ERR_INVALID on a NULL output or mesh; those of ss_shape_prep_compute and the pairing;
+ *   SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_pair_auto(const ss_mesh *X, const ss_mesh *Y, const ss_match_options *opts, ss_segment_pairs *pairs,
                               int **centerX, int **centerY, ss_autopair_info *info, ss_error *err);
 
-/* Everything from two meshes: prepare both, then ss_match_prepared. opts may be NULL.
- * Meshes of several components: the map is only determined on components that hold a landmark, so
- * on each mesh the components with at least one landmark are kept and matched (the body of a scan,
- * without its crumbs; every component when each has a landmark); a vertex of X on a dropped
- * component takes the image of its nearest (Euclidean) kept vertex of X, and no vertex of X maps to
- * a dropped vertex of Y. Landmark-free (nl = 0): the largest component (by area) of each mesh
- * is kept. map, centerX and centerY refer to the input meshes' vertices; C, the basis
- * and pairs (segment indices) to the kept parts. Unreferenced vertices are refused as for one
- * component.
- * Threads: when OpenMP gives the call two or more threads and it is not made inside a parallel region,
- * the two shapes' preparations (and their probe caches) run side by side, one thread each; the map
- * is the same bytes as with one thread. Stage times (t_segment, t_eigs) then add up both shapes'
- * work, while t_total is the time the call took. */
+/* Everything from two meshes: prepare both, then ss_match_prepared (landmark-free:
+ * ss_match_prepared_auto). Meshes of several components: the map is only determined on components
+ * that hold a landmark, so on each mesh the components with at least one landmark are kept and
+ * matched (the body of a scan, without its crumbs; every component when each has a landmark); a
+ * vertex of X on a dropped component takes the image of its nearest (Euclidean) kept vertex of X, and
+ * no vertex of X maps to a dropped vertex of Y. Landmark-free (nl = 0): the largest component (by
+ * area) of each mesh is kept. Unreferenced vertices are refused as for one component. Meshes above
+ * 100,000 vertices are matched through coarse proxies (ss_prepared_shape). Threads: when OpenMP gives
+ * the call two or more threads and it is not made inside a parallel region, the two shapes'
+ * preparations (and their probe caches) run side by side, one thread each; the map is the same bytes
+ * as with one thread. Stage times (t_segment, t_eigs) then add up both shapes' work, while t_total is
+ * the time the call took.
+ *
+ * Inputs:
+ *   X, Y     triangle meshes
+ *   nl       landmarks (0: landmark-free; <= SS_MAX_LANDMARKS)
+ *   lmX, lmY nl corresponding vertices of X and Y (checked by ss_landmarks_check)
+ *   opts     options (NULL: defaults)
+ * Outputs:
+ *   out      map, centerX and centerY refer to the input meshes' vertices; C, the basis and pairs
+ *            (segment indices) to the kept parts (free with ss_match_result_free)
+ * Errors: SS_ERR_INVALID on NULL meshes or output, bad landmarks, bad options, a mesh the pipeline
+ *   cannot take; errors of the stages (SS_ERR_UNSUPPORTED, SS_ERR_NUMERIC); SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_match(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                           const ss_match_options *opts, ss_match_result *out, ss_error *err);
-/* The same, with what was dropped in `warnings` (warnings_size bytes, may be NULL; "" when nothing):
- * per mesh, the components kept, their share of the vertices and the area, and the dropped ones. */
+/* ss_match that also says what was dropped: per mesh, the components kept, their share of the
+ * vertices and the area, and the dropped ones.
+ *
+ * Inputs:
+ *   X, Y, nl, lmX, lmY, opts  as ss_match
+ *   warnings_size  bytes at warnings
+ * Outputs:
+ *   out      as ss_match
+ *   warnings (may be NULL) the summary ("" when nothing)
+ * Errors: as ss_match.
+ */
 SS_API ss_status ss_match_warn(const ss_mesh *X, const ss_mesh *Y, int nl, const int *lmX, const int *lmY,
                                const ss_match_options *opts, ss_match_result *out, char *warnings,
                                size_t warnings_size, ss_error *err);
+/* Frees every array of r (map, C, pairs, centres) and zeroes it; safe on a zeroed struct.
+ *
+ * Inputs:
+ *   r        from any match call
+ */
 SS_API void ss_match_result_free(ss_match_result *r);
 
 /* ---- Prepared shapes and their files (shape_file.c) -------------------------------------------- *
@@ -531,6 +784,9 @@ SS_API void ss_match_result_free(ss_match_result *r);
  * never used partly. */
 #define SS_PREPARED_SHAPE_VERSION 3
 
+/* One shape prepared for matching (specseg prepare), as held in memory and in its file (format
+ * above). Free with ss_prepared_shape_free.
+ */
 typedef struct ss_prepared_shape {
   ss_mesh mesh;                 /* the input mesh (owned) */
   ss_shape_prep prep;           /* prep.mesh points to `mesh` */
@@ -550,62 +806,137 @@ typedef struct ss_prepared_shape {
   ss_shape_prep proxy_prep;
 } ss_prepared_shape;
 
-/* The ss_shape_prep a match of s uses: &s->proxy_prep with a proxy, else &s->prep. */
+/* The ss_shape_prep a match of s uses.
+ *
+ * Inputs:
+ *   s        a prepared shape
+ * Returns: &s->proxy_prep with a proxy, else &s->prep.
+ */
 SS_API const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s);
 
-/* Prepares one shape.
- *  m: the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face or
- *     vertex the sanitizer would drop).
- *  seg_opts: segmentation options (NULL: ss_segment_default_options).
- *  kev: eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (110 for the default match).
- *  autopair: options of the landmark-free pairing's centre signature (NULL: none computed); it is
- *     computed only for a mesh of one component (the landmark-free match of several keeps the
- *     largest one and prepares that).
- * out: filled (ss_prepared_shape_free); zeroed on failure. Every shape also gets its critical
- * points' geodesic fields (ss_shape_prep_crit_fields); a very large one its proxy (above).
- * Cost: ss_shape_prep_compute's plus m (8 on FAUST) geodesic fields; with a proxy, ss_segment of the
- * input plus ss_shape_prep_compute of the proxy. */
+/* Prepares one shape for matching: ss_shape_prep_compute, the critical points' geodesic fields
+ * (ss_shape_prep_crit_fields), the default match's probe cache, the landmark-free signature and, for
+ * a very large mesh, its proxy (above). Cost: ss_shape_prep_compute's plus m (8 on FAUST) geodesic
+ * fields; with a proxy, ss_segment of the input plus ss_shape_prep_compute of the proxy.
+ *
+ * Inputs:
+ *   m        the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face
+ *            or vertex the sanitizer would drop)
+ *   seg_opts segmentation options (NULL: ss_segment_default_options)
+ *   kev      eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (110 for the default match)
+ *   autopair options of the landmark-free pairing's centre signature (NULL: none computed); it is
+ *            computed only for a mesh of one component (the landmark-free match of several keeps the
+ *            largest one and prepares that)
+ * Outputs:
+ *   out      filled (free with ss_prepared_shape_free); zeroed on failure
+ * Errors: those of ss_shape_prep_compute, ss_shape_prep_crit_fields and ss_centre_signature_compute.
+ */
 SS_API ss_status ss_prepared_shape_compute(const ss_mesh *m, const ss_segment_options *seg_opts, int kev,
                                            const ss_autopair_options *autopair, ss_prepared_shape *out, ss_error *err);
-/* Writes s to path (the format above; through a temporary file renamed into place). */
+/* Writes a prepared shape to a file (the format above), through a temporary file renamed into place.
+ *
+ * Inputs:
+ *   path     the file
+ *   s        the prepared shape
+ * Errors: SS_ERR_INVALID on NULL arguments or a shape that is not prepared; SS_ERR_IO when the file
+ *   cannot be written; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_prepared_shape_write(const char *path, const ss_prepared_shape *s, ss_error *err);
-/* Reads a prepared-shape file into out (ss_prepared_shape_free; zeroed on failure). SS_ERR_IO: no
- * such file; SS_ERR_PARSE: not a prepared shape, another format version / machine, damaged. */
+/* Reads a prepared-shape file; a file of another format version, byte order or type sizes, cut
+ * short, longer, damaged or out of range is refused, never used partly.
+ *
+ * Inputs:
+ *   path     the file
+ * Outputs:
+ *   out      the shape (free with ss_prepared_shape_free); zeroed on failure
+ * Errors: SS_ERR_IO (no such file, unreadable); SS_ERR_PARSE (not a prepared shape, another format
+ *   version / machine, damaged: the message says which); SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_prepared_shape_read(const char *path, ss_prepared_shape *out, ss_error *err);
-/* The same from size bytes in memory; name is used in messages. */
+/* ss_prepared_shape_read of size bytes in memory.
+ *
+ * Inputs:
+ *   data, size  the bytes (not kept)
+ *   name     stands for the file in messages
+ * Outputs:
+ *   out      as ss_prepared_shape_read
+ * Errors: as ss_prepared_shape_read (SS_ERR_PARSE, SS_ERR_INVALID on NULL arguments, SS_ERR_NOMEM).
+ */
 SS_API ss_status ss_prepared_shape_read_memory(const void *data, size_t size, const char *name, ss_prepared_shape *out,
                                                ss_error *err);
-/* 1 when the n bytes at head (the start of a file) begin like a prepared-shape file. */
+/* Do the first bytes of a file look like a prepared-shape file?
+ *
+ * Inputs:
+ *   head     the first n bytes of a file
+ *   n        their count
+ * Returns: 1 when they begin like a prepared-shape file, else 0.
+ */
 SS_API int ss_is_prepared_shape(const void *head, size_t n);
+/* Frees everything s owns (mesh, preps, proxy, signature) and zeroes it; safe on a zeroed struct.
+ *
+ * Inputs:
+ *   s        from ss_prepared_shape_compute / ss_prepared_shape_read
+ */
 SS_API void ss_prepared_shape_free(ss_prepared_shape *s);
 
-/* 1 when a match with opts (NULL: the defaults) and nl landmarks segments its shapes (landmark-free,
- * ASA, DIFF, or STD with std_pairs); 0 for STD with landmarks, which uses no segments. */
+/* Does a match segment its shapes?
+ *
+ * Inputs:
+ *   opts     options (NULL: defaults)
+ *   nl       landmarks
+ * Returns: 1 when a match with opts and nl landmarks segments its shapes (landmark-free, ASA, DIFF, or
+ *   STD with std_pairs); 0 for STD with landmarks, which uses no segments.
+ */
 SS_API int ss_match_segments(const ss_match_options *opts, int nl);
 
-/* Eigenpairs each shape needs for ss_match_prepared with opts (NULL: the defaults) and nl landmarks
- * (0: landmark-free, which adds the pairing's descr_k and orient_k): max(k, ZoomOut's kmax when
- * refining, descr_k, seg_descr_k with segment probes). 110 for the defaults. */
+/* Eigenpairs each shape needs for ss_match_prepared: max(k, ZoomOut's kmax when refining, descr_k,
+ * seg_descr_k with segment probes; landmark-free also the pairing's descr_k and orient_k).
+ *
+ * Inputs:
+ *   opts     options (NULL: defaults)
+ *   nl       landmarks (0: landmark-free)
+ * Returns: the count (110 for the defaults).
+ */
 SS_API int ss_match_eigenpairs(const ss_match_options *opts, int nl);
 
 /* The most landmarks a match takes: each adds probe functions and, for the segment pairing, a
  * geodesic field (1000 landmarks took over 60 s and 2.3 GB on a 7000-vertex pair). */
 #define SS_MAX_LANDMARKS 200
-/* The landmark list of a match (nl pairs lmX[i] <-> lmY[i], in range): SS_ERR_INVALID for more than
- * SS_MAX_LANDMARKS (*a = *b = -1) or a vertex given two partners ("962 1319" and "962 100", or two
- * vertices of X one vertex of Y): *a < *b the two landmarks (0-based). An exact repeat is accepted
- * (*a, *b are then its first two occurrences and the status SS_OK; -1 when none). a, b may be NULL.
- * ss_match, ss_match_warn and ss_match_prepared_shapes check their landmarks with it. */
+/* Checks the landmark list of a match: no more than SS_MAX_LANDMARKS, no vertex given two partners
+ * ("962 1319" and "962 100", or two vertices of X one vertex of Y). An exact repeat is accepted.
+ * ss_match, ss_match_warn and ss_match_prepared_shapes check their landmarks with it.
+ *
+ * Inputs:
+ *   nl       landmarks
+ *   lmX, lmY nl pairs lmX[i] <-> lmY[i] (in range)
+ * Outputs:
+ *   a, b     (may be NULL) on a conflict: a < b, the two landmarks (0-based); on success: the first two
+ *            occurrences of an exact repeat (-1 when none); more than SS_MAX_LANDMARKS: -1
+ * Errors: SS_ERR_INVALID for too many landmarks or a vertex with two partners (the message names
+ *   them); SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_landmarks_check(int nl, const int *lmX, const int *lmY, int *a, int *b, ss_error *err);
 
 /* ss_match_warn on two prepared shapes: the same map, pairs and notes as ss_match_warn(&X->mesh,
  * &Y->mesh, ...) with opts->seg = the shapes' options, when each was prepared with exactly
  * ss_match_eigenpairs(opts, nl) eigenpairs (more: a match in the larger basis, as ss_match_prepared
- * gives it). lmX, lmY: nl input vertices (nl = 0: landmark-free; the stored signatures are used when
- * computed with opts->autopair). A shape whose components ss_match_warn would not all keep (several
- * components, some without a landmark; landmark-free: more than one) is prepared again from its
- * mesh, and warnings says so. Fails with SS_ERR_INVALID, naming the shape, when one has fewer
- * eigenpairs than the match needs. opts may be NULL (the defaults; opts->seg is not used). */
+ * gives it). A shape whose components ss_match_warn would not all keep (several components, some
+ * without a landmark; landmark-free: more than one) is prepared again from its mesh, and warnings says
+ * so.
+ *
+ * Inputs:
+ *   X, Y     prepared shapes
+ *   nl       landmarks (0: landmark-free; the stored signatures are used when computed with
+ *            opts->autopair)
+ *   lmX, lmY nl input vertices
+ *   opts     options (NULL: defaults; opts->seg is not used)
+ *   warnings_size  bytes at warnings
+ * Outputs:
+ *   out      as ss_match (free with ss_match_result_free)
+ *   warnings (may be NULL) as ss_match_warn
+ * Errors: SS_ERR_INVALID on a NULL output, a shape that is not prepared or has fewer eigenpairs than
+ *   the match needs (naming the shape), bad landmarks; errors of ss_match_prepared; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared_shape *Y, int nl, const int *lmX,
                                           const int *lmY, const ss_match_options *opts, ss_match_result *out,
                                           char *warnings, size_t warnings_size, ss_error *err);

@@ -32,29 +32,52 @@ typedef struct ss_mesh_report {
                                 of the majority of its faces); 0 when oriented or not orientable */
 } ss_mesh_report;
 
-/* O(n log n). Faces with a repeated vertex index count as degenerate and are left out of the topology
- * (edges, fans, loops, Euler characteristic); zero-area faces (height < 1e-14 x longest edge) with
- * distinct vertices are counted as degenerate but kept, and so are duplicates (whose edges then show
- * as non-manifold). Boundary loops are traced per vertex fan, so loops touching at a pinched vertex
- * count separately. Fails (SS_ERR_INVALID) only on out-of-range indices or bad sizes. */
+/* Everything `specseg info` reports about a mesh: counts, area, components, boundary, manifoldness,
+ * degenerate / duplicate / unreferenced vertices and faces, Euler characteristic, orientation. O(n log n).
+ * Faces with a repeated vertex index count as degenerate and are left out of the topology (edges,
+ * fans, loops, Euler characteristic); zero-area faces (height < 1e-14 x longest edge) with distinct
+ * vertices are counted as degenerate but kept, and so are duplicates (whose edges then show as
+ * non-manifold). Boundary loops are traced per vertex fan, so loops touching at a pinched vertex
+ * count separately.
+ *
+ * Inputs:
+ *   m        the mesh (any content; non-finite coordinates are counted, not refused)
+ * Outputs:
+ *   r        the report (every field written)
+ * Errors: SS_ERR_INVALID on a face index out of range or bad sizes; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_mesh_check(const ss_mesh *m, ss_mesh_report *r, ss_error *err);
 
-/* Make a mesh the pipeline can process: drops degenerate/duplicate faces and unreferenced vertices,
- * splits pinched (non-manifold) vertices into one copy per fan, and orients every component
- * consistently (a component's faces of the minority orientation are reversed). `to_input[i]`
- * (malloc'd, out->nv entries) gives the input vertex of each output vertex. Fails with
- * SS_ERR_INVALID on NaN/Inf coordinates, non-manifold edges that cannot be split, a non-orientable
- * surface (named by one of its faces), or an empty result. `warnings` (may be NULL) receives a
- * human-readable summary of what was changed ("" when nothing).
- * Output vertices keep the input order (copies of a split vertex are adjacent) and faces keep their
- * order (and orientation, unless inconsistent), so a mesh that needs no repair comes back identical
- * with to_input = identity.
- * Non-finite coordinates are an error only on vertices that a kept face uses. */
+/* Makes a mesh the pipeline can process: drops degenerate / duplicate faces and unreferenced
+ * vertices, splits pinched (non-manifold) vertices into one copy per fan, and orients every component
+ * consistently (a component's faces of the minority orientation are reversed). Output vertices keep
+ * the input order (copies of a split vertex are adjacent) and faces keep their order (and orientation,
+ * unless inconsistent), so a mesh that needs no repair comes back identical with to_input = identity.
+ *
+ * Inputs:
+ *   in       the mesh
+ *   warnings_size  bytes at warnings
+ * Outputs:
+ *   out      the repaired mesh (free with ss_mesh_free)
+ *   to_input malloc'd out->nv entries (free()): the input vertex of each output vertex
+ *   warnings (may be NULL) a human-readable summary of what was changed ("" when nothing)
+ * Errors: SS_ERR_INVALID on NULL outputs, non-finite coordinates on a vertex that a kept face uses,
+ *   non-manifold edges that splitting vertices cannot repair, a non-orientable surface (named by one of
+ *   its faces), or an empty result; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_mesh_sanitize(const ss_mesh *in, ss_mesh *out, int **to_input, char *warnings,
                                   size_t warnings_size, ss_error *err);
 
-/* 1->4 midpoint subdivision (each edge split at its midpoint, no smoothing): nv + #edges vertices,
- * 4 nf faces; input vertices keep their indices. `out` is allocated (free with ss_mesh_free). */
+/* 1->4 midpoint subdivision: each edge split at its midpoint, no smoothing.
+ *
+ * Inputs:
+ *   in       triangle mesh, nv vertices, nf faces
+ * Outputs:
+ *   out      nv + #edges vertices (input vertices keep their indices), 4·nf faces (free with
+ *            ss_mesh_free)
+ * Errors: SS_ERR_INVALID on bad sizes, a face index out of range or a result too large for int
+ *   counts; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_mesh_subdivide(const ss_mesh *in, ss_mesh *out, ss_error *err);
 
 #ifdef __cplusplus

@@ -46,6 +46,7 @@ typedef enum ss_eigs_method { SS_EIGS_AUTO = 0, SS_EIGS_ARPACK = 1, SS_EIGS_BLOC
 #define SS_EIGS_BLOCK_MIN_N 15000
 #define SS_EIGS_PRO_MAX_K 500
 
+/* Options of ss_eigs (start from ss_eigs_default_options). */
 typedef struct ss_eigs_options {
   double sigma; /* shift; default -1e-8 (just below 0 so W - σM is positive definite). A negative
                    shift means "just below the spectrum": its size relative to the shape,
@@ -60,29 +61,65 @@ typedef struct ss_eigs_options {
   int block;    /* block size of SS_EIGS_BLOCK; 0 = automatic */
 } ss_eigs_options;
 
+/* Fills o with the defaults: sigma -1e-8, tol 1e-10, ncv 0 and maxiter 0 (automatic), stats NULL,
+ * method SS_EIGS_AUTO, block 0 (automatic).
+ *
+ * Outputs:
+ *   o        every field written
+ */
 SS_API void ss_eigs_default_options(ss_eigs_options *o);
 
-/* W: symmetric n x n (both triangles stored); M: n positive lumped masses. Writes the k smallest
- * eigenvalues ascending into evals[k] and M-orthonormal eigenvectors, column-major n x k, into evecs
- * (evecs may be NULL when only eigenvalues are wanted). opts may be NULL for defaults.
- * More precisely: the k eigenvalues nearest sigma (as scipy's eigsh(..., sigma=σ)), which for the
- * default σ just below 0 are the k smallest. Needs 1 <= k < n; k up to (n + c − 1) / 2 (c: components)
- * leaves the Lanczos solver the ~2k vectors it needs, above that it may fail (SS_ERR_NUMERIC, the
- * message says which k works). Deterministic (fixed start vector).
- * Errors: SS_ERR_INVALID (bad k, sizes, non-positive or non-finite mass, bad options),
- * SS_ERR_NUMERIC (singular shifted matrix, no convergence, ARPACK failure), SS_ERR_NOMEM.
- * For sigma <= 0 the λ = 0 pairs of components on which W annihilates constants (any Laplacian) are
- * returned exactly (φ = 1/sqrt(component area) on the component) and deflated from the Lanczos
- * operator. */
+/* The k eigenpairs of the generalized problem W φ = λ M φ nearest sigma (as scipy's
+ * eigsh(..., sigma=σ)), which for the default σ just below 0 are the k smallest: shift-invert
+ * Lanczos on a Cholesky factor of W - σM (method: ss_eigs_method). Deterministic (fixed start
+ * vector). For sigma <= 0 the λ = 0 pairs of components on which W annihilates constants (any
+ * Laplacian) are returned exactly (φ = 1/sqrt(component area) on the component) and deflated from
+ * the Lanczos operator.
+ *
+ * Inputs:
+ *   W        symmetric n x n sparse matrix (both triangles stored), n >= 2
+ *   M        n positive, finite lumped masses
+ *   k        1 <= k < n; above (n + c − 1) / 2 (c: components) the solver may lack the ~2k vectors it
+ *            needs and fail (SS_ERR_NUMERIC, the message says which k works)
+ *   opts     options (NULL: defaults from ss_eigs_default_options); opts->stats, when set, receives
+ *            the timing breakdown
+ * Outputs:
+ *   evals    k eigenvalues, ascending (caller-allocated)
+ *   evecs    n x k, column-major, M-orthonormal eigenvectors (caller-allocated; NULL: not wanted)
+ * Errors: SS_ERR_INVALID on a bad k, sizes, a non-positive or non-finite mass, bad options;
+ *   SS_ERR_NUMERIC when the shifted matrix is singular, Lanczos does not converge or ARPACK fails;
+ *   SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_eigs(const ss_sparse *W, const double *M, int k, const ss_eigs_options *opts, double *evals,
                          double *evecs, ss_error *err);
 
-/* Accuracy of computed pairs: max over i of ||W φ_i − λ_i M φ_i|| / ((|λ_i|+1) ||M φ_i||) and
- * max |ΦᵀMΦ − I|. Either output pointer may be NULL. */
+/* Accuracy of computed eigenpairs: max over i of ||W φ_i − λ_i M φ_i|| / ((|λ_i|+1) ||M φ_i||)
+ * and max |ΦᵀMΦ − I|.
+ *
+ * Inputs:
+ *   W, M, k  as for ss_eigs
+ *   evals    k eigenvalues
+ *   evecs    n x k, column-major
+ * Outputs:
+ *   max_rel_residual  (may be NULL) the largest relative residual
+ *   max_orth_error    (may be NULL) the largest entry of |ΦᵀMΦ − I|
+ * Errors: SS_ERR_INVALID on W, M, k as ss_eigs refuses them; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_eigs_check(const ss_sparse *W, const double *M, int k, const double *evals, const double *evecs,
                                double *max_rel_residual, double *max_orth_error, ss_error *err);
 
-/* Convenience: W, M (barycentric) of the mesh, then ss_eigs. */
+/* Convenience: the cotangent stiffness and barycentric lumped masses of the mesh, then ss_eigs with
+ * the default options.
+ *
+ * Inputs:
+ *   m        triangle mesh, nv >= 2 vertices, every vertex in a face of non-zero area
+ *   k        1 <= k < nv (see ss_eigs)
+ * Outputs:
+ *   evals    k eigenvalues, ascending (caller-allocated)
+ *   evecs    nv x k, column-major, M-orthonormal (caller-allocated; NULL: not wanted)
+ * Errors: SS_ERR_INVALID on an empty mesh, or a vertex without mass (unreferenced, or only in
+ *   zero-area faces: the message says which); those of ss_cotan_stiffness and ss_eigs.
+ */
 SS_API ss_status ss_mesh_eigs(const ss_mesh *m, int k, double *evals, double *evecs, ss_error *err);
 
 #ifdef __cplusplus

@@ -38,6 +38,7 @@ typedef enum ss_cmcf_normalization {
   SS_CMCF_UNIT_BBOX = 1
 } ss_cmcf_normalization;
 
+/* Options of ss_cmcf_smooth (start from ss_cmcf_default_options). */
 typedef struct ss_cmcf_options {
   int steps;                           /* default 12 */
   double dt;                           /* δ, default 2.2e-5 (unit area) */
@@ -46,11 +47,26 @@ typedef struct ss_cmcf_options {
                                           afresh every step (only for testing the reuse) */
 } ss_cmcf_options;
 
+/* Fills opt with the defaults: 12 steps, δ = 2.2e-5 at unit area, SS_CMCF_UNIT_AREA, one symbolic
+ * analysis for all steps.
+ *
+ * Outputs:
+ *   opt      every field written
+ */
 SS_API void ss_cmcf_default_options(ss_cmcf_options *opt);
 
-/* `opt` may be NULL (defaults). `out` receives a new mesh (free with ss_mesh_free); it may not alias
- * `in`. Fails with SS_ERR_INVALID on an empty / zero-area mesh or bad indices, SS_ERR_NUMERIC when
- * the factorisation fails. */
+/* Conformalized mean curvature flow (§4.1; the scheme above): smooths the shape's protrusions away
+ * in a few implicit steps, keeping its connectivity.
+ *
+ * Inputs:
+ *   in       triangle mesh, nv vertices, nf faces, non-zero area
+ *   opt      options (NULL: defaults from ss_cmcf_default_options)
+ * Outputs:
+ *   out      a new mesh, in's connectivity and vertex order, at in's area and centroid (free with
+ *            ss_mesh_free; may not alias in)
+ * Errors: SS_ERR_INVALID on an empty / zero-area mesh, bad indices or coordinates, bad options;
+ *   SS_ERR_NUMERIC when the factorisation or a solve fails or the flow degenerates; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt, ss_mesh *out, ss_error *err);
 
 /* ---------------------------------------------------------------------------------------------
@@ -68,6 +84,7 @@ SS_API ss_status ss_cmcf_smooth(const ss_mesh *in, const ss_cmcf_options *opt, s
  * 0.6 GB); 5e6 took over 400 s. */
 #define SS_REMESH_MAX_FACES 2000000
 
+/* Options of ss_remesh (start from ss_remesh_default_options). */
 typedef struct ss_remesh_options {
   int target_faces;   /* default 15000; 4 .. SS_REMESH_MAX_FACES */
   int iterations;     /* split/collapse/flip/relax rounds, default 5 */
@@ -76,8 +93,26 @@ typedef struct ss_remesh_options {
                          it is off by more than tolerance/5 after the topological rounds */
 } ss_remesh_options;
 
+/* Fills opt with the defaults: 15000 faces, 5 rounds, 2 smooth-only rounds, tolerance 0.05.
+ *
+ * Outputs:
+ *   opt      every field written
+ */
 SS_API void ss_remesh_default_options(ss_remesh_options *opt);
 
+/* Isotropic remeshing of a closed surface to about opt->target_faces triangles (the algorithm
+ * above); the output has the same components and genus and all its vertices lie on the input surface.
+ *
+ * Inputs:
+ *   in       closed (no boundary edges), edge-manifold, consistently oriented triangle mesh of
+ *            non-zero area
+ *   opt      options (NULL: defaults from ss_remesh_default_options)
+ * Outputs:
+ *   out      the new mesh, about target_faces faces (free with ss_mesh_free)
+ * Errors: SS_ERR_INVALID on NULL meshes, options out of range, a zero-area mesh or bad indices;
+ *   SS_ERR_UNSUPPORTED on a boundary edge, a non-manifold or inconsistently oriented edge or a
+ *   pinched vertex; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_remesh(const ss_mesh *in, const ss_remesh_options *opt, ss_mesh *out, ss_error *err);
 
 /* Quality figures used by the tests and `specseg remesh`. `ref` (may be NULL) is the surface the
@@ -91,12 +126,34 @@ typedef struct ss_remesh_quality {
   double max_deviation;     /* relative to ref's bbox diagonal */
 } ss_remesh_quality;
 
+/* Quality figures of a triangle mesh (angles, valences) and, with ref, its deviation from a
+ * reference surface; used by the tests and `specseg remesh`.
+ *
+ * Inputs:
+ *   m        the mesh (nv, nf > 0)
+ *   ref      (may be NULL) the surface the deviation is measured against
+ * Outputs:
+ *   q        every field written (max_deviation 0 without ref)
+ * Errors: SS_ERR_INVALID on an empty mesh or a face index out of range; SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_remesh_quality_measure(const ss_mesh *m, const ss_mesh *ref, ss_remesh_quality *q,
                                            ss_error *err);
 
 /* ---------------------------------------------------------------------------------------------
  * Ψ: for each of the np query points P (3*np doubles) the index of the nearest vertex of `target`
  * (exact Euclidean nearest, ties → smallest index), via a uniform grid. */
+/* Ψ: for each query point, the index of the nearest vertex of `target` (exact Euclidean nearest,
+ * ties to the smallest index), via a uniform grid.
+ *
+ * Inputs:
+ *   P        np query points, 3*np doubles (xyz-interleaved)
+ *   np       number of points (>= 0)
+ *   target   the mesh whose vertices are searched (nv >= 1, finite coordinates)
+ * Outputs:
+ *   out      np vertex indices of target (caller-allocated)
+ * Errors: SS_ERR_INVALID on bad arguments, an empty target or a non-finite point or vertex;
+ *   SS_ERR_NOMEM.
+ */
 SS_API ss_status ss_closest_vertices(const double *P, int np, const ss_mesh *target, int *out, ss_error *err);
 
 #ifdef __cplusplus

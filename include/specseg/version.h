@@ -17,12 +17,18 @@ extern "C" {
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((visibility("default")))
 #endif
-/* "MAJOR.MINOR.PATCH" of the library at run time. */
+/* The version of the library a program runs with (the macros above give the headers').
+ *
+ * Returns: "MAJOR.MINOR.PATCH", a static string (do not free).
+ */
 const char *ss_version(void);
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((visibility("default")))
 #endif
-/* SPECSEG_VERSION of the library at run time. */
+/* The version number of the library a program runs with, to compare with SPECSEG_VERSION.
+ *
+ * Returns: MAJOR * 10000 + MINOR * 100 + PATCH of the library at run time.
+ */
 int ss_version_number(void);
 
 #ifdef __cplusplus
