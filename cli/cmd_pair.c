@@ -111,6 +111,9 @@ int cmd_pair(int argc, char **argv) {
           info.energy_mirror, info.energy_other, info.gap, mo.autopair.min_gap);
   fprintf(report, "orientation score %.3f, mirror candidate %.3f; median segment margin %.3f (min %.3f)\n", info.mirror,
           info.mirror_other, info.mirror_margin, mo.autopair.min_mirror);
+  if (info.polished > 0)
+    fprintf(report, "oriented polish: %d move%s lowered the energy (orientation score kept within %.2g)\n", info.polished,
+            info.polished > 1 ? "s" : "", mo.autopair.polish_orient_tol);
   if (info.alternatives > 0)
     fprintf(report, "near-tie pairings tested: %d%s\n", info.alternatives,
             info.alternative ? "; one replaced the search's best (its map preserves orientation clearly better)" : "");

@@ -397,6 +397,13 @@ typedef struct ss_autopair_options {
    * 0.45) is not confident (right maps score above it, mirrored or partly mirrored ones below;
    * docs/tuning.md has the measurements) */
   double hyp_confident_orientation;
+  /* the oriented polish of the answer: up to polish_rounds times (default 5; 0: off), a single move
+   * of its pairing (two centres exchange their partners, or one moves to an unpaired centre) that
+   * lowers the energy is applied when the first orientation test's whole-shape score of the result
+   * stays within polish_orient_tol (default 0.1) of the answer's; the answer before the moves stays
+   * a hypothesis (docs/tuning.md) */
+  int polish_rounds;
+  double polish_orient_tol;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -478,6 +485,7 @@ typedef struct ss_autopair_info {
   double mirror_margin;
   int alternatives;     /* near-tie pairings tested beyond the mirror pair (ss_autopair_options.alt_*) */
   int alternative;      /* 1: one of them replaced the search's best (energy: its energy) */
+  int polished;         /* moves made by the oriented polish (ss_autopair_options.polish_rounds) */
   /* the hypotheses' refined maps (ss_autopair_options.hypotheses): how many were mapped, the index
    * of the one returned (0: the pairing's own answer), and per hypothesis its pairing energy, the
    * orientation score and the metric distortion of its map, and its hypothesis energy */

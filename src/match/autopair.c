@@ -1,6 +1,7 @@
 /* Landmark-free pairing of the segments of two shapes (match.h), the decision and the public entry
  * points: the search's best pairing (pairing_search.c) against its mirror candidate by the first
- * left / right test (pairing_orientation.c), a second test on a close call, the near-tie
+ * left / right test (pairing_orientation.c), a second test on a close call, the oriented polish
+ * (pairing_polish.c), the near-tie
  * alternatives, the hypotheses, the segment pairs and the pairing's confidence; the options'
  * defaults. The centres' signatures: centre_signature.c. */
 #include "specseg/match.h"
@@ -47,6 +48,8 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_differ_share = 0.05;
   o->hyp_min_orientation = 0.0;
   o->hyp_confident_orientation = 0.45;
+  o->polish_rounds = 5;
+  o->polish_orient_tol = 0.1;
 }
 
 static double cpu_now(void) {
@@ -200,13 +203,15 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   if (o.alt_max < 0 || !(o.alt_gap >= 0) || !isfinite(o.alt_gap) || !(o.alt_margin >= 0) || !isfinite(o.alt_margin) ||
       !isfinite(o.alt_min_score))
     return ss_fail(err, SS_ERR_INVALID, "autopair: bad near-tie options (alt_max >= 0, alt_gap and alt_margin finite, >= 0)");
+  if (o.polish_rounds < 0 || o.polish_rounds > 100 || !(o.polish_orient_tol >= 0) || !isfinite(o.polish_orient_tol))
+    return ss_fail(err, SS_ERR_INVALID, "autopair: bad polish options (polish_rounds 0..100, polish_orient_tol finite, >= 0)");
   double c0 = cpu_now();
   const int swap = X->m > Y->m;
   const ss_centre_signature *A = swap ? Y : X, *B = swap ? X : Y;
   const int na = A->m, nb = B->m;
   ss_status st = SS_OK;
   int status = 0, nh = 0, *hyp = NULL;
-  const int nbuf = SSI_TOPK + 4;
+  const int nbuf = SSI_TOPK + 5;
   double *U = malloc(sizeof(double) * (size_t)nb * nb), *minU = malloc(sizeof(double) * ((size_t)nb + 1));
   double *share = malloc(sizeof(double) * (size_t)na), *seg1 = malloc(sizeof(double) * 2 * (size_t)na);
   double *seg2 = malloc(sizeof(double) * 2 * (size_t)na);
@@ -219,7 +224,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     goto done;
   }
   ssi_init_search(&S, A, &o, U, minU, cur, used, buf);
-  int *pi1 = buf + (size_t)na * SSI_TOPK, *pi2 = pi1 + na, *third = pi2 + na;
+  int *pi1 = buf + (size_t)na * SSI_TOPK, *pi2 = pi1 + na, *third = pi2 + na, *before = third + na;
   const int exact = na <= o.exact_max && ssi_count_injections(na, nb) <= 5e7;
   ssi_fill_unary(&S, U, minU, A, B, o.w_descr);
   ssi_run_search(&S, exact, SSI_TOPK, 0, &status);
@@ -232,8 +237,10 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   mirror_candidate(&S, A, B, pi1, pi2, third);
   double e1 = ssi_full_energy(&S, pi1, NULL), e2 = ssi_full_energy(&S, pi2, NULL), e3 = best_other(&S, pi1, pi2, third);
   /* left / right: the candidate whose map preserves orientation */
-  if (same(pi1, pi2, na) && isfinite(e3)) /* no symmetry found: the runner-up is the other candidate */
-    memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3, e3 = INFINITY;
+  if (same(pi1, pi2, na) && isfinite(e3)) { /* no symmetry found: the runner-up is the other candidate */
+    memcpy(pi2, third, sizeof(int) * (size_t)na), e2 = e3;
+    e3 = best_other(&S, pi1, pi2, third); /* the gap is to the next leaf */
+  }
   double r1 = 0, r2 = 0, med = 0;
   if ((st = ssi_orient_ctx_new(A, B, o.orient_k, o.orient_descr_k, o.orient_keep, &oc, err))) goto done;
   if ((st = first_test(&oc, pi1, pi2, seg1, seg2, share, &r1, &r2, &med, err))) goto done;
@@ -289,6 +296,18 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     }
   }
   if (alt) e3 = best_other(&S, pi1, pi2, third); /* the search's best, now the runner-up */
+  int polished = 0;
+  memcpy(before, pi1, sizeof(int) * (size_t)na);
+  if (o.polish_rounds > 0) {
+    int *inv = malloc(sizeof(int) * (size_t)nb);
+    double *mv = malloc(sizeof(double) * 2 * (size_t)na * nb);
+    if (!inv || !mv) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
+    if (!st) st = ssi_polish_oriented(&oc, &S, pi1, &e1, &f1, o.polish_rounds, o.polish_orient_tol, pi2, f2, third, inv, mv,
+                                        &polished, err);
+    free(inv), free(mv);
+    if (st) goto done;
+    if (polished) r1 = f1;
+  }
   (void)ssi_full_energy(&S, pi1, share);
   if ((st = pairs_of_assignment(X, Y, swap, pi1, share, out, err))) goto done;
   if (maxh > 0) { /* the answer, its mirror, then the search's next leaves, each followed by its mirror */
@@ -298,6 +317,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     }
     int *mir = hyp + (size_t)na * maxh;
     add_hypothesis(na, pi1, maxh, hyp, &nh);
+    if (polished) add_hypothesis(na, before, maxh, hyp, &nh);
     add_hypothesis(na, pi2, maxh, hyp, &nh);
     for (int k = 0; k < SSI_TOPK && nh < maxh; k++) {
       if (!isfinite(S.top_e[k]) || S.top_e[k] > S.top_e[0] * (1 + o.hyp_gap)) break;
@@ -334,6 +354,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
     info->cpu = cpu_now() - c0;
     info->alternatives = n_alt;
     info->alternative = alt;
+    info->polished = polished;
   }
 done:
   ssi_orient_ctx_free(&oc);

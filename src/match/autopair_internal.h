@@ -105,4 +105,16 @@ ss_status ssi_orient_ctx_score(ssi_orient_ctx *c, const int *p, double *score, d
 /* Frees c's buffers (c zeroed). */
 void ssi_orient_ctx_free(ssi_orient_ctx *c);
 
+/* ---- the oriented polish (pairing_polish.c) -------------------------------------------------- */
+
+/* The oriented polish of the pairing p (A index -> B index, A = oc->A; energy *E under S, first-test
+ * whole-shape score *r under oc): up to rounds times, the single moves (two A centres exchange their
+ * images, or one moves to a free B centre) that lower the energy are scored in ascending energy, at
+ * most SSI_TOPK a round, and the first whose score is at least *r − tol and above r_rejected, and
+ * which is not the pairing rejected (may be NULL; the left / right decision's loser), is applied
+ * (p, *E, *r updated). *moves: moves applied. Scratch: cand A->m, inv B->m, mv 2·A->m·B->m. */
+ss_status ssi_polish_oriented(ssi_orient_ctx *oc, const ssi_search *S, int *p, double *E, double *r, int rounds, double tol,
+                              const int *rejected, double r_rejected, int *cand, int *inv, double *mv, int *moves,
+                              ss_error *err);
+
 #endif
