@@ -14,9 +14,13 @@ maps X onto Y), preprocess(n_ev = (k, k), 100 WKS descriptors, subsample_step 5)
 w_lap 1e-2, w_dcomm 1e-1, w_orient: its orientation-preserving term), ZoomOut (step 5) from k to
 kmax, get_p2p. Each mesh is processed once. Maps already in MAPDIR are kept (resume). A mesh that pyFM
 cannot read skips its pairs (the benchmark then reports them missing). MAPDIR/seconds.txt gets
-"X Y SECONDS" per map written (CPU of the pair: fit, ZoomOut and the point map; the meshes'
+"X Y SECONDS" per map written (CPU of the pair: descriptors, fit, ZoomOut and the point map; the meshes'
 processing is reported once per mesh on stdout). Run it with OMP_NUM_THREADS / OPENBLAS_NUM_THREADS
 as you want pyFM to use (e.g. 1 beside a benchmark run).
+
+As a module (scripts/bench_hypotheses.py --pyfm times the same pipeline): import_pyfm(DIR),
+process_mesh(TriMesh, PATH, kmax) and pyfm_map(FunctionalMapping, mesh_x, mesh_y, k, kmax, w_orient);
+K, KMAX and W_ORIENT are the defaults.
 """
 import argparse
 import importlib.util
@@ -24,6 +28,40 @@ import os
 import sys
 import time
 import types
+
+K, KMAX, W_ORIENT = 35, 100, 1.0
+
+
+def import_pyfm(pyfm_dir):
+    """pyFM's FunctionalMapping and TriMesh from the source tree pyfm_dir (the folder holding pyFM/).
+    Set OMP_NUM_THREADS / OPENBLAS_NUM_THREADS before calling it if numpy is not imported yet."""
+    sys.path.insert(0, pyfm_dir)
+    # pyFM imports its optional geodesic / robust-Laplacian packages at module level; this pipeline
+    # calls neither, so empty modules stand in where they are not installed
+    for name in ("potpourri3d", "robust_laplacian"):
+        if importlib.util.find_spec(name) is None:
+            sys.modules[name] = types.ModuleType(name)
+    from pyFM.functional import FunctionalMapping
+    from pyFM.mesh import TriMesh
+    return FunctionalMapping, TriMesh
+
+
+def process_mesh(TriMesh, path, kmax=KMAX):
+    """A mesh as the pipeline needs it: read (area-normalized, centred) and kmax + 30 eigenpairs."""
+    m = TriMesh(path, area_normalize=True, center=True)
+    m.process(k=kmax + 30, intrinsic=False)
+    return m
+
+
+def pyfm_map(FunctionalMapping, mx, my, k=K, kmax=KMAX, w_orient=W_ORIENT):
+    """pyFM's landmark-free map X -> Y of two processed meshes: entry i = the vertex of Y for vertex i
+    of X (descriptors, fit, ZoomOut from k to kmax, point map)."""
+    model = FunctionalMapping(my, mx)  # mesh1 = Y, mesh2 = X: p2p_21 sends X's vertices to Y
+    model.preprocess(n_ev=(k, k), n_descr=100, descr_type="WKS", landmarks=None, subsample_step=5)
+    model.fit(w_descr=1e0, w_lap=1e-2, w_dcomm=1e-1, w_orient=w_orient)
+    if kmax > k:
+        model.zoomout_refine(nit=(kmax - k) // 5, step=5)
+    return model.get_p2p(n_jobs=1)
 
 
 def mesh_dir(bench):
@@ -53,19 +91,12 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--pairs", default=None)
     ap.add_argument("--first", type=int, default=0)
-    ap.add_argument("--k", type=int, default=35)
-    ap.add_argument("--kmax", type=int, default=100)
-    ap.add_argument("--w-orient", type=float, default=1.0)
+    ap.add_argument("--k", type=int, default=K)
+    ap.add_argument("--kmax", type=int, default=KMAX)
+    ap.add_argument("--w-orient", type=float, default=W_ORIENT)
     a = ap.parse_args()
-    sys.path.insert(0, a.pyfm)
-    # pyFM imports its optional geodesic / robust-Laplacian packages at module level; this pipeline
-    # calls neither, so empty modules stand in where they are not installed
-    for name in ("potpourri3d", "robust_laplacian"):
-        if importlib.util.find_spec(name) is None:
-            sys.modules[name] = types.ModuleType(name)
+    FunctionalMapping, TriMesh = import_pyfm(a.pyfm)
     import numpy as np
-    from pyFM.functional import FunctionalMapping
-    from pyFM.mesh import TriMesh
 
     md = mesh_dir(a.benchmark)
     pfile = a.pairs
@@ -87,8 +118,7 @@ def main():
             return meshes.get(name)
         t0 = time.process_time()
         try:
-            m = TriMesh(os.path.join(md, name + ".off"), area_normalize=True, center=True)
-            m.process(k=a.kmax + 30, intrinsic=False)
+            m = process_mesh(TriMesh, os.path.join(md, name + ".off"), a.kmax)
         except Exception as e:  # a mesh pyFM cannot read or process
             bad[name] = str(e)
             print("%s: not processed: %s" % (name, e), flush=True)
@@ -107,12 +137,7 @@ def main():
         if mx is None or my is None:
             continue
         t0 = time.process_time()
-        model = FunctionalMapping(my, mx)  # mesh1 = Y, mesh2 = X: p2p_21 sends X's vertices to Y
-        model.preprocess(n_ev=(a.k, a.k), n_descr=100, descr_type="WKS", landmarks=None, subsample_step=5)
-        model.fit(w_descr=1e0, w_lap=1e-2, w_dcomm=1e-1, w_orient=a.w_orient)
-        if a.kmax > a.k:
-            model.zoomout_refine(nit=(a.kmax - a.k) // 5, step=5)
-        p2p = model.get_p2p(n_jobs=1)
+        p2p = pyfm_map(FunctionalMapping, mx, my, a.k, a.kmax, a.w_orient)
         dt = time.process_time() - t0
         if len(p2p) != mx.n_vertices:
             raise SystemExit("%s -> %s: pyFM gave %d entries for %d vertices" % (x, y, len(p2p), mx.n_vertices))
