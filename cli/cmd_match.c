@@ -263,8 +263,9 @@ int cmd_match(int argc, char **argv) {
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
             res.autopair.mirror_other, res.autopair.pairing_confident ? ", confident" : ", NOT confident");
   if (!json && res.autopair.hypotheses > 1)
-    fprintf(report, "hypotheses: %d mapped, #%d kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed; "
+    fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed; "
             "margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
+            res.autopair.hypothesis == res.autopair.hyp_descriptor ? " (the descriptors' own)" : "",
             res.autopair.hyp_energy[res.autopair.hypothesis], res.autopair.hyp_distortion[res.autopair.hypothesis],
             100 * res.autopair.hyp_reversed[res.autopair.hypothesis], res.autopair.hyp_margin,
             res.autopair.confident ? ", confident" : ", NOT confident");
@@ -279,6 +280,7 @@ int cmd_match(int argc, char **argv) {
     if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);
     if (res.autopair.hypotheses > 1) cli_job_num(&J, "hypothesis_margin", res.autopair.hyp_margin);
     cli_job_int(&J, "hypothesis", res.autopair.hypothesis);
+    cli_job_int(&J, "descriptor_candidate", res.autopair.hyp_descriptor);
     cli_job_json(&J, "hypotheses", hypotheses_json(&res.autopair, hbuf, sizeof hbuf));
   }
   cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);

@@ -404,6 +404,11 @@ typedef struct ss_autopair_options {
    * a hypothesis (docs/tuning.md) */
   int polish_rounds;
   double polish_orient_tol;
+  /* landmark-free, one more candidate beside the pairing hypotheses: X's protrusion centres (hyp_keep)
+   * and their images under the functional map of the descriptors alone (WKS with the orientation term
+   * of weight hyp_descriptor_orient; no landmark, no segment), mapped as the hypotheses are. 1: on */
+  int hyp_descriptor_map;
+  double hyp_descriptor_orient;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -491,6 +496,7 @@ typedef struct ss_autopair_info {
    * orientation score and the metric distortion of its map, and its hypothesis energy */
   int hypotheses;
   int hypothesis;
+  int hyp_descriptor; /* the descriptors' own candidate (hyp_descriptor_map; -1: none) */
   double hyp_pair_energy[SS_MAX_HYPOTHESES];
   double hyp_orientation[SS_MAX_HYPOTHESES];
   double hyp_distortion[SS_MAX_HYPOTHESES];

@@ -131,7 +131,8 @@ class ss_autopair_options(C.Structure):
                 ("hyp_landmark_tol", C.c_double), ("hyp_differ_tol", C.c_double),
                 ("hyp_differ_share", C.c_double), ("hyp_min_orientation", C.c_double),
                 ("hyp_confident_orientation", C.c_double),
-                ("polish_rounds", C.c_int), ("polish_orient_tol", C.c_double)]
+                ("polish_rounds", C.c_int), ("polish_orient_tol", C.c_double),
+                ("hyp_descriptor_map", C.c_int), ("hyp_descriptor_orient", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):
@@ -142,7 +143,8 @@ class ss_autopair_info(C.Structure):
                 ("rechecked", C.c_int), ("mirror_first", C.c_double), ("mirror_other_first", C.c_double),
                 ("mirror_margin", C.c_double), ("alternatives", C.c_int), ("alternative", C.c_int),
                 ("polished", C.c_int),
-                ("hypotheses", C.c_int), ("hypothesis", C.c_int), ("hyp_pair_energy", C.c_double * 8),
+                ("hypotheses", C.c_int), ("hypothesis", C.c_int), ("hyp_descriptor", C.c_int),
+                ("hyp_pair_energy", C.c_double * 8),
                 ("hyp_orientation", C.c_double * 8), ("hyp_distortion", C.c_double * 8),
                 ("hyp_energy", C.c_double * 8), ("hyp_map_energy", C.c_double * 8),
                 ("hyp_orientation_min", C.c_double * 8), ("hyp_reversed", C.c_double * 8),

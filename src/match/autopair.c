@@ -50,6 +50,8 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_confident_orientation = 0.45;
   o->polish_rounds = 5;
   o->polish_orient_tol = 0.1;
+  o->hyp_descriptor_map = 1;
+  o->hyp_descriptor_orient = 0.001;
 }
 
 static double cpu_now(void) {

@@ -70,6 +70,10 @@ ss_status ssi_orient_pair(const ss_centre_signature *A, const ss_centre_signatur
 /* The orientation test's functional-map options for shapes with kmin eigenpairs. */
 void ssi_orient_fmap_options(int k, int descr_k, int kmin, ss_fmap_match_options *fo);
 
+/* kept[a] (A->m) = 1 for the round(keep · m) (at least 3) centres of A farthest on average from the
+ * others (the protrusions: head, hands, feet on a body), 0 for the others; all when keep >= 1. */
+void ssi_kept_centres(const ss_centre_signature *A, double keep, int *kept);
+
 /* The median over A's m segments of s1 − s2 (segments scored in both), 0 when none; tmp: m. */
 double ssi_median_margin(int m, const double *s1, const double *s2, double *tmp);
 

@@ -39,6 +39,40 @@ static int kept_pairs(const ss_centre_signature *SX, const ss_segment_pairs *pr,
   return q;
 }
 
+/* The descriptors' own landmarks (ss_autopair_options.hyp_descriptor_map): X's round(keep · m) (at
+ * least 3) centres farthest on average from its others and their images under the functional map of
+ * the WKS and the orientation term alone (no landmark, no segment; ZoomOut as the match's), in lx,
+ * ly (SX->m room); *nl their count. A pairing-free map: where the segmentations differ too much for
+ * any pairing hypothesis to be right (a quadruped curled up), its protrusions still land near their
+ * partners. */
+static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *SX,
+                                      const ss_match_options *o, int *lx, int *ly, int *nl, ss_error *err) {
+  const int m = SX->m, kmin = X->kev < Y->kev ? X->kev : Y->kev;
+  ss_fmap_match_options fo = o->fmap;
+  if (fo.k > kmin) fo.k = kmin;
+  if (fo.descr_k > kmin) fo.descr_k = kmin;
+  if (fo.zoomout_kmax > kmin) fo.zoomout_kmax = kmin;
+  if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
+  fo.w_orient = o->autopair.hyp_descriptor_orient;
+  int *T = malloc(sizeof(int) * (size_t)X->mesh->nv), *kept = malloc(sizeof(int) * (size_t)m);
+  if (!T || !kept) {
+    free(T), free(kept);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, NULL, 0, NULL, 0},
+                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, NULL, 0, NULL, 0};
+  ss_status st = ss_fmap_match(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
+  if (!st) {
+    int q = 0;
+    ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
+    for (int a = 0; a < m; a++)
+      if (kept[a]) lx[q] = SX->centers[a], ly[q++] = T[SX->centers[a]];
+    *nl = q;
+  }
+  free(T), free(kept);
+  return st;
+}
+
 /* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed) */
 static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed) {
   return distortion + o->hyp_w_reversed * reversed;
@@ -140,7 +174,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   for (int h = 0; h < nh; h++)
     if (hyp[h].n > mx) mx = hyp[h].n;
   /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
-  const int stride = nlg + mx, ncap = 2 * nh + 1;
+  if (SX->m > mx) mx = SX->m; /* the descriptors' candidate */
+  const int stride = nlg + mx, ncap = 2 * nh + 2;
   lx = malloc(sizeof(int) * (size_t)stride * ncap);
   ly = malloc(sizeof(int) * (size_t)stride * ncap);
   cand = malloc(sizeof(int) * (size_t)ncap);
@@ -175,6 +210,13 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
     free_of[nc] = 1, hyp_of[nc] = h;
     nc++, nfree++;
+  }
+  /* the descriptors' own candidate, landmark-free only, beside the hypotheses */
+  int desc_c = -1;
+  if (nlg == 0 && o.autopair.hyp_descriptor_map && nc < SS_MAX_HYPOTHESES) {
+    int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
+    if ((st = descriptor_landmarks(X, Y, SX, &o, cx, cy, &nd, err))) goto done;
+    if (nd >= 3) cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, desc_c = nc++;
   }
   if (nlg > 0) {
     int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
@@ -249,6 +291,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     memset(&r, 0, sizeof r);
   }
   info.hypotheses = nc;
+  info.hyp_descriptor = desc_c;
   info.hyp_margin = INFINITY;
   /* the margin against the maps that differ from the returned one: with landmarks, the landmarks'
    * map and a right landmark-free map agree at almost equal energy, and that tie is no doubt

@@ -142,7 +142,7 @@ static ss_status orient_score(const ss_centre_signature *A, const ss_centre_sign
 }
 
 /* kept[a] = 1 for the round(keep · m) (at least 3) centres farthest on average from the others */
-static void kept_centres(const ss_centre_signature *A, double keep, int *kept) {
+void ssi_kept_centres(const ss_centre_signature *A, double keep, int *kept) {
   const int m = A->m;
   int na = m;
   if (keep > 0 && keep < 1 && m > 3) {
@@ -214,7 +214,7 @@ ss_status ssi_orient_ctx_new(const ss_centre_signature *A, const ss_centre_signa
   ss_status st = SS_OK;
   if (!mask || !lA || !c->kept || !c->T) st = ss_fail(err, SS_ERR_NOMEM, "autopair: out of memory");
   if (!st) {
-    kept_centres(A, keep, mask);
+    ssi_kept_centres(A, keep, mask);
     for (int a = 0; a < m; a++)
       if (mask[a]) lA[c->na] = A->centers[a], c->kept[c->na++] = a;
     c->nb = B->m;
