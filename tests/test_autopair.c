@@ -254,6 +254,10 @@ static void test_permuted_and_mirrored(void) {
              "%.3f); %d of %d vertices on their mirror\n", ai->hypotheses, ai->hypothesis, ai->hyp_energy[ai->hypothesis],
              ai->hyp_distortion[ai->hypothesis], ai->hyp_orientation[ai->hypothesis], right, n);
       CHECK(ai->hypotheses >= 2 && ai->hypothesis >= 0 && ai->hypothesis < ai->hypotheses);
+      /* the descriptors' own candidate, last, maps this isometry orientation-preserving too */
+      printf("  the descriptors' own candidate #%d: energy %.4f, orientation %.3f\n", ai->hyp_descriptor,
+             ai->hyp_energy[ai->hyp_descriptor], ai->hyp_orientation[ai->hyp_descriptor]);
+      CHECK(ai->hyp_descriptor == ai->hypotheses - 1 && ai->hyp_orientation[ai->hyp_descriptor] > 0.5);
       for (int h = 0; h < ai->hypotheses; h++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
       CHECK(ai->hyp_orientation[ai->hypothesis] > 0.5);
       CHECK(right > n / 2);
@@ -288,8 +292,13 @@ static void test_permuted_and_mirrored(void) {
     /* one hypothesis: the pairing's answer alone, as before the hypotheses */
     mo.autopair.hypotheses = 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
-    CHECK(res.autopair.hypotheses == 1 && res.autopair.hypothesis == 0);
+    CHECK(res.autopair.hypotheses == 1 && res.autopair.hypothesis == 0 && res.autopair.hyp_descriptor == -1);
     ss_match_result_free(&res);
+    mo.autopair.hypotheses = 4, mo.autopair.hyp_descriptor_orient = -1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_descriptor_orient = 0.001, mo.autopair.hyp_descriptor_map = 2;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_descriptor_map = 1;
     mo.autopair.hypotheses = SS_MAX_HYPOTHESES + 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     /* three landmarks on their mirrors, hypotheses beside them (hyp_landmarks 1): the map of least

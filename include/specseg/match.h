@@ -406,7 +406,9 @@ typedef struct ss_autopair_options {
   double polish_orient_tol;
   /* landmark-free, one more candidate beside the pairing hypotheses: X's protrusion centres (hyp_keep)
    * and their images under the functional map of the descriptors alone (WKS with the orientation term
-   * of weight hyp_descriptor_orient; no landmark, no segment), mapped as the hypotheses are. 1: on */
+   * of weight hyp_descriptor_orient, default 0.001; no landmark, no segment), mapped as the hypotheses
+   * are, when hypotheses > 1. Where the two segmentations differ too much for any pairing to be right
+   * (TOSCA_r's dogs curled up), it is the right one (docs/tuning.md). 1 (default): on; 0: off */
   int hyp_descriptor_map;
   double hyp_descriptor_orient;
 } ss_autopair_options;

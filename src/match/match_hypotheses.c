@@ -124,8 +124,9 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       a->hyp_landmarks < 0 || a->hyp_landmarks > 2 || !(a->hyp_differ_tol >= 0) || !isfinite(a->hyp_differ_tol) ||
       !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1) ||
       !(a->hyp_min_orientation >= -1 && a->hyp_min_orientation <= 1) ||
-      !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1]",
+      !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1) || a->hyp_descriptor_map < 0 ||
+      a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0) || !isfinite(a->hyp_descriptor_orient))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -211,9 +212,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     free_of[nc] = 1, hyp_of[nc] = h;
     nc++, nfree++;
   }
-  /* the descriptors' own candidate, landmark-free only, beside the hypotheses */
+  /* the descriptors' own candidate, landmark-free with several hypotheses only (one: the pairing's
+   * answer alone) */
   int desc_c = -1;
-  if (nlg == 0 && o.autopair.hyp_descriptor_map && nc < SS_MAX_HYPOTHESES) {
+  if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && nc < SS_MAX_HYPOTHESES) {
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
     if ((st = descriptor_landmarks(X, Y, SX, &o, cx, cy, &nd, err))) goto done;
     if (nd >= 3) cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, desc_c = nc++;
