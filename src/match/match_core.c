@@ -110,9 +110,29 @@ static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, 
   return SS_OK;
 }
 
+/* the ZoomOut size of a match: kmax with refinement beyond k, else k */
+static int zoomout_size(const ss_match_options *o) {
+  return o->refine != SS_REFINE_NONE && o->fmap.zoomout_kmax > o->fmap.k ? o->fmap.zoomout_kmax : o->fmap.k;
+}
+
+ss_status ssi_match_plan(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
+                         ssi_zoomout_plan *p, ss_error *err) {
+  memset(p, 0, sizeof *p);
+  const int kz = zoomout_size(o);
+  /* (too few eigenpairs: none; the match says so) */
+  if (kz <= o->fmap.k || X->kev < kz || Y->kev < kz) return SS_OK;
+  return ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o->fmap.zoomout_samples, kz, p, err);
+}
+
 ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                          const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
                          ss_error *err) {
+  return ssi_match_core_planned(X, Y, nl, lmX, lmY, pairs_in, opts_in, NULL, out, err);
+}
+
+ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                 const int *lmY, const ss_segment_pairs *pairs_in, const ss_match_options *opts_in,
+                                 const ssi_zoomout_plan *given_plan, ss_match_result *out, ss_error *err) {
   double t_start = ss_time();
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
@@ -147,7 +167,7 @@ ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl,
   if (k < 3 || (o.fmap.zoomout_kmax != 0 && o.fmap.zoomout_kmax < k))
     return ss_fail(err, SS_ERR_INVALID, "match: bad basis sizes (k %d, ZoomOut %d)", k, o.fmap.zoomout_kmax);
   /* ZoomOut size: only with refinement */
-  const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > k ? o.fmap.zoomout_kmax : k;
+  const int kz = zoomout_size(&o);
   int need = match_kev(&o);
   if (X->kev < need || Y->kev < need)
     return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs needed, shapes have %d and %d", need, X->kev, Y->kev);
@@ -279,9 +299,11 @@ ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl,
       out->kc = kz;
       if (!(out->C = malloc(sizeof(double) * (size_t)kz * kz))) goto nomem;
       int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
+      if (!given_plan && (st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz,
+                                                    &plan, err)))
         goto fail;
-      if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step, out->map, out->C, err)))
+      if ((st = ssi_zoomout_plan_run(given_plan ? given_plan : &plan, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step,
+                                     out->map, out->C, err)))
         goto fail;
       out->t_zoomout = ss_time() - t2;
     } else {
@@ -310,12 +332,13 @@ ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl,
       }
       if ((st = select_energy(X, Y, &o, k, kz, qX, qY, smap[c], &out->refine_energy[2 * c], err))) goto fail;
     }
-    if (kz > k) {
+    if (kz > k && !given_plan) {
       double tz = ss_time();
       if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
         goto fail;
       out->t_zoomout += ss_time() - tz;
     }
+    const ssi_zoomout_plan *zp = given_plan ? given_plan : &plan;
     for (int c = 0; c < 2; c++) {
       if (!Ck[c]) continue;
       double e0 = out->refine_energy[2 * c], e1 = INFINITY;
@@ -324,7 +347,7 @@ ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl,
       const int skip = o.refine_single && Ck[1 - c] && (eo < e0 || (eo == e0 && c == 1));
       if (kz > k && !skip) {
         double tz = ss_time();
-        if ((st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
+        if ((st = ssi_zoomout_plan_run(zp, Y->evecs, X->evecs, X->M, k, Ck[c], kz, step, zmap, Cz, err))) goto fail;
         out->t_zoomout += ss_time() - tz;
         if ((st = select_energy(X, Y, &o, k, kz, qX, qY, zmap, &e1, err))) goto fail;
         out->refine_energy[2 * c + 1] = e1;

@@ -154,6 +154,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   ssi_hyp_ctx hc = {0};
   ss_match_result r;
   memset(&r, 0, sizeof r);
+  ssi_zoomout_plan plan = {0};
   int *lx = NULL, *ly = NULL, *cand = NULL, *maps = NULL;
   double *segs = NULL, *gdX = NULL, *gdY = NULL;
   ss_status st = SS_OK;
@@ -249,14 +250,17 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
     goto done;
   }
+  /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
+  if (nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
+  const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
     if (from_pairs[c] >= 0) {
-      if ((st = ssi_match_core(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, &r, err))) goto done;
+      if ((st = ssi_match_core_planned(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, zp, &r, err))) goto done;
     } else {
       ss_match_options ok = o;
       if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
-      if ((st = ssi_match_core(X, Y, nl, cx, cy, NULL, &ok, &r, err))) goto done;
+      if ((st = ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, &r, err))) goto done;
     }
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
@@ -348,6 +352,7 @@ done:
   if (st) ss_match_result_free(out);
   ss_match_result_free(&r);
   ssi_hyp_ctx_free(&hc);
+  ssi_zoomout_plan_free(&plan);
   ss_centre_signature_free(&own[0]);
   ss_centre_signature_free(&own[1]);
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);

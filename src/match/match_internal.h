@@ -3,6 +3,7 @@
 #define SS_MATCH_INTERNAL_H
 
 #include "specseg/match.h"
+#include "fmap/fmap_options.h"
 
 /* Appends "; msg" (msg alone when the first) to r->notes, truncating. */
 void ssi_match_note(ss_match_result *r, const char *msg);
@@ -23,5 +24,16 @@ ss_status ssi_match_probe_caches_both(const ss_shape_prep *X, const ss_shape_pre
 ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                          const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
                          ss_error *err);
+
+/* ssi_match_core with a ZoomOut plan made by the caller for these shapes and options (ssi_match_plan;
+ * NULL: made here): the hypotheses of one match share it, as it depends on the shapes alone. */
+ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
+                                 const int *lmY, const ss_segment_pairs *pairs_in, const ss_match_options *opts_in,
+                                 const ssi_zoomout_plan *plan, ss_match_result *out, ss_error *err);
+
+/* The ZoomOut plan ssi_match_core would make for X -> Y under o (an empty one, p->n_S = 0, when o
+ * refines nothing or the shapes have too few eigenpairs for it). */
+ss_status ssi_match_plan(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
+                         ssi_zoomout_plan *p, ss_error *err);
 
 #endif
