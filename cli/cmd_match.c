@@ -30,7 +30,8 @@ static const char USAGE[] =
     "landmarks are X's protrusion centres and their images under the descriptors' own functional map (no\n"
     "segments: it survives segmentations too different to pair); the map that is closest to an\n"
     "orientation-preserving isometry is kept (metric distortion + share of segments whose orientation\n"
-    "the map reverses; a map that reverses the orientation of the whole only when none keeps it); when\n"
+    "the map reverses + the refinement's own energy of the map; a map that reverses the orientation of\n"
+    "the whole only when none keeps it); when\n"
     "another hypothesis maps almost as well or the map kept reverses orientation, a 'note:' line says so\n"
     "(the map may be wrong; --json: confident, hypothesis_margin and each hypothesis's energies).\n"
     "With --landmarks, each hypothesis's landmark-free map is also a candidate beside the landmarks' own\n"
@@ -265,11 +266,12 @@ int cmd_match(int argc, char **argv) {
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
             res.autopair.mirror_other, res.autopair.pairing_confident ? ", confident" : ", NOT confident");
   if (!json && res.autopair.hypotheses > 1)
-    fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed; "
-            "margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
+    fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed, "
+            "map energy %.4g; margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
             res.autopair.hypothesis == res.autopair.hyp_descriptor ? " (the descriptors' own)" : "",
             res.autopair.hyp_energy[res.autopair.hypothesis], res.autopair.hyp_distortion[res.autopair.hypothesis],
-            100 * res.autopair.hyp_reversed[res.autopair.hypothesis], res.autopair.hyp_margin,
+            100 * res.autopair.hyp_reversed[res.autopair.hypothesis],
+            res.autopair.hyp_map_energy[res.autopair.hypothesis], res.autopair.hyp_margin,
             res.autopair.confident ? ", confident" : ", NOT confident");
   const char *refined = res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "";
   const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0;

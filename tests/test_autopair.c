@@ -259,6 +259,15 @@ static void test_permuted_and_mirrored(void) {
              ai->hyp_energy[ai->hyp_descriptor], ai->hyp_orientation[ai->hyp_descriptor]);
       CHECK(ai->hyp_descriptor == ai->hypotheses - 1 && ai->hyp_orientation[ai->hyp_descriptor] > 0.5);
       for (int h = 0; h < ai->hypotheses; h++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
+      /* the hypothesis energy is its three terms: distortion, reversed segments, the map's own
+       * selection energy (every candidate is refined with SS_REFINE_BEST here, so it has one) */
+      for (int h = 0; h < ai->hypotheses; h++) {
+        const double sum = ai->hyp_distortion[h] + mo.autopair.hyp_w_reversed * ai->hyp_reversed[h] +
+                           mo.autopair.hyp_w_map * ai->hyp_map_energy[h];
+        CHECK(isfinite(ai->hyp_map_energy[h]) && ai->hyp_map_energy[h] >= 0);
+        CHECK_MSG(fabs(ai->hyp_energy[h] - sum) <= 1e-12 * (1 + fabs(sum)), "#%d: %.17g vs %.17g", h,
+                  ai->hyp_energy[h], sum);
+      }
       CHECK(ai->hyp_orientation[ai->hypothesis] > 0.5);
       CHECK(right > n / 2);
     }
@@ -298,7 +307,11 @@ static void test_permuted_and_mirrored(void) {
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_descriptor_orient = 0.001, mo.autopair.hyp_descriptor_map = 2;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
-    mo.autopair.hyp_descriptor_map = 1;
+    mo.autopair.hyp_descriptor_map = 1, mo.autopair.hyp_w_map = -0.1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_w_map = NAN;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_w_map = 0.05;
     mo.autopair.hypotheses = SS_MAX_HYPOTHESES + 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     /* three landmarks on their mirrors, hypotheses beside them (hyp_landmarks 1): the map of least

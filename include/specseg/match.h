@@ -360,7 +360,8 @@ typedef struct ss_autopair_options {
   /* hypothesis energy = metric distortion + hyp_w_reversed (default 0.05) · the share of X's
    * segments on which the map scores below hyp_reversed_below (default 0.15) in orientation
    * (ss_autopair_info.hyp_*; a right map keeps orientation on every segment, a mirrored limb or a
-   * torso mapped front to back reverses it there; docs/tuning.md) */
+   * torso mapped front to back reverses it there; docs/tuning.md) + hyp_w_map · the map's own
+   * selection energy (below) */
   double hyp_w_reversed;
   double hyp_reversed_below;
   /* the landmarks of a hypothesis's map: its round(hyp_keep · pairs) protrusion pairs (default
@@ -411,6 +412,11 @@ typedef struct ss_autopair_options {
    * (TOSCA_r's dogs curled up), it is the right one (docs/tuning.md). 1 (default): on; 0: off */
   int hyp_descriptor_map;
   double hyp_descriptor_orient;
+  /* the hypothesis energy's third term: hyp_w_map (default 0.05; 0: off) · the candidate map's own
+   * refinement selection energy (ss_autopair_info.hyp_map_energy; none without SS_REFINE_BEST). A
+   * partly swapped map can have the lower distortion and no reversed segment while its functional
+   * map is the less orthogonal and its descriptors the worse preserved (docs/tuning.md) */
+  double hyp_w_map;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8

@@ -132,7 +132,8 @@ class ss_autopair_options(C.Structure):
                 ("hyp_differ_share", C.c_double), ("hyp_min_orientation", C.c_double),
                 ("hyp_confident_orientation", C.c_double),
                 ("polish_rounds", C.c_int), ("polish_orient_tol", C.c_double),
-                ("hyp_descriptor_map", C.c_int), ("hyp_descriptor_orient", C.c_double)]
+                ("hyp_descriptor_map", C.c_int), ("hyp_descriptor_orient", C.c_double),
+                ("hyp_w_map", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):

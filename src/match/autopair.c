@@ -52,6 +52,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->polish_orient_tol = 0.1;
   o->hyp_descriptor_map = 1;
   o->hyp_descriptor_orient = 0.001;
+  o->hyp_w_map = 0.05;
 }
 
 static double cpu_now(void) {

@@ -73,9 +73,10 @@ static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_pre
   return st;
 }
 
-/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed) */
-static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed) {
-  return distortion + o->hyp_w_reversed * reversed;
+/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed, hyp_w_map; a map
+ * without a selection energy, NaN, adds none) */
+static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed, double map_energy) {
+  return distortion + o->hyp_w_reversed * reversed + (isfinite(map_energy) ? o->hyp_w_map * map_energy : 0);
 }
 
 /* With given landmarks, the kept pairs (kx, ky; nk) of a hypothesis that agree with them: neither
@@ -125,8 +126,9 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1) ||
       !(a->hyp_min_orientation >= -1 && a->hyp_min_orientation <= 1) ||
       !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1) || a->hyp_descriptor_map < 0 ||
-      a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0) || !isfinite(a->hyp_descriptor_orient))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0",
+      a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0) || !isfinite(a->hyp_descriptor_orient) ||
+      !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -263,6 +265,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       if ((st = ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, &r, err))) goto done;
     }
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
+    const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
     if (h >= 0) {
       pe = 0;
@@ -278,11 +281,11 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
                                                 &info.hyp_orientation_min[c]);
       info.hyp_reversed[c] = rev;
-      E = hypothesis_energy(&o.autopair, dist, rev);
+      E = hypothesis_energy(&o.autopair, dist, rev, map_energy);
     }
     info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
     info.hyp_energy[c] = E;
-    info.hyp_map_energy[c] = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
+    info.hyp_map_energy[c] = map_energy;
     /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
      * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
     int off = 0;
