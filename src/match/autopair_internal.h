@@ -25,6 +25,9 @@ typedef struct ssi_search {
 /* Energy of an assignment p (A index -> B index); share (may be NULL): per-centre shares. */
 double ssi_full_energy(const ssi_search *S, const int *p, double *share);
 
+/* qsort's comparator of doubles, ascending (on records, by their first double) */
+int ssi_dbl_cmp(const void *a, const void *b);
+
 /* The number of injections of na centres into nb (the exact search's leaves). */
 double ssi_count_injections(int na, int nb);
 

@@ -10,11 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int by_energy(const void *x, const void *y) {
-  double a = *(const double *)x, b = *(const double *)y;
-  return (a > b) - (a < b);
-}
-
 /* cand = p with A centre u moved to B centre w (exchanging with w's partner inv[w], if any) */
 static void apply_move(int na, const int *p, const int *inv, int u, int w, int *cand) {
   memcpy(cand, p, sizeof(int) * (size_t)na);
@@ -38,7 +33,7 @@ ss_status ssi_polish_oriented(ssi_orient_ctx *oc, const ssi_search *S, int *p, d
         const double e = ssi_full_energy(S, cand, NULL);
         if (e < *E - 1e-12 * fabs(*E)) mv[2 * nm] = e, mv[2 * nm + 1] = (double)u * nb + w, nm++;
       }
-    qsort(mv, (size_t)nm, 2 * sizeof(double), by_energy);
+    qsort(mv, (size_t)nm, 2 * sizeof(double), ssi_dbl_cmp); /* by energy, the first double */
     int applied = 0;
     for (int i = 0; i < nm && i < SSI_TOPK && !applied; i++) {
       const int code = (int)mv[2 * i + 1], u = code / nb, w = code % nb;

@@ -106,7 +106,7 @@ static int hungarian(int n, int m, const double *C, int *assign) {
   return 0;
 }
 
-static int dbl_cmp(const void *a, const void *b) {
+int ssi_dbl_cmp(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
   return (x > y) - (x < y);
 }
@@ -129,7 +129,7 @@ static int relaxed(ssi_search *S, int self) {
       int c = 0;
       for (int x = 0; x < n; x++)
         if (x != a) tmp[c++] = D[a + (size_t)n * x];
-      qsort(tmp, (size_t)c, sizeof(double), dbl_cmp);
+      qsort(tmp, (size_t)c, sizeof(double), ssi_dbl_cmp);
       for (int i = 0; i < q; i++) prof[(size_t)a * lq + i] = i < c ? tmp[i] : 0.0;
     }
   }
