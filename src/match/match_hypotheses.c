@@ -245,7 +245,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   oall.pairing.min_landmarks = 1;
   oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
   double best = INFINITY, t_loop = ss_time();
-  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES], best_oriented = 0;
+  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES];
   const size_t nX = (size_t)X->mesh->nv;
   /* every candidate's map, to tell the candidates that differ from the returned one */
   if (nc > 1 && !(maps = malloc(sizeof(int) * nX * (size_t)nc))) {
@@ -292,14 +292,15 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     for (int i = 0; i < nlg; i++)
       off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
     eligible[c] = !free_of[c] || off <= nlg / 4, lm_off[c] = off;
-    if (c == 0 || (eligible[c] && (oriented[c] > best_oriented || (oriented[c] == best_oriented && E < best)))) {
+    if (c == 0 || (eligible[c] && (oriented[c] > oriented[info.hypothesis] || (oriented[c] == oriented[info.hypothesis] && E < best)))) {
       if (c > 0) ss_match_result_free(out);
-      *out = r, best = E, best_oriented = oriented[c], info.hypothesis = c, info.hyp_landmarks = nl;
+      *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
     } else
       ss_match_result_free(&r);
     memset(&r, 0, sizeof r);
   }
   info.hypotheses = nc;
+  const int best_oriented = nc > 0 && oriented[info.hypothesis];
   info.hyp_descriptor = desc_c;
   info.hyp_margin = INFINITY;
   /* the margin against the maps that differ from the returned one: with landmarks, the landmarks'
