@@ -291,6 +291,10 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
   if (!out->map) goto nomem;
   double t2 = ss_time();
   out->t_fmap = t2 - t1;
+  /* the ZoomOut plan: the caller's, else made here (counted as ZoomOut time) */
+  if (!given_plan && kz > k && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto fail;
+  const ssi_zoomout_plan *zp = given_plan ? given_plan : &plan;
+  const double t_plan = ss_time() - t2;
 
   /* 3. point map: unrefined, ZoomOut of the chosen probes' map, or the best of the candidates */
   const int main_c = use_seg ? 1 : 0;
@@ -299,11 +303,7 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
       out->kc = kz;
       if (!(out->C = malloc(sizeof(double) * (size_t)kz * kz))) goto nomem;
       int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-      if (!given_plan && (st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz,
-                                                    &plan, err)))
-        goto fail;
-      if ((st = ssi_zoomout_plan_run(given_plan ? given_plan : &plan, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step,
-                                     out->map, out->C, err)))
+      if ((st = ssi_zoomout_plan_run(zp, Y->evecs, X->evecs, X->M, k, Ck[main_c], kz, step, out->map, out->C, err)))
         goto fail;
       out->t_zoomout = ss_time() - t2;
     } else {
@@ -332,13 +332,7 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
       }
       if ((st = select_energy(X, Y, &o, k, kz, qX, qY, smap[c], &out->refine_energy[2 * c], err))) goto fail;
     }
-    if (kz > k && !given_plan) {
-      double tz = ss_time();
-      if ((st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err)))
-        goto fail;
-      out->t_zoomout += ss_time() - tz;
-    }
-    const ssi_zoomout_plan *zp = given_plan ? given_plan : &plan;
+    out->t_zoomout += t_plan;
     for (int c = 0; c < 2; c++) {
       if (!Ck[c]) continue;
       double e0 = out->refine_energy[2 * c], e1 = INFINITY;
