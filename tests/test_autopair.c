@@ -312,6 +312,29 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_w_map = NAN;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_w_map = 0.05;
+    /* a map whose own selection energy is above hyp_max_map_energy is not confident, with a note
+     * saying so; the same match with the bound above that energy is (the reflection's map is right) */
+    {
+      CHECK(mo.autopair.hyp_max_map_energy == 0.37);
+      CHECK_MSG(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
+      const double me = res.autopair.hyp_map_energy[res.autopair.hypothesis];
+      const int conf0 = res.autopair.confident, kept0 = res.autopair.hypothesis;
+      ss_match_result_free(&res);
+      printf("reflection: the kept map's own energy %.4f, confident %d\n", me, conf0);
+      CHECK(isfinite(me) && me < mo.autopair.hyp_max_map_energy && conf0);
+      mo.autopair.hyp_max_map_energy = 0.5 * me;
+      CHECK_MSG(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
+      CHECK(res.autopair.hypothesis == kept0 && !res.autopair.confident); /* the choice is not changed */
+      CHECK_MSG(strstr(res.notes, "own energy") != NULL, "notes '%s'", res.notes);
+      ss_match_result_free(&res);
+      mo.autopair.hyp_max_map_energy = NAN;
+      CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+      mo.autopair.hyp_max_map_energy = INFINITY; /* off */
+      CHECK_MSG(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
+      CHECK(res.autopair.confident == conf0);
+      ss_match_result_free(&res);
+      mo.autopair.hyp_max_map_energy = 0.37;
+    }
     mo.autopair.hypotheses = SS_MAX_HYPOTHESES + 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     /* three landmarks on their mirrors, hypotheses beside them (hyp_landmarks 1): the map of least

@@ -369,7 +369,7 @@ typedef struct ss_autopair_options {
    * and the hypothesis is the segment pairing */
   double hyp_keep;
   /* a landmark-free map is confident when its hypothesis energy is at least hyp_min_margin (default
-   * 0.003) below every other hypothesis's (docs/tuning.md) */
+   * 0.005) below every other hypothesis's (docs/tuning.md) */
   double hyp_min_margin;
   /* with given landmarks (ss_match_prepared, the refined default): 0 the landmarks' map alone
    * (Table 1's refined rows); 1 maps the landmarks alone and, beside them, the landmarks plus each pairing hypothesis's
@@ -417,6 +417,11 @@ typedef struct ss_autopair_options {
    * partly swapped map can have the lower distortion and no reversed segment while its functional
    * map is the less orthogonal and its descriptors the worse preserved (docs/tuning.md) */
   double hyp_w_map;
+  /* a returned map whose own refinement selection energy (ss_autopair_info.hyp_map_energy) is above
+   * hyp_max_map_energy (default 0.37; right maps of the tuning split stay below 0.33) is not
+   * confident: a functional map that far from orthogonal, or descriptors that badly kept, is seldom
+   * right (docs/tuning.md). Not applied to a map without that energy (no SS_REFINE_BEST). */
+  double hyp_max_map_energy;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8

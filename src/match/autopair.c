@@ -41,7 +41,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_w_reversed = 0.05;
   o->hyp_reversed_below = 0.15;
   o->hyp_keep = 0.625;
-  o->hyp_min_margin = 0.003;
+  o->hyp_min_margin = 0.005;
   o->hyp_landmarks = 2;
   o->hyp_landmark_tol = 0.1;
   o->hyp_differ_tol = 0.1;
@@ -53,6 +53,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_descriptor_map = 1;
   o->hyp_descriptor_orient = 0.001;
   o->hyp_w_map = 0.05;
+  o->hyp_max_map_energy = 0.37;
 }
 
 static double cpu_now(void) {

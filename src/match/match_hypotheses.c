@@ -127,8 +127,8 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_min_orientation >= -1 && a->hyp_min_orientation <= 1) ||
       !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1) || a->hyp_descriptor_map < 0 ||
       a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0) || !isfinite(a->hyp_descriptor_orient) ||
-      !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0",
+      !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0, hyp_max_map_energy not NaN",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -317,7 +317,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
   const double kept_orient = info.hyp_orientation[info.hypothesis];
   const int low_orient = best_oriented && kept_orient < o.autopair.hyp_confident_orientation;
-  if (!best_oriented || low_orient) info.confident = 0;
+  const double kept_map_energy = info.hyp_map_energy[info.hypothesis];
+  /* NaN (no such energy) compares false: not flagged by it */
+  const int high_map_energy = kept_map_energy > o.autopair.hyp_max_map_energy;
+  if (!best_oriented || low_orient || high_map_energy) info.confident = 0;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
@@ -339,6 +342,12 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     char msg[240];
     snprintf(msg, sizeof msg, "map NOT confident: its orientation score %.2f is below %.2g (part of it may be mirrored; %s)",
              kept_orient, o.autopair.hyp_confident_orientation, nlg ? "check the landmarks" : "give landmarks");
+    ssi_match_note(out, msg);
+  } else if (high_map_energy) {
+    char msg[240];
+    snprintf(msg, sizeof msg, "map NOT confident: its own energy %.3g is above %.3g (its functional map is far from "
+             "orthogonal or the descriptors badly kept; %s)", kept_map_energy, o.autopair.hyp_max_map_energy,
+             nlg ? "check the landmarks" : "give landmarks");
     ssi_match_note(out, msg);
   } else if (!info.confident) {
     char msg[240];
