@@ -95,6 +95,7 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
       if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
       else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
     }
+    if (n < size && a->hyp_flip_of[h] >= 0) n += (size_t)snprintf(buf + n, size - n, ", \"flip_of\": %d", a->hyp_flip_of[h]);
     if (n < size) n += (size_t)snprintf(buf + n, size - n, "}");
   }
   if (n < size) snprintf(buf + n, size - n, "]");

@@ -422,6 +422,14 @@ typedef struct ss_autopair_options {
    * confident: a functional map that far from orthogonal, or descriptors that badly kept, is seldom
    * right (docs/tuning.md). Not applied to a map without that energy (no SS_REFINE_BEST). */
   double hyp_max_map_energy;
+  /* landmark-free, when the map kept scores below hyp_confident_orientation: each candidate whose
+   * map reverses orientation (below hyp_min_orientation) is flipped into one more candidate, mapped
+   * as the others are: X's protrusion centres (hyp_keep) and the images under that map of their
+   * mirror images on X, the mirror found as the functional map from X to its reflection in a plane
+   * with the orientation term of weight hyp_flip_orient (default 1; 0: off). A quadruped whose
+   * every hypothesis came out as its mirror image (TOSCA_r's cats, dogs, centaurs) gets the right way
+   * round (docs/tuning.md) */
+  double hyp_flip_orient;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -524,6 +532,8 @@ typedef struct ss_autopair_info {
   /* per candidate, the share of X's vertices whose image lies farther than hyp_differ_tol from the
    * returned map's image of it (0 for the returned one) */
   double hyp_differ[SS_MAX_HYPOTHESES];
+  /* per candidate, the candidate it is the flip of (hyp_flip_orient), -1 for the others */
+  int hyp_flip_of[SS_MAX_HYPOTHESES];
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

@@ -54,6 +54,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_descriptor_orient = 0.001;
   o->hyp_w_map = 0.05;
   o->hyp_max_map_energy = 0.37;
+  o->hyp_flip_orient = 1;
 }
 
 static double cpu_now(void) {
@@ -183,7 +184,10 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
                            ss_autopair_info *info, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "autopair: NULL output");
   memset(out, 0, sizeof *out);
-  if (info) memset(info, 0, sizeof *info);
+  if (info) {
+    memset(info, 0, sizeof *info);
+    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = -1;
+  }
   ss_autopair_options o;
   if (o_in) o = *o_in;
   else ss_autopair_default_options(&o);

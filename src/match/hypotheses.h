@@ -23,6 +23,20 @@ void ssi_hyp_ctx_free(ssi_hyp_ctx *c);
  * v of |d_X(s, v)/√area_X − d_Y(map s, map v)/√area_Y| (edge-graph distances). */
 ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_error *err);
 
+/* X's left-right self-symmetry as a vertex map (match_hypotheses.c; the flipped candidates of
+ * ss_autopair_options.hyp_flip_orient): S[v] is the mirror image of vertex v of X (an
+ * orientation-reversing self-isometry), from the functional map of X to its reflection in a plane with
+ * the orientation term of weight w (> 0) and the match's ZoomOut (o->fmap).
+ *
+ * Inputs:
+ *   X        a prepared shape (kev >= 20 for both candidate sizes)
+ *   o        the match's options (o->fmap: descriptors and ZoomOut)
+ *   w        weight of the orientation term
+ * Outputs:
+ *   S        X->mesh->nv entries (caller-allocated)
+ * Errors: those of ss_fmap_match; SS_ERR_NOMEM. */
+ss_status ssi_symmetry_map(const ss_shape_prep *X, const ss_match_options *o, double w, int *S, ss_error *err);
+
 /* ss_match_prepared with the shapes' centre signatures when the caller has them (NULL: computed):
  * landmark-free, the hypotheses' map; with landmarks and ss_autopair_options.hyp_landmarks, the
  * given landmarks' map against the pairing hypotheses that agree with them (match_hypotheses.c). */

@@ -73,6 +73,58 @@ static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_pre
   return st;
 }
 
+/* One candidate of X's left-right self-symmetry (ssi_symmetry_map): the functional map of size k from X
+ * to its reflection in a plane (the same intrinsic shape, hence the same eigenpairs) with the WKS
+ * and the orientation term of weight w, refined by ZoomOut as the match's. The reflection reverses
+ * orientation, so the orientation term turns the trivial answer (the vertex identity, a perfect
+ * isometry otherwise) away and keeps the intrinsic mirror. */
+static ss_status symmetry_candidate(const ss_shape_prep *X, const ss_mesh *mirror, const ss_match_options *o, int k,
+                                    double w, int *S, ss_error *err) {
+  ss_fmap_match_options fo = o->fmap;
+  fo.k = k < X->kev ? k : X->kev;
+  if (fo.descr_k > X->kev) fo.descr_k = X->kev;
+  if (fo.zoomout_kmax > X->kev) fo.zoomout_kmax = X->kev;
+  if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
+  fo.w_orient = w;
+  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, NULL, 0, NULL, 0}, sR = sX;
+  sR.mesh = mirror;
+  return ss_fmap_match(&sX, &sR, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, S, NULL, err);
+}
+
+/* (hypotheses.h) Of the candidates of sizes 8 and 20 (a small
+ * basis keeps the orientation term strong; either alone leaves part of X on itself on some shapes,
+ * the two seldom on the same ones), the one that moves X's farthest-point sources the farthest
+ * (mean geodesic from s to S(s), a mirror moves every point off the symmetry plane) net of its metric
+ * distortion (a map that mirrors part of X and keeps the rest tears where they meet). The centres'
+ * own symmetry (ss_centre_signature.sigma) cannot serve: among a quadruped's 10–14 centres, swaps of
+ * two near centres cost less than the whole mirror, and σ is mostly the identity there. */
+ss_status ssi_symmetry_map(const ss_shape_prep *X, const ss_match_options *o, double w, int *S, ss_error *err) {
+  static const int K[2] = {8, 20};
+  const size_t nX = (size_t)X->mesh->nv;
+  ss_mesh mirror = *X->mesh;
+  mirror.V = malloc(sizeof(double) * 3 * nX);
+  int *T = malloc(sizeof(int) * nX);
+  ssi_hyp_ctx hs = {0};
+  ss_status st = mirror.V && T ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  for (size_t i = 0; !st && i < 3 * nX; i++) mirror.V[i] = i % 3 == 0 ? -X->mesh->V[i] : X->mesh->V[i];
+  if (!st) st = ssi_hyp_ctx_new(X->mesh, X->mesh, 16, &hs, err);
+  double best = -INFINITY;
+  for (int i = 0; !st && i < 2; i++) {
+    double dist = 0, moved = 0;
+    if ((st = symmetry_candidate(X, &mirror, o, K[i], w, T, err)) || (st = ssi_hyp_distortion(&hs, T, &dist, err))) break;
+    int nm = 0;
+    for (int j = 0; j < hs.nsrc; j++) {
+      const double d = hs.dX[nX * j + (size_t)T[hs.src[j]]] / hs.sX;
+      if (isfinite(d)) moved += d, nm++;
+    }
+    const double score = (nm ? moved / nm : 0) - dist;
+    if (i == 0 || score > best) best = score, memcpy(S, T, sizeof(int) * nX);
+  }
+  ssi_hyp_ctx_free(&hs);
+  free(mirror.V), free(T);
+  return st;
+}
+
 /* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed, hyp_w_map; a map
  * without a selection energy, NaN, adds none) */
 static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed, double map_energy) {
@@ -127,10 +179,46 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_min_orientation >= -1 && a->hyp_min_orientation <= 1) ||
       !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1) || a->hyp_descriptor_map < 0 ||
       a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0) || !isfinite(a->hyp_descriptor_orient) ||
-      !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0, hyp_max_map_energy not NaN",
+      !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
+      !(a->hyp_flip_orient >= 0) || !isfinite(a->hyp_flip_orient))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient finite >= 0",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
+}
+
+/* The flipped candidates (ss_autopair_options.hyp_flip_orient): for each of the nc candidates mapped
+ * so far whose map reverses orientation (oriented[c] 0), the landmarks X's protrusion centres
+ * (hyp_keep) and the images under that map of their mirror images on X (ssi_symmetry_map): the mirror
+ * map turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to
+ * lx, ly, cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c. */
+static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *SX, const ss_match_options *o,
+                             const int *maps, const int *oriented, int stride, int *lx, int *ly, int *cand,
+                             int *from_pairs, int *free_of, int *hyp_of, int *flip_of, int *nc_io, ss_error *err) {
+  const int nc0 = *nc_io, m = SX->m;
+  const size_t nX = (size_t)X->mesh->nv;
+  int any = 0;
+  for (int c = 0; c < nc0; c++) any |= !oriented[c];
+  if (!any) return SS_OK;
+  int *S = malloc(sizeof(int) * nX), *kept = malloc(sizeof(int) * (size_t)m);
+  ss_status st = S && kept ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  if (!st) st = ssi_symmetry_map(X, o, o->autopair.hyp_flip_orient, S, err);
+  if (!st) ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
+  int nc = nc0;
+  for (int c = 0; !st && c < nc0 && nc < SS_MAX_HYPOTHESES; c++) {
+    if (oriented[c]) continue;
+    int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, q = 0;
+    for (int a = 0; a < m; a++)
+      if (kept[a]) cx[q] = SX->centers[a], cy[q++] = maps[nX * c + (size_t)S[SX->centers[a]]];
+    int dup = q < 3;
+    for (int b = 0; b < nc && !dup; b++)
+      dup = free_of[b] && same_set(cand[b], lx + (size_t)stride * b, ly + (size_t)stride * b, q, cx, cy);
+    if (dup) continue;
+    cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, flip_of[nc] = c;
+    nc++;
+  }
+  free(S), free(kept);
+  *nc_io = nc;
+  return st;
 }
 
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
@@ -179,7 +267,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     if (hyp[h].n > mx) mx = hyp[h].n;
   /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
   if (SX->m > mx) mx = SX->m; /* the descriptors' candidate */
-  const int stride = nlg + mx, ncap = 2 * nh + 2;
+  const int stride = nlg + mx, ncap = SS_MAX_HYPOTHESES;
   lx = malloc(sizeof(int) * (size_t)stride * ncap);
   ly = malloc(sizeof(int) * (size_t)stride * ncap);
   cand = malloc(sizeof(int) * (size_t)ncap);
@@ -248,13 +336,15 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES];
   const size_t nX = (size_t)X->mesh->nv;
   /* every candidate's map, to tell the candidates that differ from the returned one */
-  if (nc > 1 && !(maps = malloc(sizeof(int) * nX * (size_t)nc))) {
+  if (nc > 1 && !(maps = malloc(sizeof(int) * nX * SS_MAX_HYPOTHESES))) {
     st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
     goto done;
   }
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
   if (nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
+  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1;
+  int flips_looked = 0;
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
     if (from_pairs[c] >= 0) {
@@ -298,6 +388,16 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     } else
       ss_match_result_free(&r);
     memset(&r, 0, sizeof r);
+    /* once the first candidates are mapped: the flipped ones, when the map kept is not clearly
+     * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs) */
+    if (c == nc - 1 && !flips_looked) {
+      flips_looked = 1;
+      if (nlg == 0 && nc > 1 && o.autopair.hyp_flip_orient > 0 &&
+          info.hyp_orientation[info.hypothesis] < o.autopair.hyp_confident_orientation &&
+          (st = add_flipped(X, SX, &o, maps, oriented, stride, lx, ly, cand, from_pairs, free_of, hyp_of,
+                            info.hyp_flip_of, &nc, err)))
+        goto done;
+    }
   }
   info.hypotheses = nc;
   const int best_oriented = nc > 0 && oriented[info.hypothesis];
