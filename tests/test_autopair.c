@@ -688,6 +688,19 @@ static void test_tosca_flip(void) {
            ai->hyp_orientation[ai->hypothesis], err, np);
     CHECK(ai->hyp_flip_of[ai->hypothesis] >= 0 && ai->hyp_orientation[ai->hypothesis] > 0.45);
     CHECK(err < 0.05);
+    /* the selection: none that keeps orientation when the kept one does not, and none of the kept
+     * one's class of lower energy (landmark-free: every candidate is eligible) */
+    int lv[SS_MAX_HYPOTHESES];
+    for (int h = 0; h < ai->hypotheses; h++) {
+      const double or = ai->hyp_orientation[h];
+      lv[h] = !(or < mo.autopair.hyp_min_orientation);
+      printf("  #%d: energy %.4f, orientation %.3f (class %d), flip of %d\n", h, ai->hyp_energy[h], or, lv[h],
+             ai->hyp_flip_of[h]);
+    }
+    for (int h = 0; h < ai->hypotheses; h++) {
+      CHECK(lv[h] <= lv[ai->hypothesis]);
+      if (lv[h] == lv[ai->hypothesis]) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
+    }
   }
   ss_match_result_free(&res);
   free(gx), free(gy);
