@@ -13,18 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double mesh_area(const ss_mesh *m) {
-  double area = 0;
-  for (int f = 0; f < m->nf; f++) {
-    const double *a = m->V + 3 * (size_t)m->F[3 * f], *b = m->V + 3 * (size_t)m->F[3 * f + 1],
-                 *c = m->V + 3 * (size_t)m->F[3 * f + 2];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double w[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    area += 0.5 * sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-  }
-  return area;
-}
-
 /* X's own left-right symmetry (ssi_symmetry_map) on the humanoid, its front half inflated so that
  * the mirror in x = 0 is its only symmetry: every vertex must land on (or next to) its mirror image,
  * and every vertex off the symmetry plane must move (a failed symmetry leaves part of X on itself) */
@@ -53,7 +41,7 @@ static void test_symmetry_map(void) {
   mo.fmap.zoomout_kmax = kev;
   CHECK(mo.autopair.hyp_flip_orient == 1);
   CHECK_MSG(ssi_symmetry_map(&pX, &mo, mo.autopair.hyp_flip_orient, S, &e) == SS_OK, "%s", e.msg);
-  const double r = sqrt(mesh_area(&X));
+  const double r = sqrt(ss_mesh_area(&X));
   int near = 0, off_plane = 0, moved = 0;
   for (int i = 0; i < n; i++) {
     const double *p = X.V + 3 * (size_t)S[i], *q = X.V + 3 * (size_t)sym[i];
@@ -111,7 +99,7 @@ static void test_tosca_flip(void) {
   memset(&res, 0, sizeof res);
   if (gx && gy && X.nv > 0 && Y.nv > 0) CHECK_MSG(ss_match(&X, &Y, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
   if (res.map) {
-    const double area = mesh_area(&Y);
+    const double area = ss_mesh_area(&Y);
     double err = 0;
     const int np = nx < ny ? nx : ny;
     for (int k = 0; k < np; k++) {

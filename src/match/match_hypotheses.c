@@ -39,6 +39,25 @@ static int kept_pairs(const ss_centre_signature *SX, const ss_segment_pairs *pr,
   return q;
 }
 
+/* The match's functional-map options (base) for a map of basis size k between shapes of kev
+ * eigenpairs at least, with the orientation term of weight w_orient: every size within kev, no ZoomOut
+ * when it would not grow the basis. */
+static ss_fmap_match_options fmap_options_within(const ss_fmap_match_options *base, int kev, int k, double w_orient) {
+  ss_fmap_match_options fo = *base;
+  fo.k = k < kev ? k : kev;
+  if (fo.descr_k > kev) fo.descr_k = kev;
+  if (fo.zoomout_kmax > kev) fo.zoomout_kmax = kev;
+  if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
+  fo.w_orient = w_orient;
+  return fo;
+}
+
+/* a prepared shape as ss_fmap_match takes it (no descriptors of the caller's, no probe cache) */
+static ss_fmap_shape fmap_shape_of(const ss_shape_prep *p) {
+  const ss_fmap_shape s = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
+  return s;
+}
+
 /* The descriptors' own landmarks (ss_autopair_options.hyp_descriptor_map): X's round(keep · m) (at
  * least 3) centres farthest on average from its others and their images under the functional map of
  * the WKS and the orientation term alone (no landmark, no segment; ZoomOut as the match's), in lx,
@@ -48,19 +67,13 @@ static int kept_pairs(const ss_centre_signature *SX, const ss_segment_pairs *pr,
 static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *SX,
                                       const ss_match_options *o, int *lx, int *ly, int *nl, ss_error *err) {
   const int m = SX->m, kmin = X->kev < Y->kev ? X->kev : Y->kev;
-  ss_fmap_match_options fo = o->fmap;
-  if (fo.k > kmin) fo.k = kmin;
-  if (fo.descr_k > kmin) fo.descr_k = kmin;
-  if (fo.zoomout_kmax > kmin) fo.zoomout_kmax = kmin;
-  if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
-  fo.w_orient = o->autopair.hyp_descriptor_orient;
+  const ss_fmap_match_options fo = fmap_options_within(&o->fmap, kmin, o->fmap.k, o->autopair.hyp_descriptor_orient);
   int *T = malloc(sizeof(int) * (size_t)X->mesh->nv), *kept = malloc(sizeof(int) * (size_t)m);
   if (!T || !kept) {
     free(T), free(kept);
     return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   }
-  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, NULL, 0, NULL, 0},
-                sY = {Y->mesh, Y->M, Y->evals, Y->evecs, Y->kev, NULL, 0, NULL, 0};
+  const ss_fmap_shape sX = fmap_shape_of(X), sY = fmap_shape_of(Y);
   ss_status st = ss_fmap_match(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
   if (!st) {
     int q = 0;
@@ -80,13 +93,9 @@ static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_pre
  * isometry otherwise) away and keeps the intrinsic mirror. */
 static ss_status symmetry_candidate(const ss_shape_prep *X, const ss_mesh *mirror, const ss_match_options *o, int k,
                                     double w, int *S, ss_error *err) {
-  ss_fmap_match_options fo = o->fmap;
-  fo.k = k < X->kev ? k : X->kev;
-  if (fo.descr_k > X->kev) fo.descr_k = X->kev;
-  if (fo.zoomout_kmax > X->kev) fo.zoomout_kmax = X->kev;
-  if (fo.zoomout_kmax <= fo.k) fo.zoomout_kmax = 0;
-  fo.w_orient = w;
-  ss_fmap_shape sX = {X->mesh, X->M, X->evals, X->evecs, X->kev, NULL, 0, NULL, 0}, sR = sX;
+  const ss_fmap_match_options fo = fmap_options_within(&o->fmap, X->kev, k, w);
+  const ss_fmap_shape sX = fmap_shape_of(X);
+  ss_fmap_shape sR = sX;
   sR.mesh = mirror;
   return ss_fmap_match(&sX, &sR, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, S, NULL, err);
 }
