@@ -122,6 +122,16 @@ static void test_tosca_flip(void) {
       printf("  #%d: energy %.4f, orientation %.3f (class %d), flip of %d\n", h, ai->hyp_energy[h], or, lv[h],
              ai->hyp_flip_of[h]);
     }
+    /* each candidate's energy is its distortion, reversed share, own map energy and orientation
+     * shortfall below the confident level, weighted as the options say */
+    const ss_autopair_options *ao = &mo.autopair;
+    for (int h = 0; h < ai->hypotheses; h++) {
+      const double me = ai->hyp_map_energy[h], sh = ao->hyp_confident_orientation - ai->hyp_orientation[h];
+      const double E = ai->hyp_distortion[h] + ao->hyp_w_reversed * ai->hyp_reversed[h] +
+                       (isfinite(me) ? ao->hyp_w_map * me : 0) + (sh > 0 ? ao->hyp_w_orientation * sh : 0);
+      CHECK_MSG(fabs(E - ai->hyp_energy[h]) <= 1e-12 * (1 + fabs(E)), "#%d: energy %.15g, its terms sum to %.15g", h,
+                ai->hyp_energy[h], E);
+    }
     for (int h = 0; h < ai->hypotheses; h++) {
       CHECK(lv[h] <= lv[ai->hypothesis]);
       if (lv[h] == lv[ai->hypothesis]) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);

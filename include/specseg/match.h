@@ -430,6 +430,12 @@ typedef struct ss_autopair_options {
    * every hypothesis came out as its mirror image (TOSCA_r's cats, dogs, centaurs) gets the right way
    * round (docs/tuning.md) */
   double hyp_flip_orient;
+  /* weight of the orientation shortfall in the hypothesis energy: a candidate scores
+   * hyp_w_orientation * max(0, hyp_confident_orientation - its orientation score) more, so of two
+   * maps of near-equal distortion the one that keeps orientation more clearly wins, while scores
+   * above the confident level all count alike (default 0.01; 0: off; TOSCA_r horse14 -> horse7,
+   * docs/tuning.md) */
+  double hyp_w_orientation;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8

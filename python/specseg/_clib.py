@@ -134,7 +134,7 @@ class ss_autopair_options(C.Structure):
                 ("polish_rounds", C.c_int), ("polish_orient_tol", C.c_double),
                 ("hyp_descriptor_map", C.c_int), ("hyp_descriptor_orient", C.c_double),
                 ("hyp_w_map", C.c_double), ("hyp_max_map_energy", C.c_double),
-                ("hyp_flip_orient", C.c_double)]
+                ("hyp_flip_orient", C.c_double), ("hyp_w_orientation", C.c_double)]
 
 
 class ss_autopair_info(C.Structure):

@@ -55,6 +55,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_w_map = 0.05;
   o->hyp_max_map_energy = 0.37;
   o->hyp_flip_orient = 1;
+  o->hyp_w_orientation = 0.01;
 }
 
 static double cpu_now(void) {

@@ -134,10 +134,13 @@ ss_status ssi_symmetry_map(const ss_shape_prep *X, const ss_match_options *o, do
   return st;
 }
 
-/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed, hyp_w_map; a map
- * without a selection energy, NaN, adds none) */
-static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed, double map_energy) {
-  return distortion + o->hyp_w_reversed * reversed + (isfinite(map_energy) ? o->hyp_w_map * map_energy : 0);
+/* The hypothesis energy of a map (match.h: ss_autopair_options.hyp_w_reversed, hyp_w_map,
+ * hyp_w_orientation; a map without a selection energy or an orientation score, NaN, adds none) */
+static double hypothesis_energy(const ss_autopair_options *o, double distortion, double reversed, double map_energy,
+                                double orientation) {
+  const double shortfall = o->hyp_confident_orientation - orientation;
+  return distortion + o->hyp_w_reversed * reversed + (isfinite(map_energy) ? o->hyp_w_map * map_energy : 0) +
+         (shortfall > 0 ? o->hyp_w_orientation * shortfall : 0);
 }
 
 /* With given landmarks, the kept pairs (kx, ky; nk) of a hypothesis that agree with them: neither
@@ -189,8 +192,9 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1) || a->hyp_descriptor_map < 0 ||
       a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0) || !isfinite(a->hyp_descriptor_orient) ||
       !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
-      !(a->hyp_flip_orient >= 0) || !isfinite(a->hyp_flip_orient))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient finite >= 0",
+      !(a->hyp_flip_orient >= 0) || !isfinite(a->hyp_flip_orient) || !(a->hyp_w_orientation >= 0) ||
+      !isfinite(a->hyp_w_orientation))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient finite >= 0, hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient and hyp_w_orientation finite >= 0",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -380,7 +384,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
                                                 &info.hyp_orientation_min[c]);
       info.hyp_reversed[c] = rev;
-      E = hypothesis_energy(&o.autopair, dist, rev, map_energy);
+      E = hypothesis_energy(&o.autopair, dist, rev, map_energy, orient);
     }
     info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
     info.hyp_energy[c] = E;
