@@ -33,21 +33,6 @@ static void reflect(const ss_mesh *X, ss_mesh *Y) {
   }
 }
 
-/* the vertex of m nearest to the mirror image of each vertex (the humanoid is mirror-symmetric) */
-static void mirror_map(const ss_mesh *m, int *sym, double *maxd) {
-  *maxd = 0;
-  for (int i = 0; i < m->nv; i++) {
-    const double *p = m->V + 3 * (size_t)i;
-    double best = INFINITY;
-    for (int j = 0; j < m->nv; j++) {
-      const double *q = m->V + 3 * (size_t)j;
-      double d = (p[0] + q[0]) * (p[0] + q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
-      if (d < best) best = d, sym[i] = j;
-    }
-    if (sqrt(best) > *maxd) *maxd = sqrt(best);
-  }
-}
-
 /* pairing of X and Y through their signatures (sY's shape is pY); right = pairs whose X centre,
  * carried by gt (X vertex -> Y vertex), lies in the paired segment of Y */
 static int pair_sigs(const ss_centre_signature *sX, const ss_centre_signature *sY, const int *gt,
@@ -87,8 +72,7 @@ static void test_permuted_and_mirrored(void) {
   }
   permute(&X, perm, &P);
   reflect(&X, &R);
-  double maxd;
-  mirror_map(&X, sym, &maxd);
+  const double maxd = tl_mirror_map(X.V, X.nv, sym); /* the humanoid is mirror-symmetric */
   printf("humanoid: %d vertices, mirror map residual %.2g\n", n, maxd);
   ss_shape_prep pX, pP, pR;
   int kev = 100;

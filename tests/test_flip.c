@@ -24,15 +24,7 @@ static void test_symmetry_map(void) {
     if (X.V[3 * (size_t)i + 2] > 0) X.V[3 * (size_t)i + 2] *= 1.6;
   const int n = X.nv;
   int *sym = malloc(sizeof(int) * (size_t)n), *S = malloc(sizeof(int) * (size_t)n);
-  for (int i = 0; i < n; i++) { /* the vertex nearest to the mirror image */
-    const double *p = X.V + 3 * (size_t)i;
-    double best = INFINITY;
-    for (int j = 0; j < n; j++) {
-      const double *q = X.V + 3 * (size_t)j;
-      const double d = (p[0] + q[0]) * (p[0] + q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
-      if (d < best) best = d, sym[i] = j;
-    }
-  }
+  tl_mirror_map(X.V, n, sym);
   ss_shape_prep pX;
   const int kev = 100;
   CHECK_MSG(ss_shape_prep_compute(&X, NULL, kev, &pX, &e) == SS_OK, "%s", e.msg);

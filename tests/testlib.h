@@ -42,6 +42,23 @@ static inline const char *tl_data_dir(void) {
   return d;
 }
 
+/* For each of nv vertices V (nv x 3), the vertex nearest to its mirror image in the plane x = 0 (brute
+ * force: small test meshes); returns the largest of those distances. */
+static inline double tl_mirror_map(const double *V, int nv, int *sym) {
+  double maxd = 0;
+  for (int i = 0; i < nv; i++) {
+    const double *p = V + 3 * (size_t)i;
+    double best = INFINITY;
+    for (int j = 0; j < nv; j++) {
+      const double *q = V + 3 * (size_t)j;
+      const double d = (p[0] + q[0]) * (p[0] + q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+      if (d < best) best = d, sym[i] = j;
+    }
+    if (sqrt(best) > maxd) maxd = sqrt(best);
+  }
+  return maxd;
+}
+
 #define TEST_MAIN_END()                                                                  \
   do {                                                                                   \
     printf("%d passed, %d failed", tl_pass, tl_fail);                                    \
