@@ -7,18 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static double mesh_area(const ss_mesh *m) {
-  double a = 0;
-  for (int f = 0; f < m->nf; f++) {
-    const int *t = m->F + 3 * (size_t)f;
-    const double *p = m->V + 3 * (size_t)t[0], *q = m->V + 3 * (size_t)t[1], *r = m->V + 3 * (size_t)t[2];
-    double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
-    double c[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-  }
-  return a;
-}
-
 void ssi_hyp_ctx_free(ssi_hyp_ctx *c) {
   if (!c) return;
   ss_graph_free(&c->gX), ss_graph_free(&c->gY);
@@ -31,7 +19,7 @@ ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_
   const int nX = X->nv;
   if (nsrc > nX) nsrc = nX;
   c->X = X, c->Y = Y, c->nsrc = nsrc;
-  c->sX = sqrt(mesh_area(X)), c->sY = sqrt(mesh_area(Y));
+  c->sX = sqrt(ss_mesh_area(X)), c->sY = sqrt(ss_mesh_area(Y));
   if (!(c->sX > 0) || !(c->sY > 0)) return ss_fail(err, SS_ERR_INVALID, "match: a mesh of zero area");
   ss_status st;
   if ((st = ss_graph_edges(X, &c->gX, err)) || (st = ss_graph_edges(Y, &c->gY, err))) goto fail;
