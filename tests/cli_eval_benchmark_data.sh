@@ -35,12 +35,14 @@ grep -q '^specseg,horse0,horse7,.*,skipped,' "$TMP/t/pairs.csv" && ok || bad "ho
 h = [c["energy"] for c in json.load(open(sys.argv[1]))["results"][0]["hypotheses"]]
 sys.exit(0 if len(h) >= 3 and len(set(h)) == len(h) else "energies %s" % h)' "$TMP/j3" && ok ||
   bad "cat3 -> cat5: distinct hypotheses wanted: $(head -c 600 "$TMP/j3")"
-# ... and the one of least energy there is a mirror image (whole-map orientation below 0): the map kept
-# preserves orientation, and as its score is below hyp_confident_orientation (0.45) it is not confident
+# ... and the one of least distortion there is a mirror image (whole-map orientation below 0): the map
+# kept preserves orientation, has the least energy of those that do, and when its score is below
+# hyp_confident_orientation (0.45) it is not confident
 "$PY" -c 'import json, sys
 r = json.load(open(sys.argv[1]))["results"][0]; H = r["hypotheses"]; k = H[r["hypothesis"]]
-low = min(H, key=lambda c: c["energy"])
-ok = low["orientation"] < 0 and k["orientation"] >= 0 and k["energy"] > low["energy"]
+low = min(H, key=lambda c: c["distortion"])
+ok = low["orientation"] < 0 and k["orientation"] >= 0 and k["distortion"] > low["distortion"]
+ok = ok and all(k["energy"] <= c["energy"] for c in H if c["orientation"] >= 0)
 ok = ok and (k["orientation"] >= 0.45 or (not r["confident"] and "orientation score" in r["notes"]))
 sys.exit(0 if ok else "kept %s of %s" % (r["hypothesis"], H))' "$TMP/j3" && ok ||
   bad "cat3 -> cat5: the orientation-preserving hypothesis wanted: $(head -c 900 "$TMP/j3")"
