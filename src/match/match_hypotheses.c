@@ -204,11 +204,10 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
  * (hyp_keep) and the images under that map of their mirror images on X (ssi_symmetry_map): the mirror
  * map turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to
  * lx, ly, cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c.
- * When X's symmetry map fails (other than for memory), none is added and `skipped` says why. */
+ * On failure none is added. */
 static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *SX, const ss_match_options *o,
                              const int *maps, const int *oriented, int stride, int *lx, int *ly, int *cand,
-                             int *from_pairs, int *free_of, int *hyp_of, int *flip_of, int *nc_io, char *skipped,
-                             size_t skipped_size, ss_error *err) {
+                             int *from_pairs, int *free_of, int *hyp_of, int *flip_of, int *nc_io, ss_error *err) {
   const int nc0 = *nc_io, m = SX->m;
   const size_t nX = (size_t)X->mesh->nv;
   int any = 0;
@@ -216,18 +215,7 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *
   if (!any) return SS_OK;
   int *S = malloc(sizeof(int) * nX), *kept = malloc(sizeof(int) * (size_t)m);
   ss_status st = S && kept ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-  if (!st) {
-    /* the flips are optional: a symmetry map that fails (other than for memory) skips them, and the
-     * caller notes why, instead of failing a match whose candidates are all mapped */
-    ss_error serr = {{0}};
-    st = ssi_symmetry_map(X, o, o->autopair.hyp_flip_orient, S, &serr);
-    if (st && st != SS_ERR_NOMEM) {
-      snprintf(skipped, skipped_size, "no flipped candidates: X's own symmetry map failed (%s)", serr.msg);
-      free(S), free(kept);
-      return SS_OK;
-    }
-    if (st) *err = serr;
-  }
+  if (!st) st = ssi_symmetry_map(X, o, o->autopair.hyp_flip_orient, S, err);
   if (!st) ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
   int nc = nc0;
   for (int c = 0; !st && c < nc0 && nc < SS_MAX_HYPOTHESES; c++) {
@@ -371,7 +359,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
   for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1;
   int flips_looked = 0;
-  char flip_skipped[1200] = "";
+  char flip_skipped[sizeof(ss_error) + 64] = "";
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
     if (from_pairs[c] >= 0) {
@@ -419,11 +407,20 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
      * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs) */
     if (c == nc - 1 && !flips_looked) {
       flips_looked = 1;
+      ss_error ferr = {{0}};
       if (nlg == 0 && nc > 1 && o.autopair.hyp_flip_orient > 0 &&
           info.hyp_orientation[info.hypothesis] < o.autopair.hyp_confident_orientation &&
           (st = add_flipped(X, SX, &o, maps, oriented, stride, lx, ly, cand, from_pairs, free_of, hyp_of,
-                            info.hyp_flip_of, &nc, flip_skipped, sizeof flip_skipped, err)))
-        goto done;
+                            info.hyp_flip_of, &nc, &ferr))) {
+        /* the flips are optional: one that fails (other than for memory) is skipped with a note,
+         * instead of failing a match whose candidates are all mapped */
+        if (st == SS_ERR_NOMEM) {
+          ss_fail(err, st, "%s", ferr.msg);
+          goto done;
+        }
+        snprintf(flip_skipped, sizeof flip_skipped, "no flipped candidates: X's own symmetry map failed (%s)", ferr.msg);
+        st = SS_OK;
+      }
     }
   }
   info.hypotheses = nc;
