@@ -422,13 +422,14 @@ typedef struct ss_autopair_options {
    * confident: a functional map that far from orthogonal, or descriptors that badly kept, is seldom
    * right (docs/tuning.md). Not applied to a map without that energy (no SS_REFINE_BEST). */
   double hyp_max_map_energy;
-  /* landmark-free, when the map kept scores below hyp_confident_orientation: each candidate whose
-   * map reverses orientation (below hyp_min_orientation) is flipped into one more candidate, mapped
-   * as the others are: X's protrusion centres (hyp_keep) and the images under that map of their
-   * mirror images on X, the mirror found as the functional map from X to its reflection in a plane
-   * with the orientation term of weight hyp_flip_orient (default 1; 0: off). A quadruped whose
-   * every hypothesis came out as its mirror image (TOSCA_r's cats, dogs, centaurs) gets the right way
-   * round (docs/tuning.md) */
+  /* landmark-free, when the map kept scores below hyp_confident_orientation or a candidate whose map
+   * reverses orientation (below hyp_min_orientation) has a lower hypothesis energy than it: each
+   * candidate whose map reverses orientation is flipped (the lowest energy first) into one more
+   * candidate, mapped as the others are: X's protrusion centres (hyp_keep) and the images under that
+   * map of their mirror images on X, the mirror found as the functional map from X to its reflection
+   * in a plane with the orientation term of weight hyp_flip_orient (default 1; 0: off). A quadruped
+   * whose every hypothesis came out as its mirror image (TOSCA_r's cats, dogs, centaurs), or whose
+   * oriented map is worse than its mirror images, gets the right way round (docs/tuning.md) */
   double hyp_flip_orient;
   /* weight of the orientation shortfall in the hypothesis energy: a candidate scores
    * hyp_w_orientation * max(0, hyp_confident_orientation - its orientation score) more, so of two

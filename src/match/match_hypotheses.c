@@ -199,15 +199,29 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
   return SS_OK;
 }
 
+/* Whether the flipped candidates are looked for (ss_autopair_options.hyp_flip_orient): when the map
+ * kept (kept) does not keep orientation clearly, or when a candidate that reverses orientation has
+ * the lower hypothesis energy (the mirror image is the better isometry, so the oriented map kept is
+ * suspect: TOSCA_r cat3 -> cat4, kept at orientation 0.63 and error 16, its mirror's distortion half
+ * of it; docs/tuning.md). */
+static int flips_wanted(const ss_autopair_info *info, const int *oriented, int nc, int kept, double confident) {
+  if (info->hyp_orientation[kept] < confident) return 1;
+  for (int c = 0; c < nc; c++)
+    if (!oriented[c] && info->hyp_energy[c] < info->hyp_energy[kept]) return 1;
+  return 0;
+}
+
 /* The flipped candidates (ss_autopair_options.hyp_flip_orient): for each of the nc candidates mapped
- * so far whose map reverses orientation (oriented[c] 0), the landmarks X's protrusion centres
- * (hyp_keep) and the images under that map of their mirror images on X (ssi_symmetry_map): the mirror
- * map turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to
- * lx, ly, cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c.
- * On failure none is added. */
+ * so far whose map reverses orientation (oriented[c] 0), in order of hypothesis energy (energy[c];
+ * the best mirror first, when room runs short), the landmarks X's protrusion centres (hyp_keep) and
+ * the images under that map of their mirror images on X (ssi_symmetry_map): the mirror map turned
+ * the right way round. A set equal to an earlier landmark-free one is skipped. Appends to lx, ly,
+ * cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c. On
+ * failure none is added. */
 static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *SX, const ss_match_options *o,
-                             const int *maps, const int *oriented, int stride, int *lx, int *ly, int *cand,
-                             int *from_pairs, int *free_of, int *hyp_of, int *flip_of, int *nc_io, ss_error *err) {
+                             const int *maps, const int *oriented, const double *energy, int stride, int *lx,
+                             int *ly, int *cand, int *from_pairs, int *free_of, int *hyp_of, int *flip_of,
+                             int *nc_io, ss_error *err) {
   const int nc0 = *nc_io, m = SX->m;
   const size_t nX = (size_t)X->mesh->nv;
   int any = 0;
@@ -217,8 +231,14 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *
   ss_status st = S && kept ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   if (!st) st = ssi_symmetry_map(X, o, o->autopair.hyp_flip_orient, S, err);
   if (!st) ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
-  int nc = nc0;
-  for (int c = 0; !st && c < nc0 && nc < SS_MAX_HYPOTHESES; c++) {
+  int nc = nc0, order[SS_MAX_HYPOTHESES];
+  for (int i = 0; i < nc0; i++) {
+    int j = i; /* insertion by energy, ties in candidate order */
+    for (; j > 0 && energy[order[j - 1]] > energy[i]; j--) order[j] = order[j - 1];
+    order[j] = i;
+  }
+  for (int i = 0; !st && i < nc0 && nc < SS_MAX_HYPOTHESES; i++) {
+    const int c = order[i];
     if (oriented[c]) continue;
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, q = 0;
     for (int a = 0; a < m; a++)
@@ -404,14 +424,15 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       ss_match_result_free(&r);
     memset(&r, 0, sizeof r);
     /* once the first candidates are mapped: the flipped ones, when the map kept is not clearly
-     * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs) */
+     * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs)
+     * or a mirror image beats it */
     if (c == nc - 1 && !flips_looked) {
       flips_looked = 1;
       ss_error ferr = {{0}};
       if (nlg == 0 && nc > 1 && o.autopair.hyp_flip_orient > 0 &&
-          info.hyp_orientation[info.hypothesis] < o.autopair.hyp_confident_orientation &&
-          (st = add_flipped(X, SX, &o, maps, oriented, stride, lx, ly, cand, from_pairs, free_of, hyp_of,
-                            info.hyp_flip_of, &nc, &ferr))) {
+          flips_wanted(&info, oriented, nc, info.hypothesis, o.autopair.hyp_confident_orientation) &&
+          (st = add_flipped(X, SX, &o, maps, oriented, info.hyp_energy, stride, lx, ly, cand, from_pairs, free_of,
+                            hyp_of, info.hyp_flip_of, &nc, &ferr))) {
         /* the flips are optional: one that fails (other than for memory) is skipped with a note,
          * instead of failing a match whose candidates are all mapped */
         if (st == SS_ERR_NOMEM) {
