@@ -291,6 +291,12 @@ static void test_permuted_and_mirrored(void) {
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_flip_orient = NAN;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_flip_orient = 1e300; /* finite, but it would swamp the symmetry map's system */
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    const double dflt_w_orient = mo.fmap.w_orient;
+    mo.fmap.w_orient = 1e300;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.fmap.w_orient = dflt_w_orient;
     mo.autopair.hyp_flip_orient = 1;
     /* and so is the orientation shortfall's */
     CHECK(mo.autopair.hyp_w_orientation == 0.01);
@@ -310,6 +316,8 @@ static void test_permuted_and_mirrored(void) {
     CHECK(res.autopair.hypotheses == 1 && res.autopair.hypothesis == 0 && res.autopair.hyp_descriptor == -1);
     ss_match_result_free(&res);
     mo.autopair.hypotheses = 4, mo.autopair.hyp_descriptor_orient = -1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_descriptor_orient = 2e6;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_descriptor_orient = 0.001, mo.autopair.hyp_descriptor_map = 2;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);

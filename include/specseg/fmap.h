@@ -600,7 +600,7 @@ typedef struct ss_fmap_match_options {
   /* 1: no WKS columns among the base probes, so the shapes' own descriptors (ss_fmap_shape.descr)
    * replace them; default 0 (WKS, then the shapes' descriptors, if any) */
   int no_wks;
-  /* Weight of the orientation term (ss_fmap_weights.w_orient) over the orientation operators of the
+  /* Weight (0..1e6) of the orientation term (ss_fmap_weights.w_orient) over the orientation operators of the
    * WKS probes (with no_wks: of the first of the shape's own descriptors, as many as the WKS columns
    * they replace); 0 (default, the paper's Eq. (1)): none computed. Each mesh is taken wound
    * outward (consistently per component, positive signed volume). */

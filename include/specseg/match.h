@@ -407,7 +407,7 @@ typedef struct ss_autopair_options {
   double polish_orient_tol;
   /* landmark-free, one more candidate beside the pairing hypotheses: X's protrusion centres (hyp_keep)
    * and their images under the functional map of the descriptors alone (WKS with the orientation term
-   * of weight hyp_descriptor_orient, default 0.001; no landmark, no segment), mapped as the hypotheses
+   * of weight hyp_descriptor_orient, 0..1e6, default 0.001; no landmark, no segment), mapped as the hypotheses
    * are, when hypotheses > 1. Where the two segmentations differ too much for any pairing to be right
    * (TOSCA_r's dogs curled up), it is the right one (docs/tuning.md). 1 (default): on; 0: off */
   int hyp_descriptor_map;
@@ -427,7 +427,7 @@ typedef struct ss_autopair_options {
    * candidate whose map reverses orientation is flipped (the lowest energy first) into one more
    * candidate, mapped as the others are: X's protrusion centres (hyp_keep) and the images under that
    * map of their mirror images on X, the mirror found as the functional map from X to its reflection
-   * in a plane with the orientation term of weight hyp_flip_orient (default 1; 0: off). A quadruped
+   * in a plane with the orientation term of weight hyp_flip_orient (0..1e6, default 1; 0: off). A quadruped
    * whose every hypothesis came out as its mirror image (TOSCA_r's cats, dogs, centaurs), or whose
    * oriented map is worse than its mirror images, gets the right way round (docs/tuning.md) */
   double hyp_flip_orient;

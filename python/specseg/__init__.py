@@ -600,7 +600,7 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         The paired segments' probe functions, as ``specseg match --segment-profile`` (library default
         "tent").
     orient : float, optional
-        Weight of the orientation-preserving term (Ren et al. 2018; ``specseg match --orient``), >= 0
+        Weight of the orientation-preserving term (Ren et al. 2018; ``specseg match --orient``), 0..1e6
         (library default 0.001; 0: the paper's Eq. (1) without it).
     descriptors : (array_like, array_like), optional
         Your own per-vertex descriptors (DX, DY) of shapes (nX, d) and (nY, d), column j of DX
@@ -676,8 +676,8 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         o.segment_profile = profiles[segment_profile]
     if orient is not None:
         w = float(orient)
-        if not (w >= 0 and math.isfinite(w)):
-            raise ValueError(f"orient must be a finite weight >= 0, not {orient!r}")
+        if not (0 <= w <= 1e6):
+            raise ValueError(f"orient must be a weight in [0, 1e6], not {orient!r}")
         o.fmap.w_orient = w
     if not wks and descriptors is None:
         raise ValueError("wks=False needs descriptors: they replace the WKS")

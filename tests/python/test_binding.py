@@ -139,7 +139,7 @@ else:
     cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "--orient", 0, "-o", path("mo.txt"))
     mo = np.loadtxt(path("mo.txt"), dtype=np.int64)
     check(np.array_equal(specseg.match(V, F, V, F, lm, k=20, orient=0).map, mo), "match: orient=0 as the CLI's --orient 0")
-    for bad in (-1.0, float("nan")):
+    for bad in (-1.0, float("nan"), 1e300):
         try:
             specseg.match(V, F, V, F, lm, k=20, orient=bad)
             check(False, "match: orient=%r accepted" % bad)
