@@ -269,14 +269,17 @@ int cmd_match(int argc, char **argv) {
             "orientation %.3f vs mirror %.3f%s\n", res.autopair.exact ? "exact" : "relaxed", res.autopair.energy,
             res.autopair.energy_mirror, res.autopair.energy_other, res.autopair.gap, res.autopair.mirror,
             res.autopair.mirror_other, res.autopair.pairing_confident ? ", confident" : ", NOT confident");
-  if (!json && res.autopair.hypotheses > 1)
+  if (!json && res.autopair.hypotheses > 1) {
+    const ss_autopair_info *a = &res.autopair;
+    const int h = a->hypothesis;
+    char what[64] = "";
+    if (h == a->hyp_descriptor) snprintf(what, sizeof what, " (the descriptors' own)");
+    else if (a->hyp_flip_of[h] >= 0) snprintf(what, sizeof what, " (the flip of #%d)", a->hyp_flip_of[h]);
     fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed, "
-            "map energy %.4g; margin %.3g)%s\n", res.autopair.hypotheses, res.autopair.hypothesis,
-            res.autopair.hypothesis == res.autopair.hyp_descriptor ? " (the descriptors' own)" : "",
-            res.autopair.hyp_energy[res.autopair.hypothesis], res.autopair.hyp_distortion[res.autopair.hypothesis],
-            100 * res.autopair.hyp_reversed[res.autopair.hypothesis],
-            res.autopair.hyp_map_energy[res.autopair.hypothesis], res.autopair.hyp_margin,
-            res.autopair.confident ? ", confident" : ", NOT confident");
+            "map energy %.4g, orientation %.3f; margin %.3g)%s\n", a->hypotheses, h, what, a->hyp_energy[h],
+            a->hyp_distortion[h], 100 * a->hyp_reversed[h], a->hyp_map_energy[h], a->hyp_orientation[h], a->hyp_margin,
+            a->confident ? ", confident" : ", NOT confident");
+  }
   const char *refined = res.refine_choice >= 0 ? choice[res.refine_choice] : o.refine == SS_REFINE_ZOOMOUT ? "ZoomOut" : "";
   const int kz = o.refine != SS_REFINE_NONE && o.fmap.zoomout_kmax > o.fmap.k ? o.fmap.zoomout_kmax : 0;
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);

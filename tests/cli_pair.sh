@@ -22,7 +22,7 @@ awk 'NF != 2 || $1 !~ /^[0-9]+$/ || $2 !~ /^[0-9]+$/ { exit 1 }' "$TMP/pairs.txt
 # landmark-free match: its pairing line and a map of the right length
 "$BIN" match "$A" "$B" --no-refine -o "$TMP/m0.txt" > "$TMP/out" 2>&1 && ok || bad "match without landmarks: $(cat "$TMP/out")"
 grep -q '^landmark-free pairing' "$TMP/out" && grep -q '(paired protrusion centres)' "$TMP/out" && ok || bad "match summary: $(cat "$TMP/out")"
-grep -Eq '^hypotheses: [2-8] mapped, #[0-7]( \(the descriptors. own\))? kept' "$TMP/out" && ok || bad "hypotheses line: $(cat "$TMP/out")"
+grep -Eq '^hypotheses: [2-8] mapped, #[0-7]( \(the descriptors. own\)| \(the flip of #[0-7]\))? kept \(energy [^)]*orientation -?[0-9.]+; margin' "$TMP/out" && ok || bad "hypotheses line: $(cat "$TMP/out")"
 [ "$(wc -l < "$TMP/m0.txt")" -eq "$(sed -n 2p "$A" | awk '{print $1}')" ] && ok || bad "map length"
 if grep -q '^hypotheses: .*NOT confident' "$TMP/out"; then grep -q '^note: landmark-free map NOT confident' "$TMP/out" && ok || bad "no note for a map that is not confident"; fi
 # --json: the hypotheses, the one kept, the margin behind the confidence
