@@ -177,6 +177,31 @@ static void test_ill_conditioned(void) {
   CHECK_MSG(worst <= 1e-13 * nn * xn, "ill-conditioned system: residual %g (|N| %g, |x| %g)", worst, nn, xn);
 }
 
+/* A data weight near DBL_MAX overflows the normal equations (the diagonal infinite, the solution 0,
+ * once returned with status OK): an error now, not a zero functional map that the point map would
+ * turn into a meaningless map. */
+static void test_overflow(void) {
+  enum { kS = 4, kT = 4, m = kS * kT };
+  double A[kS] = {1.6, 1.9, 2.2, 1.7}, B[kT] = {0.1, -0.3, 0.2, 0.4}, lS[kS], lT[kT], C[m];
+  for (int i = 0; i < kS; i++) lS[i] = 1.0 + i, lT[i] = 1.3 + i;
+  ss_fmap_weights w = {1e308, 1.0, 0, 0, 0, 0};
+  ss_fmap_probes S = {kS, 1, 0, A, NULL, 0, NULL}, T = {kT, 1, 0, B, NULL, 0, NULL};
+  ss_fmap_system *sys = NULL;
+  ss_error e = {{0}};
+  ss_status st = ss_fmap_system_new(kS, kT, lS, lT, &S, &T, &w, &sys, &e);
+  if (st == SS_OK) st = ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, C, &e);
+  ss_fmap_system_free(sys);
+  CHECK_MSG(st == SS_ERR_NUMERIC && e.msg[0], "data weight 1e308: status %d (%s)", (int)st, e.msg);
+  /* the same system at weight 1: a finite, non-zero functional map */
+  w.w_descr = 1.0;
+  CHECK(ss_fmap_system_new(kS, kT, lS, lT, &S, &T, &w, &sys, &e) == SS_OK);
+  CHECK(ss_fmap_system_solve(sys, NULL, NULL, 0.0, 0, C, &e) == SS_OK);
+  ss_fmap_system_free(sys);
+  double mx = 0;
+  for (int i = 0; i < m; i++) mx = fmax(mx, fabs(C[i]));
+  CHECK(isfinite(mx) && mx > 0);
+}
+
 /* base + extra probes == the virtual column list from ss_wks / ss_wks_landmarks / ss_wks_filter,
  * every step-th column kept, normalised, projected */
 static void test_probes_split(void) {
@@ -332,6 +357,7 @@ int main(void) {
   test_bad_input();
   test_system_vs_solve();
   test_ill_conditioned();
+  test_overflow();
   test_probe_cache();
   test_probes_split();
   test_descr_k();

@@ -273,7 +273,8 @@ SS_API ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, con
  * Outputs:
  *   C        k_T x k_S, column-major (caller-allocated)
  * Errors: SS_ERR_INVALID on a NULL system or output, probes that do not match, a negative w_extra;
- *   SS_ERR_NUMERIC when the normal equations are not positive definite; SS_ERR_NOMEM.
+ *   SS_ERR_NUMERIC when the normal equations are not positive definite or the solution is not
+ *   finite or all zero (a weight near DBL_MAX overflows the system); SS_ERR_NOMEM.
  */
 SS_API ss_status ss_fmap_system_solve(const ss_fmap_system *sys, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
                                       double w_extra, int extra_dcomm, double *C, ss_error *err);

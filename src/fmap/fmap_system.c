@@ -324,6 +324,16 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
     x[0] = v;
   }
   if ((st = solve_spd(m - f0, N + f0 + m * f0, m, rhs + f0, x + f0, err))) goto done;
+  /* a solution of infinities or NaNs, or all zero (the probes carry nothing, or weights near
+   * DBL_MAX overflowed the system: its diagonal infinite, the solution 0), would make a point map
+   * of no meaning without a word; no real pair's system gives either */
+  int nonzero = 0, finite = 1;
+  for (size_t i = f0; i < m; i++) nonzero |= x[i] != 0, finite &= isfinite(x[i]) != 0;
+  if (!finite || (!nonzero && m > f0)) {
+    st = ss_fail(err, SS_ERR_NUMERIC, "fmap: the functional map is %s (a weight too large for the system, or "
+                 "probes that carry nothing)", finite ? "all zero" : "not finite");
+    goto done;
+  }
   memcpy(C, x, sizeof(double) * m);
 done:
   free(own);
