@@ -32,8 +32,7 @@ ss_status ssi_fmap_check_options(const ss_fmap_match_options *o, ss_error *err) 
       !isfinite(o->w_dcomm))
     return ss_fail(err, SS_ERR_INVALID, "match: weights must be finite and non-negative (%g, %g, %g)", o->w_descr,
                    o->w_lap, o->w_dcomm);
-  /* above 1e6 the orientation term swamps every other and, near DBL_MAX, overflows the system into a
-   * zero functional map (the CLI's --orient has the same bound) */
+  /* above 1e6 the orientation term swamps every other (the CLI's --orient has the same bound) */
   if (!(o->w_orient >= 0 && o->w_orient <= 1e6))
     return ss_fail(err, SS_ERR_INVALID, "match: orientation weight %g must be in [0, 1e6]", o->w_orient);
   if (!(o->w_extra >= 0) || !isfinite(o->w_extra))
