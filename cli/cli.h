@@ -191,6 +191,7 @@ int cmd_eval(int argc, char **argv);
 int cmd_error(int argc, char **argv);
 int cmd_match(int argc, char **argv);
 int cmd_pair(int argc, char **argv);
+int cmd_refine(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 
 #endif

@@ -74,6 +74,7 @@ static const command commands[] = {
     {"segment", cmd_segment, "coherent spectral segmentation"},
     {"prepare", cmd_prepare, "prepare a shape once for many matches (a .sss file match / segment take)"},
     {"match", cmd_match, "point-to-point map between two shapes (functional maps)"},
+    {"refine", cmd_refine, "refine a given point map (another method's) as match refines its own (ZoomOut)"},
     {"pair", cmd_pair, "landmark-free pairing of two shapes' segments, with its confidence"},
     {"error", cmd_error, "geodesic error of a map"},
     {"eval", cmd_eval, "the paper's evaluation (Table 1, coherency, timings, figures); eval merge"},

@@ -744,6 +744,29 @@ SS_API ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_p
                                         const ss_centre_signature *sigY, const ss_match_options *opts,
                                         ss_match_result *out, ss_error *err);
 
+/* The match's refinement of a given point map X -> Y (another method's map, or a rough one): its
+ * functional map at size k (Φ_Xᵀ M_X Π Φ_Y, ss_fmap_from_p2p), then ZoomOut up to zoomout_kmax as
+ * ss_match_prepared refines its own maps (on zoomout_samples samples of X, one pass on every
+ * vertex at the end). No segmentation and no landmark: ss_shape_prep_compute_spectral's preps do.
+ * ZoomOut keeps a map's errors of orientation and of whole parts (a left-right swap stays one); it
+ * mends what is local.
+ *
+ * Inputs:
+ *   X, Y     prepared shapes, each with kev >= kz eigenpairs, kz = max(fmap.k, fmap.zoomout_kmax)
+ *   map_in   X->mesh->nv vertices of Y (0-based): entry i is the image of vertex i of X
+ *   opts     (NULL: ss_match_default_options) reads fmap.k (>= 1), fmap.zoomout_kmax (<= k: no
+ *            ZoomOut, the map through its own size-k functional map), fmap.zoomout_step (0: 1) and
+ *            fmap.zoomout_samples (0 or >= X's vertices: every vertex); the rest is not used
+ * Outputs:
+ *   map_out  X->mesh->nv entries, caller-allocated (may be map_in): the refined map
+ *   C_out    (may be NULL) kz x kz, column-major, caller-allocated: its functional map (functions on
+ *            Y to functions on X, as ss_match_result.C)
+ * Errors: SS_ERR_INVALID on NULL or unprepared shapes, NULL maps, a map entry outside 0..Y->mesh->nv-1,
+ *   bad sizes or too few eigenpairs; SS_ERR_NOMEM.
+ */
+SS_API ss_status ss_match_refine(const ss_shape_prep *X, const ss_shape_prep *Y, const int *map_in,
+                                 const ss_match_options *opts, int *map_out, double *C_out, ss_error *err);
+
 /* The landmark-free pairing from two meshes: prepare both (opts->seg, max(autopair.descr_k,
  * autopair.orient_k) eigenpairs), their signatures, ss_pair_centres_auto (opts->autopair).
  *

@@ -33,7 +33,7 @@ from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_
 from ._version import __version__
 
 __all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
-           "remesh", "segment", "Segmentation", "geodesic", "wks", "hks", "match", "Match", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
+           "remesh", "segment", "Segmentation", "geodesic", "wks", "hks", "match", "Match", "refine", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
            "label_colors", "align_labels", "library_version", "library_path", "render_library_path"]
 
 #: Path of the loaded core library (libspecseg.so...).
@@ -719,6 +719,107 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
                      confident=None if not r.autopair.used else bool(r.autopair.confident))
     finally:
         lib.ss_match_result_free(C.byref(r))
+
+
+def refine(VX, FX, VY=None, FY=None, map=None, k=None, zoomout=None, zoomout_step=None, zoomout_samples=None):
+    """A given point map X -> Y (another method's, or a rough one) through the refinement `match`
+    gives its own maps: the map's functional map on the first k eigenfunctions of both shapes (scaled
+    to unit area), then ZoomOut up to `zoomout` on vertex samples of X and once on every vertex, as
+    ``specseg refine``. ZoomOut mends local errors; a whole part mapped to the wrong place (a
+    left-right swap) stays.
+
+    ``refine(X, Y, map, ...)`` with two `Shape` objects uses their eigenpairs (each needs at least
+    max(k, zoomout)); with meshes the eigenpairs are computed here.
+
+    Parameters
+    ----------
+    VX, FX, VY, FY : array_like
+        The meshes X (nX vertices) and Y (nY vertices), as `match` takes them; or two Shape objects
+        as VX and FX, the map then third.
+    map : array_like of int, shape (nX,)
+        Entry i is the vertex of Y (0..nY-1) that vertex i of X goes to.
+    k : int, optional
+        The start's basis size, >= 1 (library default 50).
+    zoomout : int, optional
+        ZoomOut up to this size, >= k (library default 110); equal to k: no ZoomOut, the map through
+        its own k x k functional map.
+    zoomout_step : int, optional
+        ZoomOut's size increment, >= 1 (library default 5).
+    zoomout_samples : int, optional
+        ZoomOut's iterations on this many samples of X, >= 0 (library default 1000; 0: every vertex).
+
+    Returns
+    -------
+    (numpy.ndarray of int32, shape (nX,), numpy.ndarray of float64, shape (kz, kz))
+        The refined map and its functional map (functions on Y to functions on X, kz = max(k,
+        zoomout)).
+
+    Raises
+    ------
+    ValueError
+        A map of the wrong length or with entries off Y, sizes outside the int32 range, zoomout < k,
+        a Shape matched through a coarse proxy, wrong mesh shapes.
+    SpecsegError
+        The library refused the shapes (too few eigenpairs, a mesh its sanitizer would change) or
+        the sizes.
+    """
+    if not _clib.has("ss_match_refine"):
+        raise NotImplementedError("this libspecseg (%s) has no ss_match_refine" % library_path)
+    shapes = isinstance(VX, Shape) or isinstance(FX, Shape)
+    if shapes:
+        if not (isinstance(VX, Shape) and isinstance(FX, Shape)):
+            raise ValueError("refine takes two Shape objects or two meshes (VX, FX, VY, FY)")
+        if map is None and FY is None:
+            map, VY = VY, None
+        if VY is not None or FY is not None:
+            raise ValueError("refine(X, Y, map) with Shape objects: no VY / FY")
+        X, Y = VX, FX
+        X._check(), Y._check()
+        for name, sh in (("X", X), ("Y", Y)):
+            if sh._s.has_proxy:
+                raise ValueError("%s is matched through a coarse proxy (above 100,000 vertices): refine its mesh" % name)
+        nX, nY = X.n, Y.n
+    else:
+        if VY is None or FY is None:
+            raise ValueError("refine needs VX, FX, VY, FY and the map (or two Shape objects and the map)")
+        mx, VX, FX = _clib.as_mesh(VX, FX)
+        my, VY, FY = _clib.as_mesh(VY, FY)
+        nX, nY = VX.shape[0], VY.shape[0]
+    if map is None:
+        raise ValueError("refine needs the map to refine")
+    m = np.atleast_1d(np.asarray(map))
+    if m.ndim != 1 or m.size != nX:
+        raise ValueError("map must have one entry per vertex of X (%d), got shape %s" % (nX, m.shape))
+    m = _indices(m, nX, "map", nY)
+    o = _clib.ss_match_options()
+    lib.ss_match_default_options(C.byref(o))
+    for val, name, field, lo in ((k, "k", "k", 1), (zoomout, "zoomout", "zoomout_kmax", 1),
+                                 (zoomout_step, "zoomout_step", "zoomout_step", 1),
+                                 (zoomout_samples, "zoomout_samples", "zoomout_samples", 0)):
+        if val is not None:
+            setattr(o.fmap, field, _as_int32(val, name, lo))
+    if o.fmap.zoomout_kmax < o.fmap.k:
+        raise ValueError("zoomout %d is below k %d" % (o.fmap.zoomout_kmax, o.fmap.k))
+    kz = max(o.fmap.k, o.fmap.zoomout_kmax)
+    out, Cm, e = np.zeros(nX, dtype=np.int32), np.zeros(kz * kz), _err()
+    own = []
+    try:
+        if shapes:
+            px, py = C.byref(X._s.prep), C.byref(Y._s.prep)
+        else:
+            for mesh in (mx, my):
+                p = _clib.ss_shape_prep()
+                st = _clib.compute(lib.ss_shape_prep_compute_spectral, C.byref(mesh), kz, C.byref(p), C.byref(e))
+                if st == 0:
+                    own.append(p)
+                _check(st, e)
+            px, py = C.byref(own[0]), C.byref(own[1])
+        _check(_clib.compute(lib.ss_match_refine, px, py, _clib.ptr(m, C.c_int), C.byref(o), _clib.ptr(out, C.c_int),
+                             _clib.ptr(Cm, C.c_double), C.byref(e)), e)
+    finally:
+        for p in own:
+            lib.ss_shape_prep_free(C.byref(p))
+    return out, Cm.reshape(kz, kz).T.copy()
 
 
 class Shape:

@@ -517,6 +517,10 @@ _sig(lib, "ss_prepared_shape_compute", _i, _PM, C.POINTER(ss_segment_options), _
 _sig(lib, "ss_prepared_shape_write", _i, C.c_char_p, _PS, _PE)
 _sig(lib, "ss_prepared_shape_read", _i, C.c_char_p, _PS, _PE)
 _sig(lib, "ss_prepared_shape_free", None, _PS)
+_sig(lib, "ss_shape_prep_compute_spectral", _i, _PM, _i, C.POINTER(ss_shape_prep), _PE)
+_sig(lib, "ss_shape_prep_free", None, C.POINTER(ss_shape_prep))
+_sig(lib, "ss_match_refine", _i, C.POINTER(ss_shape_prep), C.POINTER(ss_shape_prep), _PI, C.POINTER(ss_match_options), _PI,
+     _PD, _PE)
 _sig(lib, "ss_match_prepared_shapes", _i, _PS, _PS, _i, _PI, _PI, C.POINTER(ss_match_options), C.POINTER(ss_match_result),
      C.c_char_p, C.c_size_t, _PE)
 _sig(render_lib, "ss_render_default_options", None, C.POINTER(ss_render_options))

@@ -187,6 +187,32 @@ else:
     except ValueError:
         check(True, "")
 
+    # --- refine: the CLI's map, from arrays and from Shapes; the identity stays; bad maps refused ---
+    ident = np.arange(n)
+    rough = ident.copy()
+    rough[::3] = np.clip(rough[::3] + 1, 0, n - 1)  # every 3rd vertex to the next index
+    np.savetxt(path("rough.txt"), rough, fmt="%d")
+    cli("refine", MESH, MESH, path("rough.txt"), "--k", 20, "--zoomout", 40, "-o", path("rf.txt"))
+    mr, Cr = specseg.refine(V, F, V, F, rough, k=20, zoomout=40)
+    check(np.array_equal(mr, np.loadtxt(path("rf.txt"), dtype=np.int64)), "refine: the CLI's map")
+    check(Cr.shape == (40, 40) and np.isfinite(Cr).all(), "refine: C %s" % (Cr.shape,))
+    ms, _ = specseg.refine(S, S, rough, k=20, zoomout=40)
+    check(np.array_equal(ms, specseg.refine(S, S, map=rough, k=20, zoomout=40)[0]), "refine(Shape, Shape, map=)")
+    mi, _ = specseg.refine(S, S, ident, k=20, zoomout=40)
+    check(np.array_equal(mi, ident), "refine: the identity onto itself stays")
+    for bad in (dict(map=rough[:-1]), dict(map=np.where(ident == 0, n, ident)), dict(map=rough, k=30, zoomout=20),
+                dict(map=rough, zoomout_samples=-1)):
+        try:
+            specseg.refine(S, S, **bad)
+            check(False, "refine accepted %r" % sorted(bad))
+        except ValueError:
+            check(True, "")
+    try:
+        specseg.refine(S30, S30, rough, k=20, zoomout=40)
+        check(False, "refine: a Shape with too few eigenpairs accepted")
+    except specseg.SpecsegError as ex:
+        check("needs 40" in str(ex), "refine, too few eigenpairs: %s" % ex)
+
 # --- render: background, shape, the labels' colours appear ---
 img = specseg.render(V, F, labels=seg.labels, size=(120, 160))
 check(img.shape == (160, 120, 3) and img.dtype == np.uint8, "render: shape")
