@@ -48,8 +48,10 @@ static ss_status shape_prep(cli_shape *s, const char *name, int kev, ss_shape_pr
   }
   if (kev >= s->ps.mesh.nv)
     return ss_fail(err, SS_ERR_INVALID, "%s has %d vertices: too few for %d eigenpairs", name, s->ps.mesh.nv, kev);
-  ss_status st = ss_shape_prep_compute_spectral(&s->ps.mesh, kev, own, err);
+  ss_error e = {{0}};
+  ss_status st = ss_shape_prep_compute_spectral(&s->ps.mesh, kev, own, &e);
   if (!st) *out = own;
+  else ss_fail(err, st, "%s: %s", name, e.msg + (strncmp(e.msg, "match: ", 7) ? 0 : 7)); /* the library's words, the file named */
   return st;
 }
 

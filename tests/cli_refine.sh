@@ -52,5 +52,11 @@ head -n 10 "$TMP/id.txt" > "$TMP/short.txt"
 printf 'x\n' > "$TMP/junk.txt"
 "$BIN" refine "$X" "$Y" "$TMP/junk.txt" -o "$TMP/r.txt" $opts > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
   grep -q "specseg: error:" "$TMP/err" && ok || bad "junk map: $(cat "$TMP/err")"
+# a mesh the pipeline would have to repair (an unreferenced vertex): refused, the file named (the
+# map refers to its vertex indices)
+awk 'NR == 2 { $1 = $1 + 1 } { print } NR == 2 + '"$nv"' { print "0 0 0" }' "$X" > "$TMP/iso.off"
+seq 0 "$nv" > "$TMP/id1.txt"
+"$BIN" refine "$TMP/iso.off" "$TMP/iso.off" "$TMP/id1.txt" -o "$TMP/r.txt" $opts > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
+  grep -q "specseg: error: .*iso.off: the mesh has 1 unreferenced vertex" "$TMP/err" && ok || bad "unreferenced vertex: $(cat "$TMP/err")"
 [ ! -e "$TMP/r.txt" ] && ok || bad "an output written on error"
 finish
