@@ -27,22 +27,22 @@ ss_status ss_match_refine(const ss_shape_prep *X, const ss_shape_prep *Y, const 
     if (map_in[i] < 0 || map_in[i] >= nY)
       return ss_fail(err, SS_ERR_INVALID, "refine: map entry %d is %d, not a vertex of Y (0..%d)", i, map_in[i], nY - 1);
   /* C maps functions on Y to functions on X, as the match's (source S = Y, target T = X) */
-  double *C0 = malloc(sizeof(double) * (size_t)k * k), *Cz = malloc(sizeof(double) * (size_t)kz * kz);
+  double *C0 = malloc(sizeof(double) * (size_t)k * k);
   ssi_zoomout_plan plan = {0};
-  ss_status st = C0 && Cz ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "refine: out of memory");
+  ss_status st = C0 ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "refine: out of memory");
   if (!st) st = ss_fmap_from_p2p(nY, nX, k, k, Y->evecs, X->evecs, X->M, map_in, C0, err);
   if (!st && kz > k) {
-    /* the match's ZoomOut: on zoomout_samples samples of X, one pass on every vertex at the end */
+    /* the match's own ZoomOut plan (samples of X, one pass on every vertex at the end) */
     const int step = o.fmap.zoomout_step > 0 ? o.fmap.zoomout_step : 1;
-    st = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.fmap.zoomout_samples, kz, &plan, err);
-    if (!st) st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, C0, kz, step, map_out, Cz, err);
+    o.refine = SS_REFINE_BEST; /* (the plan is made for a refining match) */
+    st = ssi_match_plan(X, Y, &o, &plan, err);
+    if (!st) st = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, C0, kz, step, map_out, C_out, err);
   } else if (!st) {
     /* no ZoomOut: the map through its own functional map of size k (a projection that smooths it) */
     st = ss_fmap_p2p(nY, nX, k, k, Y->evecs, X->evecs, C0, map_out, err);
-    if (!st) memcpy(Cz, C0, sizeof(double) * (size_t)k * k);
+    if (!st && C_out) memcpy(C_out, C0, sizeof(double) * (size_t)k * k);
   }
-  if (!st && C_out) memcpy(C_out, Cz, sizeof(double) * (size_t)kz * kz);
   ssi_zoomout_plan_free(&plan);
-  free(C0), free(Cz);
+  free(C0);
   return st;
 }
