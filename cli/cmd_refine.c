@@ -120,7 +120,7 @@ int cmd_refine(int argc, char **argv) {
     goto done;
   }
   double t1 = ss_time();
-  if (!(C = malloc(sizeof(double) * (size_t)kz * kz))) {
+  if (fmapp && !(C = malloc(sizeof(double) * (size_t)kz * kz))) { /* only for --fmap */
     rc = cli_error("out of memory");
     goto done;
   }
