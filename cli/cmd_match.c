@@ -15,7 +15,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
-    "                     [--hypotheses N]\n"
+    "                     [--hypotheses N] [--flip-by x|y|both]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -30,7 +30,7 @@ static const char USAGE[] =
     "landmarks are X's protrusion centres and their images under the descriptors' own functional map (no\n"
     "segments: it survives segmentations too different to pair). When no map keeps orientation clearly,\n"
     "or a map that reverses it has the lower energy (below), each map that reverses it is also flipped\n"
-    "through X's own left-right symmetry into one more candidate. The map that is closest to an\n"
+    "through X's own left-right symmetry, then Y's, into more candidates. The map that is closest to an\n"
     "orientation-preserving isometry is kept (metric distortion + share of segments whose orientation\n"
     "the map reverses + the refinement's own energy of the map + how far its orientation score falls\n"
     "short of clear; a map that reverses the orientation of the whole only when none keeps it); when\n"
@@ -58,6 +58,8 @@ static const char USAGE[] =
     "                      safeguards and orientation term; specseg eval computes the paper's variants)\n"
     "  --hypotheses N      without --landmarks: pairing hypotheses mapped, 1..8 (default 4; 1: the\n"
     "                      pairing's answer alone)\n"
+    "  --flip-by x|y|both  whose own left-right symmetry turns a mirrored hypothesis round (default\n"
+    "                      both: X's, then Y's)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -98,7 +100,9 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
       if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
       else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
     }
-    if (n < size && a->hyp_flip_of[h] >= 0) n += (size_t)snprintf(buf + n, size - n, ", \"flip_of\": %d", a->hyp_flip_of[h]);
+    if (n < size && a->hyp_flip_of[h] >= 0)
+      n += (size_t)snprintf(buf + n, size - n, ", \"flip_of\": %d, \"flip_by\": \"%s\"", a->hyp_flip_of[h],
+                            a->hyp_flip_by_y[h] ? "Y" : "X");
     if (n < size) n += (size_t)snprintf(buf + n, size - n, "}");
   }
   if (n < size) snprintf(buf + n, size - n, "]");
@@ -111,7 +115,7 @@ int cmd_match(int argc, char **argv) {
   ss_match_options o;
   ss_match_default_options(&o);
   o.probes = SS_PROBES_DIFF;
-  static const int PROBES[] = {SS_PROBES_STD, SS_PROBES_ASA, SS_PROBES_DIFF};
+  static const int PROBES[] = {SS_PROBES_STD, SS_PROBES_ASA, SS_PROBES_DIFF}, FLIP_SIDES[] = {0, 1, 2};
   static const int PROFILE[] = {SS_PROFILE_INDICATOR, SS_PROFILE_TENT, SS_PROFILE_SOFT};
   const cli_opt opts[] = {
       CLI_OPT_POS("X", &xp, NULL),
@@ -135,6 +139,8 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_FLAG("--no-wks", &o.fmap.no_wks, 1),
       CLI_OPT_FLAG("--json", &json, 1),
       CLI_OPT_INT("--hypotheses", &o.autopair.hypotheses, 1, SS_MAX_HYPOTHESES, NULL),
+      CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
+                     "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
   cli_args A;
   cli_args_init(&A, argc, argv, USAGE, opts);
@@ -274,7 +280,8 @@ int cmd_match(int argc, char **argv) {
     const int h = a->hypothesis;
     char what[64] = "";
     if (h == a->hyp_descriptor) snprintf(what, sizeof what, " (the descriptors' own)");
-    else if (a->hyp_flip_of[h] >= 0) snprintf(what, sizeof what, " (the flip of #%d)", a->hyp_flip_of[h]);
+    else if (a->hyp_flip_of[h] >= 0)
+      snprintf(what, sizeof what, " (the flip of #%d by %s's symmetry)", a->hyp_flip_of[h], a->hyp_flip_by_y[h] ? "Y" : "X");
     fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed, "
             "map energy %.4g, orientation %.3f; margin %.3g)%s\n", a->hypotheses, h, what, a->hyp_energy[h],
             a->hyp_distortion[h], 100 * a->hyp_reversed[h], a->hyp_map_energy[h], a->hyp_orientation[h], a->hyp_margin,

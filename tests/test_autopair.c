@@ -305,6 +305,13 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_w_orientation = INFINITY;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_w_orientation = 0.01;
+    /* whose symmetry flips: 0..2 */
+    CHECK(mo.autopair.hyp_flip_side == 2);
+    mo.autopair.hyp_flip_side = 3;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_flip_side = -1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_flip_side = 2;
     mo.autopair.hyp_confident_orientation = 1.5;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_confident_orientation = 0.45, mo.autopair.hyp_min_orientation = -1.5;

@@ -437,6 +437,10 @@ typedef struct ss_autopair_options {
    * above the confident level all count alike (default 0.01; 0: off; TOSCA_r horse14 -> horse7,
    * docs/tuning.md) */
   double hyp_w_orientation;
+  /* whose own left-right symmetry turns a mirrored candidate round (hyp_flip_orient): 0 X's (x ->
+   * T(S_X(x))), 1 Y's (x -> S_Y(T(x))), 2 both, X's first (default 2: a symmetry map that fails on
+   * one shape, a cat curled up, works on the other; docs/tuning.md) */
+  int hyp_flip_side;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -541,6 +545,8 @@ typedef struct ss_autopair_info {
   double hyp_differ[SS_MAX_HYPOTHESES];
   /* per candidate, the candidate it is the flip of (hyp_flip_orient), -1 for the others */
   int hyp_flip_of[SS_MAX_HYPOTHESES];
+  /* per flipped candidate, 1 when Y's own symmetry turned it round, 0 when X's (hyp_flip_side) */
+  int hyp_flip_by_y[SS_MAX_HYPOTHESES];
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

@@ -56,6 +56,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_max_map_energy = 0.37;
   o->hyp_flip_orient = 1;
   o->hyp_w_orientation = 0.01;
+  o->hyp_flip_side = 2;
 }
 
 static double cpu_now(void) {
@@ -187,7 +188,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   memset(out, 0, sizeof *out);
   if (info) {
     memset(info, 0, sizeof *info);
-    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = -1;
+    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = -1, info->hyp_flip_by_y[c] = 0;
   }
   ss_autopair_options o;
   if (o_in) o = *o_in;

@@ -193,8 +193,8 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0 && a->hyp_descriptor_orient <= 1e6) ||
       !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
       !(a->hyp_flip_orient >= 0 && a->hyp_flip_orient <= 1e6) || !(a->hyp_w_orientation >= 0) ||
-      !isfinite(a->hyp_w_orientation))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0",
+      !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2)
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -212,24 +212,26 @@ static int flips_wanted(const ss_autopair_info *info, const int *oriented, int n
 }
 
 /* The flipped candidates (ss_autopair_options.hyp_flip_orient): for each of the nc candidates mapped
- * so far whose map reverses orientation (oriented[c] 0), in order of hypothesis energy (energy[c];
- * the best mirror first, when room runs short), the landmarks X's protrusion centres (hyp_keep) and
- * the images under that map of their mirror images on X (ssi_symmetry_map): the mirror map turned
- * the right way round. A set equal to an earlier landmark-free one is skipped. Appends to lx, ly,
- * cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c. On
- * failure none is added. */
-static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *SX, const ss_match_options *o,
-                             const int *maps, const int *oriented, const double *energy, int stride, int *lx,
-                             int *ly, int *cand, int *from_pairs, int *free_of, int *hyp_of, int *flip_of,
-                             int *nc_io, ss_error *err) {
+ * so far whose map reverses orientation (oriented[c] 0) and is not itself a flip, in order of
+ * hypothesis energy (energy[c]; the best mirror first, when room runs short), the landmarks X's
+ * protrusion centres (hyp_keep) and the images under that map of their mirror images on X (by_y 0),
+ * or the mirror images on Y of their images (by_y 1; ssi_symmetry_map of that shape): the mirror map
+ * turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to lx,
+ * ly, cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c,
+ * flip_by_y[new] = by_y. On failure none is added. */
+static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int by_y, const ss_centre_signature *SX,
+                             const ss_match_options *o, const int *maps, const int *oriented, const double *energy,
+                             int stride, int *lx, int *ly, int *cand, int *from_pairs, int *free_of, int *hyp_of,
+                             int *flip_of, int *flip_by_y, int *nc_io, ss_error *err) {
   const int nc0 = *nc_io, m = SX->m;
   const size_t nX = (size_t)X->mesh->nv;
+  const ss_shape_prep *Z = by_y ? Y : X; /* the shape whose own symmetry turns the maps round */
   int any = 0;
-  for (int c = 0; c < nc0; c++) any |= !oriented[c];
+  for (int c = 0; c < nc0; c++) any |= flip_of[c] < 0 && !oriented[c];
   if (!any) return SS_OK;
-  int *S = malloc(sizeof(int) * nX), *kept = malloc(sizeof(int) * (size_t)m);
+  int *S = malloc(sizeof(int) * (size_t)Z->mesh->nv), *kept = malloc(sizeof(int) * (size_t)m);
   ss_status st = S && kept ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
-  if (!st) st = ssi_symmetry_map(X, o, o->autopair.hyp_flip_orient, S, err);
+  if (!st) st = ssi_symmetry_map(Z, o, o->autopair.hyp_flip_orient, S, err);
   if (!st) ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
   int nc = nc0, order[SS_MAX_HYPOTHESES];
   for (int i = 0; i < nc0; i++) {
@@ -239,15 +241,17 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_centre_signature *
   }
   for (int i = 0; !st && i < nc0 && nc < SS_MAX_HYPOTHESES; i++) {
     const int c = order[i];
-    if (oriented[c]) continue;
+    if (flip_of[c] >= 0 || oriented[c]) continue; /* (a flip is not flipped back) */
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, q = 0;
     for (int a = 0; a < m; a++)
-      if (kept[a]) cx[q] = SX->centers[a], cy[q++] = maps[nX * c + (size_t)S[SX->centers[a]]];
+      if (kept[a]) /* x -> T(S_X(x)), or x -> S_Y(T(x)) */
+        cx[q] = SX->centers[a],
+        cy[q++] = by_y ? S[maps[nX * c + (size_t)SX->centers[a]]] : maps[nX * c + (size_t)S[SX->centers[a]]];
     int dup = q < 3;
     for (int b = 0; b < nc && !dup; b++)
       dup = free_of[b] && same_set(cand[b], lx + (size_t)stride * b, ly + (size_t)stride * b, q, cx, cy);
     if (dup) continue;
-    cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, flip_of[nc] = c;
+    cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, flip_of[nc] = c, flip_by_y[nc] = by_y;
     nc++;
   }
   free(S), free(kept);
@@ -377,9 +381,9 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
   if (nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
-  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1;
+  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1, info.hyp_flip_by_y[c] = 0;
   int flips_looked = 0;
-  char flip_skipped[sizeof(ss_error) + 64] = "";
+  char flip_skipped[sizeof(ss_error) + 96] = "";
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
     if (from_pairs[c] >= 0) {
@@ -428,19 +432,24 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
      * or a mirror image beats it */
     if (c == nc - 1 && !flips_looked) {
       flips_looked = 1;
-      ss_error ferr = {{0}};
-      if (nlg == 0 && nc > 1 && o.autopair.hyp_flip_orient > 0 &&
-          flips_wanted(&info, oriented, nc, info.hypothesis, o.autopair.hyp_confident_orientation) &&
-          (st = add_flipped(X, SX, &o, maps, oriented, info.hyp_energy, stride, lx, ly, cand, from_pairs, free_of,
-                            hyp_of, info.hyp_flip_of, &nc, &ferr))) {
-        /* the flips are optional: one that fails (other than for memory) is skipped with a note,
-         * instead of failing a match whose candidates are all mapped */
-        if (st == SS_ERR_NOMEM) {
-          ss_fail(err, st, "%s", ferr.msg);
+      const int want_flips = nlg == 0 && nc > 1 && o.autopair.hyp_flip_orient > 0 &&
+                             flips_wanted(&info, oriented, nc, info.hypothesis, o.autopair.hyp_confident_orientation);
+      /* by X's own symmetry, then by Y's (hyp_flip_side): where one shape's symmetry map fails (a
+       * cat curled up) the other's turns the mirror round */
+      for (int by_y = 0; want_flips && by_y < 2; by_y++) {
+        if (o.autopair.hyp_flip_side != 2 && o.autopair.hyp_flip_side != by_y) continue;
+        ss_error ferr = {{0}};
+        const ss_status fs = add_flipped(X, Y, by_y, SX, &o, maps, oriented, info.hyp_energy, stride, lx, ly, cand,
+                                         from_pairs, free_of, hyp_of, info.hyp_flip_of, info.hyp_flip_by_y, &nc, &ferr);
+        /* the flips are optional: one side that fails (other than for memory) is skipped with a
+         * note, instead of failing a match whose candidates are all mapped */
+        if (fs == SS_ERR_NOMEM) {
+          st = ss_fail(err, fs, "%s", ferr.msg);
           goto done;
         }
-        snprintf(flip_skipped, sizeof flip_skipped, "no flipped candidates: X's own symmetry map failed (%s)", ferr.msg);
-        st = SS_OK;
+        if (fs)
+          snprintf(flip_skipped, sizeof flip_skipped, "no flipped candidates by %s's symmetry: its own symmetry map "
+                   "failed (%s)", by_y ? "Y" : "X", ferr.msg);
       }
     }
   }
