@@ -66,17 +66,15 @@ static int *read_vts(const char *path, int nv, int *n) {
 }
 
 /* A TOSCA_r pair a -> b of the tuning split, landmark-free: the kept map must be a flipped candidate
- * (the mirror map composed with a's own symmetry), keep orientation clearly and have a mean Euclidean
- * error / sqrt(area of b) on the ground-truth points below 0.05.
+ * (the mirror map composed with a's own symmetry, or b's: by_y 0 or 1, -1 either), keep orientation
+ * clearly and have a mean Euclidean error / sqrt(area of b) on the ground-truth points below 0.05.
+ * flip_side >= 0 makes the flips by that side alone (ss_autopair_options.hyp_flip_side; -1: the
+ * default), and want_right 0 asks for the map to be wrong instead (the other side's flip is needed).
  * - cat10 -> cat3: every pairing hypothesis and the descriptors' candidate came out as the mirror
  *   image (orientation -0.44, error 20.8 x 100), so no selection could help; the flip is the right
  *   way round (error 3.0; here the flipped map 0.03, the mirror 0.15).
  * - cat3 -> cat4: the map kept before the flips kept orientation (0.63) but was wrong (error 16.3);
  *   its mirror images had the lower energy, which is what asks for the flips now (error 2.8). */
-/* a -> b landmark-free must come out right as a flipped candidate (by Y's symmetry when by_y is 1, by
- * X's when 0, either when -1); with flip_side >= 0 the flips are made by that side alone
- * (ss_autopair_options.hyp_flip_side), and want_right 0 then asks for the map to be wrong (the other
- * side's flip is needed) */
 static void test_tosca_flip(const char *a, const char *b, int by_y, int flip_side, int want_right) {
   const char *d = tl_data_dir();
   char px[4096], py[4096], vx[4096], vy[4096];
@@ -111,11 +109,14 @@ static void test_tosca_flip(const char *a, const char *b, int by_y, int flip_sid
     }
     err /= np * sqrt(area);
     const ss_autopair_info *ai = &res.autopair;
-    printf("TOSCA_r %s -> %s (flips by %s): #%d of %d kept (the flip of #%d by %s's symmetry), orientation %.3f; "
-           "mean error %.4f (Euclidean / sqrt(area), %d points)\n", a, b,
+    char what[64] = "not a flip";
+    if (ai->hyp_flip_of[ai->hypothesis] >= 0)
+      snprintf(what, sizeof what, "the flip of #%d by %s's symmetry", ai->hyp_flip_of[ai->hypothesis],
+               ai->hyp_flip_by_y[ai->hypothesis] ? "Y" : "X");
+    printf("TOSCA_r %s -> %s (flips by %s): #%d of %d kept (%s), orientation %.3f; mean error %.4f "
+           "(Euclidean / sqrt(area), %d points)\n", a, b,
            flip_side < 0 ? "default" : flip_side == 0 ? "X" : flip_side == 1 ? "Y" : "both", ai->hypothesis,
-           ai->hypotheses, ai->hyp_flip_of[ai->hypothesis], ai->hyp_flip_by_y[ai->hypothesis] ? "Y" : "X",
-           ai->hyp_orientation[ai->hypothesis], err, np);
+           ai->hypotheses, what, ai->hyp_orientation[ai->hypothesis], err, np);
     if (!want_right) {
       CHECK(err > 0.05);
       goto out;
