@@ -188,7 +188,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   memset(out, 0, sizeof *out);
   if (info) {
     memset(info, 0, sizeof *info);
-    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = -1, info->hyp_flip_by_y[c] = 0;
+    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = -1;
   }
   ss_autopair_options o;
   if (o_in) o = *o_in;

@@ -381,7 +381,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
   if (nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
-  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1, info.hyp_flip_by_y[c] = 0;
+  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1; /* (flip_by_y: 0 by memset) */
   int flips_looked = 0;
   char flip_skipped[sizeof(ss_error) + 96] = "";
   for (int c = 0; c < nc; c++) {
