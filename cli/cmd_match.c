@@ -15,7 +15,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
-    "                     [--hypotheses N] [--flip-by x|y|both]\n"
+    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -60,6 +60,8 @@ static const char USAGE[] =
     "                      pairing's answer alone)\n"
     "  --flip-by x|y|both  whose own left-right symmetry turns a mirrored hypothesis round (default\n"
     "                      both: X's, then Y's)\n"
+    "  --final-zoomout KMAX without --landmarks: the map kept, once chosen, refined further by ZoomOut\n"
+    "                      from KMAX of --zoomout up to this KMAX, 0..10000 (default 150; 0: not)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -139,6 +141,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_FLAG("--no-wks", &o.fmap.no_wks, 1),
       CLI_OPT_FLAG("--json", &json, 1),
       CLI_OPT_INT("--hypotheses", &o.autopair.hypotheses, 1, SS_MAX_HYPOTHESES, NULL),
+      CLI_OPT_INT("--final-zoomout", &o.autopair.hyp_final_kmax, 0, 10000, NULL),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
@@ -304,6 +307,7 @@ int cmd_match(int argc, char **argv) {
   cli_job_int(&J, "segments_x", res.pairs.nx), cli_job_int(&J, "segments_y", res.pairs.ny);
   cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
   cli_job_int(&J, "zoomout", kz);
+  if (res.autopair.used) cli_job_int(&J, "final_zoomout", res.autopair.hyp_final_k);
   if (o.refine != SS_REFINE_NONE) cli_job_str(&J, "refined", refined);
   if (res.notes[0]) cli_job_str(&J, "notes", res.notes);
   cli_job_int(&J, "descriptors", o.ndescr), cli_job_int(&J, "wks", !o.fmap.no_wks);

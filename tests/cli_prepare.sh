@@ -11,7 +11,7 @@ demo_outputs "$TMP/demo" || { bad "demo"; finish; }
 A="$TMP/demo/humanoid_pose0.off"
 B=$(ls "$TMP"/demo/humanoid_pose*.off | grep -v pose0 | head -1)
 "$BIN" prepare "$A" -o "$TMP/a.sss" > "$TMP/out" 2>&1 && ok || bad "prepare A: $(cat "$TMP/out")"
-grep -Eq '^[0-9]+ vertices, [0-9]+ segments, 110 eigenpairs, pairing signature -> .*a.sss \([0-9]+ bytes\)$' "$TMP/out" && ok ||
+grep -Eq '^[0-9]+ vertices, [0-9]+ segments, 150 eigenpairs, pairing signature -> .*a.sss \([0-9]+ bytes\)$' "$TMP/out" && ok ||
   bad "prepare summary: $(cat "$TMP/out")"
 "$BIN" prepare "$B" -o "$TMP/b.sss" > "$TMP/out" 2>&1 && ok || bad "prepare B: $(cat "$TMP/out")"
 head -c 14 "$TMP/a.sss" | grep -q '^specseg-shape ' && ok || bad "file tag"
@@ -58,8 +58,17 @@ done
 "$BIN" match "$TMP/a60.sss" "$TMP/b.sss" -o "$TMP/x.txt" > /dev/null 2> "$TMP/err"; rc=$?
 [ $rc -eq 1 ] && grep -q 'X (the first shape) was prepared with 60 eigenpairs but this match needs 110' "$TMP/err" && ok ||
   bad "too few eigenpairs: rc $rc $(cat "$TMP/err")"
-"$BIN" match "$TMP/a.sss" "$TMP/b.sss" --zoomout 150 -o "$TMP/x.txt" > /dev/null 2> "$TMP/err"; rc=$?
-[ $rc -eq 1 ] && grep -q 'needs 150' "$TMP/err" && ok || bad "--zoomout 150 on 110: rc $rc $(cat "$TMP/err")"
+"$BIN" match "$TMP/a.sss" "$TMP/b.sss" --zoomout 160 -o "$TMP/x.txt" > /dev/null 2> "$TMP/err"; rc=$?
+[ $rc -eq 1 ] && grep -q 'needs 160' "$TMP/err" && ok || bad "--zoomout 160 on 150: rc $rc $(cat "$TMP/err")"
+# a file prepared for the earlier default (110 eigenpairs): matched landmark-free, the map kept refined
+# to 110 only (the further refinement to 150 needs more), and a note says so; --final-zoomout 0 is the
+# same map without the note
+"$BIN" prepare "$A" -k 110 -o "$TMP/a110.sss" > /dev/null 2>&1 && ok || bad "prepare -k 110"
+"$BIN" match "$TMP/a110.sss" "$TMP/b.sss" -o "$TMP/x110.txt" > "$TMP/out" 2>&1; rc=$?
+[ $rc -eq 0 ] && grep -q 'note: .*the shapes hold 110 eigenpairs, fewer than hyp_final_kmax 150: the map kept is refined to 110 only' "$TMP/out" && ok ||
+  bad "110 eigenpairs, landmark-free: rc $rc $(cat "$TMP/out")"
+"$BIN" match "$TMP/a110.sss" "$TMP/b.sss" --final-zoomout 0 -o "$TMP/x0.txt" > "$TMP/out" 2>&1 && ! grep -q hyp_final_kmax "$TMP/out" &&
+  cmp -s "$TMP/x110.txt" "$TMP/x0.txt" && ok || bad "--final-zoomout 0: $(cat "$TMP/out")"
 "$BIN" match "$TMP/a60.sss" "$TMP/b.sss" --landmarks "$TMP/lm.txt" --k 30 --zoomout 60 --descr-k 30 -o "$TMP/x.txt" \
   > /dev/null 2>&1 && ok || bad "a match that fits in 60 eigenpairs"
 

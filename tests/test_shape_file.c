@@ -263,7 +263,7 @@ int main(void) {
   humanoid_landmarks(&X, lm);
   ss_match_options o;
   ss_match_default_options(&o);
-  CHECK(ss_match_eigenpairs(NULL, 5) == 110 && ss_match_eigenpairs(NULL, 0) == 110);
+  CHECK(ss_match_eigenpairs(NULL, 5) == 110 && ss_match_eigenpairs(NULL, 0) == 150);
   const int kev = ss_match_eigenpairs(&o, 5);
 
   /* prepare, write, read back: bit-identical */
@@ -310,18 +310,27 @@ int main(void) {
           strstr(e.msg, "out of range"));
   }
 
-  /* matching the read shapes gives what the meshes give: with landmarks and landmark-free */
+  /* matching the read shapes gives what the meshes give: with landmarks and landmark-free (each
+   * prepared with exactly the eigenpairs its match needs, as a match from the meshes computes them:
+   * landmark-free more, for the further refinement of the map kept) */
+  ss_prepared_shape FX, FY;
+  const int kev0 = ss_match_eigenpairs(&o, 0);
+  CHECK(kev0 > kev && ss_prepared_shape_compute(&X, NULL, kev0, &o.autopair, &FX, &e) == SS_OK);
+  CHECK(ss_prepared_shape_compute(&Y, NULL, kev0, &o.autopair, &FY, &e) == SS_OK);
   for (int nl = 5; nl >= 0; nl -= 5) {
     ss_match_result a = {0}, c = {0}, d = {0};
     char wa[512], wc[512];
+    const ss_prepared_shape *SX = nl ? &RX : &FX, *SY = nl ? &RY : &FY;
     CHECK(ss_match_warn(&X, &Y, nl, lm, lm, &o, &a, wa, sizeof wa, &e) == SS_OK);
-    CHECK_MSG(ss_match_prepared_shapes(&RX, &RY, nl, lm, lm, &o, &c, wc, sizeof wc, &e) == SS_OK, "%s", e.msg);
+    CHECK_MSG(ss_match_prepared_shapes(SX, SY, nl, lm, lm, &o, &c, wc, sizeof wc, &e) == SS_OK, "%s", e.msg);
     CHECK_MSG(same_result(&a, &c), "nl %d: the map from the prepared files differs from the meshes'", nl);
     CHECK(!strcmp(wa, wc) && c.t_segment == 0 && c.t_eigs == 0);
     /* a shallow copy of a prepared shape (its inner pointers left behind) matches the same */
-    ss_prepared_shape CX = RX;
+    ss_prepared_shape CX = *SX;
     CX.prep.mesh = NULL, CX.sig.prep = NULL;
-    CHECK(ss_match_prepared_shapes(&CX, &RY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
+    CHECK(ss_match_prepared_shapes(&CX, SY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
+    /* landmark-free, the map kept was refined further, to hyp_final_kmax */
+    if (!nl) CHECK(c.autopair.hyp_final_k == o.autopair.hyp_final_kmax && c.kc == o.autopair.hyp_final_kmax);
     ss_match_result_free(&a), ss_match_result_free(&c), ss_match_result_free(&d);
   }
 
@@ -372,6 +381,7 @@ int main(void) {
   value_tests(&PX, &PY, dir);
 
   ss_prepared_shape_free(&PX), ss_prepared_shape_free(&PY), ss_prepared_shape_free(&RX), ss_prepared_shape_free(&RY);
+  ss_prepared_shape_free(&FX), ss_prepared_shape_free(&FY);
   ss_mesh_free(&X), ss_mesh_free(&Y);
   char cmd[4300];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

@@ -441,6 +441,13 @@ typedef struct ss_autopair_options {
    * T(S_X(x))), 1 Y's (x -> S_Y(T(x))), 2 both, X's first (default 2: a symmetry map that fails on
    * one shape, a cat curled up, works on the other; docs/tuning.md) */
   int hyp_flip_side;
+  /* the map kept, once chosen, refined further as ss_match_refine refines a map: its functional map
+   * at the match's ZoomOut size (fmap.zoomout_kmax), then ZoomOut up to hyp_final_kmax
+   * eigenfunctions (default 150; 0, or not above fmap.zoomout_kmax: none; not with SS_REFINE_NONE).
+   * The hypotheses compete at the match's size (a larger one there changes which map wins); the
+   * larger basis then sharpens the winner alone (FAUST_r and TOSCA_r tuning splits, docs/tuning.md).
+   * Shapes of fewer eigenpairs (prepared for an earlier default) stop at theirs, with a note. */
+  int hyp_final_kmax;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 8
@@ -547,6 +554,9 @@ typedef struct ss_autopair_info {
   int hyp_flip_of[SS_MAX_HYPOTHESES];
   /* per flipped candidate, 1 when Y's own symmetry turned it round, 0 when X's (hyp_flip_side) */
   int hyp_flip_by_y[SS_MAX_HYPOTHESES];
+  /* the basis size the map kept was refined to after the choice (hyp_final_kmax; 0: not refined
+   * further) */
+  int hyp_final_k;
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the
@@ -963,12 +973,14 @@ SS_API void ss_prepared_shape_free(ss_prepared_shape *s);
 SS_API int ss_match_segments(const ss_match_options *opts, int nl);
 
 /* Eigenpairs each shape needs for ss_match_prepared: max(k, ZoomOut's kmax when refining, descr_k,
- * seg_descr_k with segment probes; landmark-free also the pairing's descr_k and orient_k).
+ * seg_descr_k with segment probes; landmark-free also the pairing's descr_k and orient_k, and
+ * autopair.hyp_final_kmax when refining: shapes with fewer but enough for the rest are matched, the
+ * map kept refined only as far as their eigenpairs go, with a note).
  *
  * Inputs:
  *   opts     options (NULL: defaults)
  *   nl       landmarks (0: landmark-free)
- * Returns: the count (110 for the defaults).
+ * Returns: the count (defaults: 150 landmark-free, 110 with landmarks).
  */
 SS_API int ss_match_eigenpairs(const ss_match_options *opts, int nl);
 

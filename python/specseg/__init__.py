@@ -570,8 +570,8 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
 
     ``match(X, Y, landmarks, ...)`` with two `Shape` objects (`prepare`, `Shape.load`) matches the
     prepared shapes without preparing them again: the same result as from their meshes when each was
-    prepared with the eigenpairs this match needs (`Shape.k`; the default prepare fits the default
-    match), an error naming the shape when one has fewer.
+    prepared with exactly the eigenpairs this match needs (`Shape.k`, `k_needed`; the default prepare
+    fits every default match), an error naming the shape when one has fewer.
 
     Parameters
     ----------
@@ -937,8 +937,9 @@ class Shape:
 
 
 def k_needed(landmarks=True, k=None, zoomout=None):
-    """Eigenpairs a prepared shape needs for `match` with these options (110 for the defaults, with or
-    without landmarks).
+    """Eigenpairs a prepared shape needs for `match` with these options (the defaults: 110 with
+    landmarks, 150 landmark-free, where the map kept is refined further; a Shape with fewer but at
+    least 110 is matched landmark-free too, that refinement stopping at its eigenpairs, with a note).
 
     Parameters
     ----------
@@ -978,7 +979,8 @@ def prepare(V, F, k=None, target_faces=None, no_streamline=False, signature=True
     F : array_like of int, shape (m, 3)
         Triangles, 0-based vertex indices.
     k : int, optional
-        Eigenpairs, 3 <= k < n (default: what the default `match` needs, 110).
+        Eigenpairs, 3 <= k < n (default: what the default landmark-free `match` needs, 150; 110 is
+        what a match with landmarks needs).
     target_faces : int, optional
         The segmentation's remeshing target (library default 15000).
     no_streamline : bool, optional

@@ -135,7 +135,7 @@ class ss_autopair_options(C.Structure):
                 ("hyp_descriptor_map", C.c_int), ("hyp_descriptor_orient", C.c_double),
                 ("hyp_w_map", C.c_double), ("hyp_max_map_energy", C.c_double),
                 ("hyp_flip_orient", C.c_double), ("hyp_w_orientation", C.c_double),
-                ("hyp_flip_side", C.c_int)]
+                ("hyp_flip_side", C.c_int), ("hyp_final_kmax", C.c_int)]
 
 
 class ss_autopair_info(C.Structure):
@@ -153,7 +153,7 @@ class ss_autopair_info(C.Structure):
                 ("hyp_orientation_min", C.c_double * 8), ("hyp_reversed", C.c_double * 8),
                 ("hyp_landmarks", C.c_int), ("hyp_margin", C.c_double),
                 ("hyp_differ", C.c_double * 8), ("hyp_flip_of", C.c_int * 8),
-                ("hyp_flip_by_y", C.c_int * 8)]
+                ("hyp_flip_by_y", C.c_int * 8), ("hyp_final_k", C.c_int)]
 
 
 class ss_match_options(C.Structure):

@@ -57,6 +57,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_flip_orient = 1;
   o->hyp_w_orientation = 0.01;
   o->hyp_flip_side = 2;
+  o->hyp_final_kmax = 150;
 }
 
 static double cpu_now(void) {

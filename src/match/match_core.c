@@ -34,6 +34,7 @@ int ss_match_eigenpairs(const ss_match_options *opts, int nl) {
   if (nl == 0) { /* the landmark-free pairing's descriptors and orientation test */
     if (opts->autopair.descr_k > kev) kev = opts->autopair.descr_k;
     if (opts->autopair.orient_k > kev) kev = opts->autopair.orient_k;
+    if (opts->refine != SS_REFINE_NONE && opts->autopair.hyp_final_kmax > kev) kev = opts->autopair.hyp_final_kmax;
   }
   return kev;
 }

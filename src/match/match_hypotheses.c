@@ -193,8 +193,9 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0 && a->hyp_descriptor_orient <= 1e6) ||
       !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
       !(a->hyp_flip_orient >= 0 && a->hyp_flip_orient <= 1e6) || !(a->hyp_w_orientation >= 0) ||
-      !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2)
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2",
+      !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2 ||
+      a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000)
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -262,6 +263,41 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
  * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
  * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
+/* The map kept, refined further (ss_autopair_options.hyp_final_kmax) as ss_match_refine refines a
+ * map: its functional map at the match's ZoomOut size, then ZoomOut to the final size; out's map and
+ * C are replaced. *k_done: the size reached (0: not refined further). Shapes of fewer eigenpairs
+ * stop at theirs, with a note. */
+static ss_status refine_kept(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
+                             ss_match_result *out, int *k_done, ss_error *err) {
+  *k_done = 0;
+  const int k0 = o->fmap.zoomout_kmax > o->fmap.k ? o->fmap.zoomout_kmax : o->fmap.k;
+  const int kev = X->kev < Y->kev ? X->kev : Y->kev;
+  int kf = o->autopair.hyp_final_kmax;
+  if (o->refine == SS_REFINE_NONE || kf <= k0 || !out->map) return SS_OK;
+  if (kev < kf) {
+    char msg[240];
+    snprintf(msg, sizeof msg, "the shapes hold %d eigenpairs, fewer than hyp_final_kmax %d: the map kept is refined to "
+             "%d only (prepare them again for the default)", kev, kf, kev > k0 ? kev : k0);
+    ssi_match_note(out, msg);
+    kf = kev;
+    if (kf <= k0) return SS_OK;
+  }
+  ss_match_options ro = *o;
+  ro.fmap.k = k0, ro.fmap.zoomout_kmax = kf;
+  int *map = malloc(sizeof(int) * (size_t)X->mesh->nv);
+  double *C = malloc(sizeof(double) * (size_t)kf * kf);
+  ss_status st = map && C ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  if (!st) st = ss_match_refine(X, Y, out->map, &ro, map, C, err);
+  if (st) {
+    free(map), free(C);
+    return st;
+  }
+  free(out->map), free(out->C);
+  out->map = map, out->C = C, out->kc = kf;
+  *k_done = kf;
+  return SS_OK;
+}
+
 static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
                                   const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
                                   const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
@@ -475,6 +511,12 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* NaN (no such energy) compares false: not flagged by it */
   const int high_map_energy = kept_map_energy > o.autopair.hyp_max_map_energy;
   if (!best_oriented || low_orient || high_map_energy) info.confident = 0;
+  /* landmark-free: the map kept, refined further (its time is ZoomOut's) */
+  if (nlg == 0) {
+    const double tf = ss_time();
+    if ((st = refine_kept(X, Y, &o, out, &info.hyp_final_k, err))) goto done;
+    out->t_zoomout += ss_time() - tf;
+  }
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);

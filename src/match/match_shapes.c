@@ -96,7 +96,11 @@ ss_status ss_match_prepared_shapes(const ss_prepared_shape *X, const ss_prepared
     return st;
   }
   const ss_shape_prep *P[2] = {ss_prepared_shape_matched(X), ss_prepared_shape_matched(Y)};
-  const int need = ss_match_eigenpairs(&o, nl);
+  /* the least the match needs: the kept map's further refinement (hyp_final_kmax) stops at the
+   * eigenpairs the shapes hold, with a note (files prepared for an earlier default) */
+  ss_match_options least = o;
+  least.autopair.hyp_final_kmax = 0;
+  const int need = ss_match_eigenpairs(&least, nl);
   for (int s = 0; s < 2; s++)
     if (P[s]->kev < need)
       return ss_fail(err, SS_ERR_INVALID,
