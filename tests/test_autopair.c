@@ -312,6 +312,13 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_flip_side = -1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_flip_side = 2;
+    /* the further refinement of the map kept: 0..10000 eigenfunctions */
+    CHECK(mo.autopair.hyp_final_kmax == 150);
+    mo.autopair.hyp_final_kmax = -1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_final_kmax"));
+    mo.autopair.hyp_final_kmax = 10001;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_final_kmax = 150;
     mo.autopair.hyp_confident_orientation = 1.5;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_confident_orientation = 0.45, mo.autopair.hyp_min_orientation = -1.5;

@@ -330,7 +330,25 @@ int main(void) {
     CX.prep.mesh = NULL, CX.sig.prep = NULL;
     CHECK(ss_match_prepared_shapes(&CX, SY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
     /* landmark-free, the map kept was refined further, to hyp_final_kmax */
-    if (!nl) CHECK(c.autopair.hyp_final_k == o.autopair.hyp_final_kmax && c.kc == o.autopair.hyp_final_kmax);
+    /* landmark-free, the map kept was refined further, to hyp_final_kmax: the same hypothesis as
+     * without that step, and the map ss_match_refine gives from that one's map (k 110 -> 150) */
+    if (!nl) {
+      CHECK(c.autopair.hyp_final_k == o.autopair.hyp_final_kmax && c.kc == o.autopair.hyp_final_kmax);
+      ss_match_options o0 = o, ro = o;
+      o0.autopair.hyp_final_kmax = 0;
+      ss_match_result b = {0};
+      CHECK(ss_match_prepared_shapes(SX, SY, 0, lm, lm, &o0, &b, NULL, 0, &e) == SS_OK && b.autopair.hyp_final_k == 0);
+      CHECK(b.autopair.hypothesis == c.autopair.hypothesis && b.autopair.confident == c.autopair.confident);
+      ro.fmap.k = o.fmap.zoomout_kmax, ro.fmap.zoomout_kmax = o.autopair.hyp_final_kmax;
+      int *rm = malloc(sizeof(int) * (size_t)X.nv);
+      CHECK(rm && ss_match_refine(ss_prepared_shape_matched(SX), ss_prepared_shape_matched(SY), b.map, &ro, rm, NULL, &e) == SS_OK);
+      CHECK_MSG(rm && !memcmp(rm, c.map, sizeof(int) * (size_t)X.nv), "the further refinement is not ss_match_refine's");
+      int moved = 0;
+      for (int i = 0; i < X.nv; i++) moved += b.map[i] != c.map[i];
+      printf("landmark-free: the further refinement to %d moved %d of %d images\n", c.kc, moved, X.nv);
+      free(rm);
+      ss_match_result_free(&b);
+    }
     ss_match_result_free(&a), ss_match_result_free(&c), ss_match_result_free(&d);
   }
 
