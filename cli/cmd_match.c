@@ -61,7 +61,7 @@ static const char USAGE[] =
     "  --flip-by x|y|both  whose own left-right symmetry turns a mirrored hypothesis round (default\n"
     "                      both: X's, then Y's)\n"
     "  --final-zoomout KMAX without --landmarks: the map kept, once chosen, refined further by ZoomOut\n"
-    "                      from KMAX of --zoomout up to this KMAX, 0..10000 (default 150; 0: not)\n"
+    "                      from --zoomout's size up to KMAX, 0..10000 (default 150; 0: not)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"

@@ -260,9 +260,6 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
   return st;
 }
 
-/* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
- * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
- * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
 /* The map kept, refined further (ss_autopair_options.hyp_final_kmax) as ss_match_refine refines a
  * map: its functional map at the match's ZoomOut size, then ZoomOut to the final size; out's map and
  * C are replaced. *k_done: the size reached (0: not refined further). Shapes of fewer eigenpairs
@@ -298,6 +295,9 @@ static ss_status refine_kept(const ss_shape_prep *X, const ss_shape_prep *Y, con
   return SS_OK;
 }
 
+/* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
+ * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
+ * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
 static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
                                   const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
                                   const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
