@@ -329,7 +329,6 @@ int main(void) {
     ss_prepared_shape CX = *SX;
     CX.prep.mesh = NULL, CX.sig.prep = NULL;
     CHECK(ss_match_prepared_shapes(&CX, SY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
-    /* landmark-free, the map kept was refined further, to hyp_final_kmax */
     /* landmark-free, the map kept was refined further, to hyp_final_kmax: the same hypothesis as
      * without that step, and the map ss_match_refine gives from that one's map (k 110 -> 150) */
     if (!nl) {

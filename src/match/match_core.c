@@ -111,15 +111,15 @@ static ss_status copy_pairs(const ss_segment_pairs *in, const ss_shape_prep *X, 
   return SS_OK;
 }
 
-/* the ZoomOut size of a match: kmax with refinement beyond k, else k */
-static int zoomout_size(const ss_match_options *o) {
+/* (match_internal.h) */
+int ssi_match_zoomout_size(const ss_match_options *o) {
   return o->refine != SS_REFINE_NONE && o->fmap.zoomout_kmax > o->fmap.k ? o->fmap.zoomout_kmax : o->fmap.k;
 }
 
 ss_status ssi_match_plan(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
                          ssi_zoomout_plan *p, ss_error *err) {
   memset(p, 0, sizeof *p);
-  const int kz = zoomout_size(o);
+  const int kz = ssi_match_zoomout_size(o);
   /* (too few eigenpairs: none; the match says so) */
   if (kz <= o->fmap.k || X->kev < kz || Y->kev < kz) return SS_OK;
   return ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o->fmap.zoomout_samples, kz, p, err);
@@ -168,7 +168,7 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
   if (k < 3 || (o.fmap.zoomout_kmax != 0 && o.fmap.zoomout_kmax < k))
     return ss_fail(err, SS_ERR_INVALID, "match: bad basis sizes (k %d, ZoomOut %d)", k, o.fmap.zoomout_kmax);
   /* ZoomOut size: only with refinement */
-  const int kz = zoomout_size(&o);
+  const int kz = ssi_match_zoomout_size(&o);
   int need = match_kev(&o);
   if (X->kev < need || Y->kev < need)
     return ss_fail(err, SS_ERR_INVALID, "match: %d eigenpairs needed, shapes have %d and %d", need, X->kev, Y->kev);

@@ -267,7 +267,7 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
 static ss_status refine_kept(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
                              ss_match_result *out, int *k_done, ss_error *err) {
   *k_done = 0;
-  const int k0 = o->fmap.zoomout_kmax > o->fmap.k ? o->fmap.zoomout_kmax : o->fmap.k;
+  const int k0 = ssi_match_zoomout_size(o);
   const int kev = X->kev < Y->kev ? X->kev : Y->kev;
   int kf = o->autopair.hyp_final_kmax;
   if (o->refine == SS_REFINE_NONE || kf <= k0 || !out->map) return SS_OK;

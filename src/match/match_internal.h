@@ -31,6 +31,9 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
                                  const int *lmY, const ss_segment_pairs *pairs_in, const ss_match_options *opts_in,
                                  const ssi_zoomout_plan *plan, ss_match_result *out, ss_error *err);
 
+/* the ZoomOut size of a match: fmap.zoomout_kmax when it refines beyond fmap.k, else fmap.k */
+int ssi_match_zoomout_size(const ss_match_options *o);
+
 /* The ZoomOut plan ssi_match_core would make for X -> Y under o (an empty one, p->n_S = 0, when o
  * refines nothing or the shapes have too few eigenpairs for it). */
 ss_status ssi_match_plan(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_match_options *o,
