@@ -906,7 +906,8 @@ SS_API const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s
  *   m        the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face
  *            or vertex the sanitizer would drop)
  *   seg_opts segmentation options (NULL: ss_segment_default_options)
- *   kev      eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (110 for the default match)
+ *   kev      eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (the default match: 150
+ *            landmark-free, 110 with landmarks)
  *   autopair options of the landmark-free pairing's centre signature (NULL: none computed); it is
  *            computed only for a mesh of one component (the landmark-free match of several keeps the
  *            largest one and prepares that)
