@@ -215,6 +215,37 @@ int main(void) {
       ss_match_result_free(&a), ss_match_result_free(&b);
       ss_prepared_shape_free(&P), ss_prepared_shape_free(&R);
     }
+    /* landmark-free through the proxy: the hypotheses on the proxies, the map kept refined further
+     * (hyp_final_kmax) on the proxies' eigenpairs, then lifted; the prepared path gives the mesh
+     * path's map */
+    {
+      ss_match_options o;
+      ss_match_default_options(&o);
+      o.fmap.k = 20, o.fmap.zoomout_kmax = 30, o.fmap.descr_k = 30, o.seg_descr_k = 0;
+      o.autopair.hyp_final_kmax = 40;
+      const int kev = ss_match_eigenpairs(&o, 0);
+      CHECK_MSG(kev >= 40, "landmark-free eigenpairs %d (hyp_final_kmax 40)", kev);
+      ss_prepared_shape P = {0};
+      CHECK_MSG(ss_prepared_shape_compute(&s2, NULL, kev, &o.autopair, &P, &e) == SS_OK, "%s", e.msg);
+      CHECK(P.has_proxy && P.proxy_prep.kev == kev);
+      ss_match_result a = {0}, b = {0};
+      CHECK_MSG(ss_match_prepared_shapes(&P, &P, 0, NULL, NULL, &o, &a, NULL, 0, &e) == SS_OK, "%s", e.msg);
+      CHECK_MSG(ss_match_warn(&s2, &s2, 0, NULL, NULL, &o, &b, NULL, 0, &e) == SS_OK, "%s", e.msg);
+      CHECK_MSG(a.autopair.hyp_final_k == 40 && a.kc == 40, "refined further to %d (kc %d), want 40",
+                a.autopair.hyp_final_k, a.kc);
+      CHECK(a.map && b.map && a.nX == s2.nv && b.nX == s2.nv && b.autopair.hyp_final_k == 40 &&
+            !memcmp(a.map, b.map, sizeof(int) * (size_t)s2.nv));
+      int bad = 0, fixed = 0;
+      for (int i = 0; a.map && i < s2.nv; i++) {
+        bad += a.map[i] < 0 || a.map[i] >= s2.nv;
+        fixed += a.map[i] == i;
+      }
+      CHECK(bad == 0);
+      /* a shape onto itself: most vertices land on themselves (or their mirror, on a symmetric body) */
+      printf("FAUST x2 onto itself, landmark-free through the proxy: %d of %d vertices fixed\n", fixed, s2.nv);
+      ss_match_result_free(&a), ss_match_result_free(&b);
+      ss_prepared_shape_free(&P);
+    }
     ss_segmentation_free(&s);
     ss_mesh_free(&s1), ss_mesh_free(&s2);
   }
