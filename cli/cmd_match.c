@@ -60,7 +60,7 @@ static const char USAGE[] =
     "                      pairing's answer alone)\n"
     "  --flip-by x|y|both  whose own left-right symmetry turns a mirrored hypothesis round (default\n"
     "                      both: X's, then Y's)\n"
-    "  --final-zoomout KMAX without --landmarks: the map kept, once chosen, refined further by ZoomOut\n"
+    "  --final-zoomout KMAX the map kept among the hypotheses, once chosen, refined further by ZoomOut\n"
     "                      from --zoomout's size up to KMAX, 0..10000 (default 150; 0: not)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"

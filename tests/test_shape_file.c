@@ -263,7 +263,13 @@ int main(void) {
   humanoid_landmarks(&X, lm);
   ss_match_options o;
   ss_match_default_options(&o);
-  CHECK(ss_match_eigenpairs(NULL, 5) == 110 && ss_match_eigenpairs(NULL, 0) == 150);
+  CHECK(ss_match_eigenpairs(NULL, 5) == 150 && ss_match_eigenpairs(NULL, 0) == 150);
+  {
+    /* with landmarks and no hypotheses beside them nothing is refined further: the match's 110 */
+    ss_match_options h0 = o;
+    h0.autopair.hyp_landmarks = 0;
+    CHECK(ss_match_eigenpairs(&h0, 5) == 110 && ss_match_eigenpairs(&h0, 0) == 150);
+  }
   const int kev = ss_match_eigenpairs(&o, 5);
 
   /* prepare, write, read back: bit-identical */
@@ -312,10 +318,10 @@ int main(void) {
 
   /* matching the read shapes gives what the meshes give: with landmarks and landmark-free (each
    * prepared with exactly the eigenpairs its match needs, as a match from the meshes computes them:
-   * landmark-free more, for the further refinement of the map kept) */
+   * in both, enough for the further refinement of the map kept) */
   ss_prepared_shape FX, FY;
   const int kev0 = ss_match_eigenpairs(&o, 0);
-  CHECK(kev0 > kev && ss_prepared_shape_compute(&X, NULL, kev0, &o.autopair, &FX, &e) == SS_OK);
+  CHECK(kev0 == kev && ss_prepared_shape_compute(&X, NULL, kev0, &o.autopair, &FX, &e) == SS_OK);
   CHECK(ss_prepared_shape_compute(&Y, NULL, kev0, &o.autopair, &FY, &e) == SS_OK);
   for (int nl = 5; nl >= 0; nl -= 5) {
     ss_match_result a = {0}, c = {0}, d = {0};
@@ -329,14 +335,15 @@ int main(void) {
     ss_prepared_shape CX = *SX;
     CX.prep.mesh = NULL, CX.sig.prep = NULL;
     CHECK(ss_match_prepared_shapes(&CX, SY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
-    /* landmark-free, the map kept was refined further, to hyp_final_kmax: the same hypothesis as
-     * without that step, and the map ss_match_refine gives from that one's map (k 110 -> 150) */
-    if (!nl) {
+    /* the map kept was refined further, to hyp_final_kmax (with landmarks too: the hypotheses beside
+     * them): the same hypothesis as without that step, and the map ss_match_refine gives from that
+     * one's map (k 110 -> 150) */
+    {
       CHECK(c.autopair.hyp_final_k == o.autopair.hyp_final_kmax && c.kc == o.autopair.hyp_final_kmax);
       ss_match_options o0 = o, ro = o;
       o0.autopair.hyp_final_kmax = 0;
       ss_match_result b = {0};
-      CHECK(ss_match_prepared_shapes(SX, SY, 0, lm, lm, &o0, &b, NULL, 0, &e) == SS_OK && b.autopair.hyp_final_k == 0);
+      CHECK(ss_match_prepared_shapes(SX, SY, nl, lm, lm, &o0, &b, NULL, 0, &e) == SS_OK && b.autopair.hyp_final_k == 0);
       CHECK(b.autopair.hypothesis == c.autopair.hypothesis && b.autopair.confident == c.autopair.confident);
       ro.fmap.k = o.fmap.zoomout_kmax, ro.fmap.zoomout_kmax = o.autopair.hyp_final_kmax;
       int *rm = malloc(sizeof(int) * (size_t)X.nv);
@@ -344,7 +351,7 @@ int main(void) {
       CHECK_MSG(rm && !memcmp(rm, c.map, sizeof(int) * (size_t)X.nv), "the further refinement is not ss_match_refine's");
       int moved = 0;
       for (int i = 0; i < X.nv; i++) moved += b.map[i] != c.map[i];
-      printf("landmark-free: the further refinement to %d moved %d of %d images\n", c.kc, moved, X.nv);
+      printf("%d landmarks: the further refinement to %d moved %d of %d images\n", nl, c.kc, moved, X.nv);
       free(rm);
       ss_match_result_free(&b);
     }

@@ -446,7 +446,9 @@ typedef struct ss_autopair_options {
    * eigenfunctions (default 150; 0, or not above fmap.zoomout_kmax: none; not with SS_REFINE_NONE).
    * The hypotheses compete at the match's size (a larger one there changes which map wins); the
    * larger basis then sharpens the winner alone (FAUST_r and TOSCA_r tuning splits, docs/tuning.md).
-   * Shapes of fewer eigenpairs (prepared for an earlier default) stop at theirs, with a note. */
+   * Landmark-free and with landmarks alike (the hypotheses beside them, hyp_landmarks); not in a
+   * match that forms no hypotheses. Shapes of fewer eigenpairs (prepared for an earlier default)
+   * stop at theirs, with a note. */
   int hyp_final_kmax;
 } ss_autopair_options;
 
@@ -906,8 +908,8 @@ SS_API const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s
  *   m        the input mesh (nv vertices, nf faces; copied), as ss_shape_prep_compute takes it (no face
  *            or vertex the sanitizer would drop)
  *   seg_opts segmentation options (NULL: ss_segment_default_options)
- *   kev      eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (the default match: 150
- *            landmark-free, 110 with landmarks)
+ *   kev      eigenpairs, 3 <= kev < nv; a match needs ss_match_eigenpairs (150 for the default
+ *            match)
  *   autopair options of the landmark-free pairing's centre signature (NULL: none computed); it is
  *            computed only for a mesh of one component (the landmark-free match of several keeps the
  *            largest one and prepares that)
@@ -974,14 +976,15 @@ SS_API void ss_prepared_shape_free(ss_prepared_shape *s);
 SS_API int ss_match_segments(const ss_match_options *opts, int nl);
 
 /* Eigenpairs each shape needs for ss_match_prepared: max(k, ZoomOut's kmax when refining, descr_k,
- * seg_descr_k with segment probes; landmark-free also the pairing's descr_k and orient_k, and
- * autopair.hyp_final_kmax when refining: shapes with fewer but enough for the rest are matched, the
- * map kept refined only as far as their eigenpairs go, with a note).
+ * seg_descr_k with segment probes; landmark-free also the pairing's descr_k and orient_k; and
+ * autopair.hyp_final_kmax when the match forms hypotheses (landmark-free, or beside landmarks with
+ * hyp_landmarks and SS_REFINE_BEST): shapes with fewer but enough for the rest are matched, the map
+ * kept refined only as far as their eigenpairs go, with a note).
  *
  * Inputs:
  *   opts     options (NULL: defaults)
  *   nl       landmarks (0: landmark-free)
- * Returns: the count (defaults: 150 landmark-free, 110 with landmarks).
+ * Returns: the count (defaults: 150, with landmarks or without; 110 with hyp_landmarks 0).
  */
 SS_API int ss_match_eigenpairs(const ss_match_options *opts, int nl);
 

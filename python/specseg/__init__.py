@@ -937,9 +937,9 @@ class Shape:
 
 
 def k_needed(landmarks=True, k=None, zoomout=None):
-    """Eigenpairs a prepared shape needs for `match` with these options (the defaults: 110 with
-    landmarks, 150 landmark-free, where the map kept is refined further; a Shape with fewer but at
-    least 110 is matched landmark-free too, that refinement stopping at its eigenpairs, with a note).
+    """Eigenpairs a prepared shape needs for `match` with these options (the default: 150, with
+    landmarks or without, where the map kept among the hypotheses is refined further; a Shape with
+    fewer but at least 110 is matched too, that refinement stopping at its eigenpairs, with a note).
 
     Parameters
     ----------

@@ -34,8 +34,12 @@ int ss_match_eigenpairs(const ss_match_options *opts, int nl) {
   if (nl == 0) { /* the landmark-free pairing's descriptors and orientation test */
     if (opts->autopair.descr_k > kev) kev = opts->autopair.descr_k;
     if (opts->autopair.orient_k > kev) kev = opts->autopair.orient_k;
-    if (opts->refine != SS_REFINE_NONE && opts->autopair.hyp_final_kmax > kev) kev = opts->autopair.hyp_final_kmax;
   }
+  /* the map kept among hypotheses, refined further (with landmarks: the hypotheses beside them) */
+  const int hypotheses = nl == 0 || (opts->autopair.hyp_landmarks && opts->autopair.hypotheses > 1 &&
+                                     opts->refine == SS_REFINE_BEST && ss_match_segments(opts, nl));
+  if (hypotheses && opts->refine != SS_REFINE_NONE && opts->autopair.hyp_final_kmax > kev)
+    kev = opts->autopair.hyp_final_kmax;
   return kev;
 }
 

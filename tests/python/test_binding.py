@@ -109,7 +109,8 @@ else:
     mc = np.loadtxt(path("m.txt"), dtype=np.int64)
     r = specseg.match(V, F, V, F, lm, k=20)
     check(np.array_equal(r.map, mc), "match: map")
-    check(r.C.shape == (20, 20), "match: C shape")
+    # the map kept among the hypotheses (beside the landmarks) is refined further, to 150 by default
+    check(r.C.shape == (150, 150), "match: C shape %s, want (150, 150)" % (r.C.shape,))
     cli("match", MESH, MESH, "--landmarks", path("lm.txt"), "--k", 20, "--segment-profile", "soft", "-o", path("ms.txt"))
     ms = np.loadtxt(path("ms.txt"), dtype=np.int64)
     rs = specseg.match(V, F, V, F, lm, k=20, segment_profile="soft")
@@ -150,14 +151,14 @@ else:
 if NO_MATCH or not hasattr(specseg.lib, "ss_prepared_shape_compute"):
     print("SKIP: prepared shapes (%s)" % ("--no-match" if NO_MATCH else "no ss_prepared_shape_compute"))
 else:
-    # the default prepare fits the default landmark-free match (its further refinement of the map
-    # kept needs more eigenpairs than a match with landmarks); with exactly what the landmark match
-    # needs, a Shape gives the very map of the arrays
+    # the default prepare fits the default match, landmark-free or with landmarks (the further
+    # refinement of the map kept needs 150 in both; 110 without the hypotheses beside landmarks); with
+    # exactly what the landmark match needs, a Shape gives the very map of the arrays
     Sd = specseg.prepare(V, F)
-    check(Sd.n == n and Sd.k == specseg.k_needed(landmarks=False) == 150 and specseg.k_needed() == 110,
+    check(Sd.n == n and Sd.k == specseg.k_needed(landmarks=False) == 150 and specseg.k_needed() == 150,
           "prepare: %r" % Sd)
     S = specseg.prepare(V, F, k=specseg.k_needed())
-    check(S.n == n and S.k == 110 and np.array_equal(S.V, V) and np.array_equal(S.F, F), "prepare: %r" % S)
+    check(S.n == n and S.k == 150 and np.array_equal(S.V, V) and np.array_equal(S.F, F), "prepare: %r" % S)
     check(np.array_equal(Sd.labels, S.labels), "prepare: the segmentation does not depend on k")
     check(np.array_equal(S.labels, seg.labels) and np.array_equal(S.centers, seg.centers), "prepare: the segmentation")
     rp = specseg.match(S, S, lm, k=20)
