@@ -381,10 +381,9 @@ static ss_status run(brun *R, ss_error *err) {
   FILE *out = NULL;
   char *csv = NULL, *mapdir = NULL;
   int lm[MAX_LM], nlm = 0;
-  /* the landmark-free match's eigenpairs (its map kept refined further needs the most), also for
-   * --landmarks runs: one cache entry serves both */
-  const int kev0 = ss_match_eigenpairs(NULL, 0), kevl = ss_match_eigenpairs(NULL, o->landmarks);
-  const int kev = kev0 > kevl ? kev0 : kevl;
+  /* the landmark-free match's eigenpairs, also for --landmarks runs (a match with landmarks never
+   * needs more): one cache entry serves both */
+  const int kev = ss_match_eigenpairs(NULL, 0);
   ss_match_options mo;
   ss_match_default_options(&mo);
   /* the landmark-free pairing's signature, also for --landmarks runs (unused there, ~0.2 s a shape):

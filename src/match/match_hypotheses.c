@@ -511,13 +511,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* NaN (no such energy) compares false: not flagged by it */
   const int high_map_energy = kept_map_energy > o.autopair.hyp_max_map_energy;
   if (!best_oriented || low_orient || high_map_energy) info.confident = 0;
-  /* the map kept, refined further (its time is ZoomOut's); with landmarks too: the tuning split's
-   * FAUST_r pairs with 5 ground-truth landmarks, 1.82 -> 1.78 (docs/tuning.md) */
-  {
-    const double tf = ss_time();
-    if ((st = refine_kept(X, Y, &o, out, &info.hyp_final_k, err))) goto done;
-    out->t_zoomout += ss_time() - tf;
-  }
+  /* the map kept, refined further, with landmarks or without (its time is ZoomOut's) */
+  const double t_final = ss_time();
+  if ((st = refine_kept(X, Y, &o, out, &info.hyp_final_k, err))) goto done;
+  out->t_zoomout += ss_time() - t_final;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
