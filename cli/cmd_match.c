@@ -15,7 +15,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
-    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX]\n"
+    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -56,8 +56,10 @@ static const char USAGE[] =
     "  --zoomout KMAX      refinement (ZoomOut) up to KMAX >= K eigenfunctions (default 110)\n"
     "  --no-refine         the unrefined map of --probes at size K (with the library's descriptors, pairing\n"
     "                      safeguards and orientation term; specseg eval computes the paper's variants)\n"
-    "  --hypotheses N      without --landmarks: pairing hypotheses mapped, 1..8 (default 4; 1: the\n"
-    "                      pairing's answer alone)\n"
+    "  --hypotheses N      without --landmarks: pairing hypotheses mapped, 1..16 (default 4; 1: the\n"
+    "                      pairing's answer alone), from each direction\n"
+    "  --one-way           without --landmarks: X's own hypotheses only, not also Y's pairing search against\n"
+    "                      X read the other way (fewer candidates, less time)\n"
     "  --flip-by x|y|both  whose own left-right symmetry turns a mirrored hypothesis round (default\n"
     "                      both: X's, then Y's)\n"
     "  --final-zoomout KMAX the map kept among the hypotheses, once chosen, refined further by ZoomOut\n"
@@ -102,6 +104,7 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
       if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
       else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
     }
+    if (n < size && a->hyp_from_y[h]) n += (size_t)snprintf(buf + n, size - n, ", \"from\": \"Y\"");
     if (n < size && a->hyp_flip_of[h] >= 0)
       n += (size_t)snprintf(buf + n, size - n, ", \"flip_of\": %d, \"flip_by\": \"%s\"", a->hyp_flip_of[h],
                             a->hyp_flip_by_y[h] ? "Y" : "X");
@@ -140,6 +143,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_STR2("--descriptors", &dxp, &dyp),
       CLI_OPT_FLAG("--no-wks", &o.fmap.no_wks, 1),
       CLI_OPT_FLAG("--json", &json, 1),
+      CLI_OPT_FLAG("--one-way", &o.autopair.hyp_reverse, 0),
       CLI_OPT_INT("--hypotheses", &o.autopair.hypotheses, 1, SS_MAX_HYPOTHESES, NULL),
       CLI_OPT_INT("--final-zoomout", &o.autopair.hyp_final_kmax, 0, 10000, NULL),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
@@ -285,6 +289,7 @@ int cmd_match(int argc, char **argv) {
     if (h == a->hyp_descriptor) snprintf(what, sizeof what, " (the descriptors' own)");
     else if (a->hyp_flip_of[h] >= 0)
       snprintf(what, sizeof what, " (the flip of #%d by %s's symmetry)", a->hyp_flip_of[h], a->hyp_flip_by_y[h] ? "Y" : "X");
+    else if (a->hyp_from_y[h]) snprintf(what, sizeof what, " (from Y's side)");
     fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed, "
             "map energy %.4g, orientation %.3f; margin %.3g)%s\n", a->hypotheses, h, what, a->hyp_energy[h],
             a->hyp_distortion[h], 100 * a->hyp_reversed[h], a->hyp_map_energy[h], a->hyp_orientation[h], a->hyp_margin,

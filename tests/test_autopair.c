@@ -243,7 +243,33 @@ static void test_permuted_and_mirrored(void) {
       /* the descriptors' own candidate, last, maps this isometry orientation-preserving too */
       printf("  the descriptors' own candidate #%d: energy %.4f, orientation %.3f\n", ai->hyp_descriptor,
              ai->hyp_energy[ai->hyp_descriptor], ai->hyp_orientation[ai->hyp_descriptor]);
-      CHECK(ai->hyp_descriptor == ai->hypotheses - 1 && ai->hyp_orientation[ai->hyp_descriptor] > 0.5);
+      CHECK(ai->hyp_descriptor >= 1 && ai->hyp_descriptor < ai->hypotheses && !ai->hyp_from_y[ai->hyp_descriptor] &&
+            ai->hyp_orientation[ai->hyp_descriptor] > 0.5);
+      /* X's own candidates first, the descriptors' last of them; then those from Y's side (hyp_reverse),
+       * none a flip, each pairing one's pair energy that of one of Y's own pairing hypotheses against X */
+      {
+        ss_segment_pairs rh[SS_MAX_HYPOTHESES];
+        int nrh = 0, from_y = 0;
+        CHECK(ss_pair_centres_hypotheses(&sR, &sX, NULL, SS_MAX_HYPOTHESES, rh, &nrh, NULL, &e) == SS_OK);
+        for (int h = 0; h < ai->hypotheses; h++) {
+          if (!ai->hyp_from_y[h]) {
+            CHECK(h <= ai->hyp_descriptor || ai->hyp_flip_of[h] >= 0);
+            continue;
+          }
+          from_y++;
+          CHECK(h > ai->hyp_descriptor && ai->hyp_flip_of[h] == -1);
+          if (!isfinite(ai->hyp_pair_energy[h])) continue; /* Y's descriptors' candidate */
+          int found = 0;
+          for (int r = 0; r < nrh && !found; r++) {
+            double pe = 0;
+            for (int q = 0; q < rh[r].n; q++) pe += rh[r].energy[q];
+            found = fabs(pe - ai->hyp_pair_energy[h]) <= 1e-9 * (1 + fabs(pe));
+          }
+          CHECK_MSG(found, "#%d from Y: pair energy %.17g is none of Y's %d hypotheses'", h, ai->hyp_pair_energy[h], nrh);
+        }
+        printf("  %d candidates from Y's side (Y's search: %d hypotheses)\n", from_y, nrh);
+        for (int r = 0; r < nrh; r++) ss_segment_pairs_free(&rh[r]);
+      }
       for (int h = 0; h < ai->hypotheses; h++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
       /* the hypothesis energy is its three terms: distortion, reversed segments, the map's own
        * selection energy (every candidate is refined with SS_REFINE_BEST here, so it has one) */
@@ -324,6 +350,17 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_confident_orientation = 0.45, mo.autopair.hyp_min_orientation = -1.5;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_min_orientation = 0;
+    /* one way only (hyp_reverse 0): X's own candidates, none from Y, at most 8 with the flips (the room
+     * before hyp_reverse); the option is checked */
+    CHECK(mo.autopair.hyp_reverse == 1);
+    mo.autopair.hyp_reverse = 0;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+    CHECK(res.autopair.hypotheses >= 2 && res.autopair.hypotheses <= 8);
+    for (int h = 0; h < res.autopair.hypotheses; h++) CHECK(!res.autopair.hyp_from_y[h]);
+    ss_match_result_free(&res);
+    mo.autopair.hyp_reverse = 2;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_reverse"));
+    mo.autopair.hyp_reverse = 1;
     /* one hypothesis: the pairing's answer alone, as before the hypotheses */
     mo.autopair.hypotheses = 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);

@@ -450,9 +450,16 @@ typedef struct ss_autopair_options {
    * match that forms no hypotheses. Shapes of fewer eigenpairs (prepared for an earlier default)
    * stop at theirs, with a note. */
   int hyp_final_kmax;
+  /* landmark-free, the other direction's hypotheses too (hypotheses > 1): Y's pairing search against
+   * X (its answer, mirror and next leaves) and Y's descriptors' own candidate, each turned into X -> Y
+   * landmarks (the same centre pairs read the other way; Y's protrusion centres and their images on
+   * X) and mapped as the others are, distinct sets only. The pairing search is not symmetric (it
+   * starts from the protrusions of the shape it maps), and where it goes wrong from X's side it is
+   * often right from Y's. 1 (default): on; 0: off (docs/tuning.md) */
+  int hyp_reverse;
 } ss_autopair_options;
 
-#define SS_MAX_HYPOTHESES 8
+#define SS_MAX_HYPOTHESES 16
 
 /* Fills o with the landmark-free pairing's defaults (the values named in ss_autopair_options).
  *
@@ -556,6 +563,8 @@ typedef struct ss_autopair_info {
   int hyp_flip_of[SS_MAX_HYPOTHESES];
   /* per flipped candidate, 1 when Y's own symmetry turned it round, 0 when X's (hyp_flip_side) */
   int hyp_flip_by_y[SS_MAX_HYPOTHESES];
+  /* per candidate, 1 when it came from Y's side (hyp_reverse), 0 otherwise */
+  int hyp_from_y[SS_MAX_HYPOTHESES];
   /* the basis size the map kept was refined to after the choice (hyp_final_kmax; 0: not refined
    * further) */
   int hyp_final_k;

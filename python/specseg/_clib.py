@@ -135,7 +135,10 @@ class ss_autopair_options(C.Structure):
                 ("hyp_descriptor_map", C.c_int), ("hyp_descriptor_orient", C.c_double),
                 ("hyp_w_map", C.c_double), ("hyp_max_map_energy", C.c_double),
                 ("hyp_flip_orient", C.c_double), ("hyp_w_orientation", C.c_double),
-                ("hyp_flip_side", C.c_int), ("hyp_final_kmax", C.c_int)]
+                ("hyp_flip_side", C.c_int), ("hyp_final_kmax", C.c_int), ("hyp_reverse", C.c_int)]
+
+
+MAX_HYPOTHESES = 16  # SS_MAX_HYPOTHESES (match.h)
 
 
 class ss_autopair_info(C.Structure):
@@ -147,13 +150,14 @@ class ss_autopair_info(C.Structure):
                 ("mirror_margin", C.c_double), ("alternatives", C.c_int), ("alternative", C.c_int),
                 ("polished", C.c_int),
                 ("hypotheses", C.c_int), ("hypothesis", C.c_int), ("hyp_descriptor", C.c_int),
-                ("hyp_pair_energy", C.c_double * 8),
-                ("hyp_orientation", C.c_double * 8), ("hyp_distortion", C.c_double * 8),
-                ("hyp_energy", C.c_double * 8), ("hyp_map_energy", C.c_double * 8),
-                ("hyp_orientation_min", C.c_double * 8), ("hyp_reversed", C.c_double * 8),
+                ("hyp_pair_energy", C.c_double * MAX_HYPOTHESES),
+                ("hyp_orientation", C.c_double * MAX_HYPOTHESES), ("hyp_distortion", C.c_double * MAX_HYPOTHESES),
+                ("hyp_energy", C.c_double * MAX_HYPOTHESES), ("hyp_map_energy", C.c_double * MAX_HYPOTHESES),
+                ("hyp_orientation_min", C.c_double * MAX_HYPOTHESES), ("hyp_reversed", C.c_double * MAX_HYPOTHESES),
                 ("hyp_landmarks", C.c_int), ("hyp_margin", C.c_double),
-                ("hyp_differ", C.c_double * 8), ("hyp_flip_of", C.c_int * 8),
-                ("hyp_flip_by_y", C.c_int * 8), ("hyp_final_k", C.c_int)]
+                ("hyp_differ", C.c_double * MAX_HYPOTHESES), ("hyp_flip_of", C.c_int * MAX_HYPOTHESES),
+                ("hyp_flip_by_y", C.c_int * MAX_HYPOTHESES), ("hyp_from_y", C.c_int * MAX_HYPOTHESES),
+                ("hyp_final_k", C.c_int)]
 
 
 class ss_match_options(C.Structure):

@@ -58,6 +58,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_w_orientation = 0.01;
   o->hyp_flip_side = 2;
   o->hyp_final_kmax = 150;
+  o->hyp_reverse = 1;
 }
 
 static double cpu_now(void) {

@@ -162,11 +162,25 @@ static int agreeing_pairs(const ssi_hyp_ctx *hc, int nlg, const double *gdX, con
   return q;
 }
 
+/* whether the n landmark pairs (a, b) are the m pairs (c, d) in any order (a set from Y's side lists
+ * them in Y's order) */
 static int same_set(int n, const int *a, const int *b, int m, const int *c, const int *d) {
   if (n != m) return 0;
-  for (int i = 0; i < n; i++)
-    if (a[i] != c[i] || b[i] != d[i]) return 0;
+  for (int i = 0; i < n; i++) {
+    int found = 0;
+    for (int j = 0; j < m && !found; j++) found = a[i] == c[j] && b[i] == d[j];
+    if (!found) return 0;
+  }
   return 1;
+}
+
+/* whether the landmark set of candidate nc (count cnt, at lx / ly + stride · nc) repeats an earlier
+ * landmark-free candidate's */
+static int repeats_free(int nc, const int *cand, const int *free_of, const int *lx, const int *ly, int stride, int cnt) {
+  const int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
+  for (int c = 0; c < nc; c++)
+    if (free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, cnt, cx, cy)) return 1;
+  return 0;
 }
 
 /* The share of X's nX vertices whose images under maps a and b (vertices of Y) lie farther apart
@@ -194,8 +208,8 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
       !(a->hyp_flip_orient >= 0 && a->hyp_flip_orient <= 1e6) || !(a->hyp_w_orientation >= 0) ||
       !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2 ||
-      a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000)
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000",
+      a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000 || a->hyp_reverse < 0 || a->hyp_reverse > 1)
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000, hyp_reverse 0 or 1",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -218,12 +232,12 @@ static int flips_wanted(const ss_autopair_info *info, const int *oriented, int n
  * protrusion centres (hyp_keep) and the images under that map of their mirror images on X (by_y 0),
  * or the mirror images on Y of their images (by_y 1; ssi_symmetry_map of that shape): the mirror map
  * turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to lx,
- * ly, cand, from_pairs, free_of, hyp_of (room for SS_MAX_HYPOTHESES) and sets flip_of[new] = c,
+ * ly, cand, from_pairs, free_of, hyp_of (up to cap candidates in all) and sets flip_of[new] = c,
  * flip_by_y[new] = by_y. On failure none is added. */
 static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int by_y, const ss_centre_signature *SX,
                              const ss_match_options *o, const int *maps, const int *oriented, const double *energy,
                              int stride, int *lx, int *ly, int *cand, int *from_pairs, int *free_of, int *hyp_of,
-                             int *flip_of, int *flip_by_y, int *nc_io, ss_error *err) {
+                             int *flip_of, int *flip_by_y, int cap, int *nc_io, ss_error *err) {
   const int nc0 = *nc_io, m = SX->m;
   const size_t nX = (size_t)X->mesh->nv;
   const ss_shape_prep *Z = by_y ? Y : X; /* the shape whose own symmetry turns the maps round */
@@ -240,7 +254,7 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
     for (; j > 0 && energy[order[j - 1]] > energy[i]; j--) order[j] = order[j - 1];
     order[j] = i;
   }
-  for (int i = 0; !st && i < nc0 && nc < SS_MAX_HYPOTHESES; i++) {
+  for (int i = 0; !st && i < nc0 && nc < cap; i++) {
     const int c = order[i];
     if (flip_of[c] >= 0 || oriented[c]) continue; /* (a flip is not flipped back) */
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, q = 0;
@@ -248,10 +262,7 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
       if (kept[a]) /* x -> T(S_X(x)), or x -> S_Y(T(x)) */
         cx[q] = SX->centers[a],
         cy[q++] = by_y ? S[maps[nX * c + (size_t)SX->centers[a]]] : maps[nX * c + (size_t)S[SX->centers[a]]];
-    int dup = q < 3;
-    for (int b = 0; b < nc && !dup; b++)
-      dup = free_of[b] && same_set(cand[b], lx + (size_t)stride * b, ly + (size_t)stride * b, q, cx, cy);
-    if (dup) continue;
+    if (q < 3 || repeats_free(nc, cand, free_of, lx, ly, stride, q)) continue;
     cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, flip_of[nc] = c, flip_by_y[nc] = by_y;
     nc++;
   }
@@ -311,9 +322,9 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
   ss_centre_signature own[2];
   memset(own, 0, sizeof own);
-  ss_segment_pairs hyp[SS_MAX_HYPOTHESES];
-  memset(hyp, 0, sizeof hyp);
-  int nh = 0;
+  ss_segment_pairs hyp[SS_MAX_HYPOTHESES], rhyp[SS_MAX_HYPOTHESES];
+  memset(hyp, 0, sizeof hyp), memset(rhyp, 0, sizeof rhyp);
+  int nh = 0, nrh = 0;
   ss_autopair_info info;
   ssi_hyp_ctx hc = {0};
   ss_match_result r;
@@ -340,7 +351,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   for (int h = 0; h < nh; h++)
     if (hyp[h].n > mx) mx = hyp[h].n;
   /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
-  if (SX->m > mx) mx = SX->m; /* the descriptors' candidate */
+  if (SX->m > mx) mx = SX->m; /* the descriptors' candidates */
+  if (SY->m > mx) mx = SY->m;
   const int stride = nlg + mx, ncap = SS_MAX_HYPOTHESES;
   lx = malloc(sizeof(int) * (size_t)stride * ncap);
   ly = malloc(sizeof(int) * (size_t)stride * ncap);
@@ -350,6 +362,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
    * candidate (hypothesis hyp_of[c]'s protrusion pairs alone) */
   int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES], hyp_of[SS_MAX_HYPOTHESES];
+  int rhyp_of[SS_MAX_HYPOTHESES]; /* Y's pairing hypothesis behind a candidate from Y's side (-1: none) */
+  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) rhyp_of[c] = -1;
   if (nlg > 0) {
     gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
     gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
@@ -369,10 +383,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
     cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, cx, cy);
     hused = h + 1;
-    int dup = 0;
-    for (int c = 0; c < nc && !dup; c++)
-      dup = free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, cand[nc], cx, cy);
-    if (dup) continue;
+    if (repeats_free(nc, cand, free_of, lx, ly, stride, cand[nc])) continue;
     from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
     free_of[nc] = 1, hyp_of[nc] = h;
     nc++, nfree++;
@@ -384,6 +395,26 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
     if ((st = descriptor_landmarks(X, Y, SX, &o, cx, cy, &nd, err))) goto done;
     if (nd >= 3) cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, desc_c = nc++;
+  }
+  /* the other direction's (hyp_reverse): Y's pairing hypotheses read from X's side, then Y's
+   * descriptors' candidate with its pairs swapped */
+  if (nlg == 0 && o.autopair.hyp_reverse && want > 1) {
+    if ((st = ss_pair_centres_hypotheses(SY, SX, &o.autopair, SS_MAX_HYPOTHESES, rhyp, &nrh, NULL, err))) goto done;
+    int nrev = 0;
+    for (int h = 0; h < nrh && nrev < want && nc < SS_MAX_HYPOTHESES; h++) {
+      const ss_segment_pairs turned = {rhyp[h].n, rhyp[h].sy, rhyp[h].sx, rhyp[h].energy, rhyp[h].ny, rhyp[h].nx};
+      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
+      cand[nc] = kept_pairs(SX, &turned, o.autopair.hyp_keep, X, Y, cx, cy);
+      if (repeats_free(nc, cand, free_of, lx, ly, stride, cand[nc])) continue;
+      from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, rhyp_of[nc] = h, info.hyp_from_y[nc] = 1;
+      nc++, nrev++;
+    }
+    if (o.autopair.hyp_descriptor_map && nc < SS_MAX_HYPOTHESES) {
+      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
+      if ((st = descriptor_landmarks(Y, X, SY, &o, cy, cx, &nd, err))) goto done;
+      if (nd >= 3 && !repeats_free(nc, cand, free_of, lx, ly, stride, nd))
+        cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, info.hyp_from_y[nc++] = 1;
+    }
   }
   if (nlg > 0) {
     int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
@@ -419,6 +450,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
   for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1; /* (flip_by_y: 0 by memset) */
   int flips_looked = 0;
+  /* the flips' room: the 8 candidates in all that a match had before hyp_reverse, all of it with it */
+  const int flip_cap = o.autopair.hyp_reverse ? SS_MAX_HYPOTHESES : 8;
   char flip_skipped[sizeof(ss_error) + 96] = "";
   for (int c = 0; c < nc; c++) {
     const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
@@ -431,10 +464,11 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     }
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
-    const int h = hyp_of[c]; /* the pairing hypothesis behind it (landmark-free) */
-    if (h >= 0) {
+    /* the pairing hypothesis behind it (landmark-free), X's or Y's */
+    const ss_segment_pairs *hp = hyp_of[c] >= 0 ? &hyp[hyp_of[c]] : rhyp_of[c] >= 0 ? &rhyp[rhyp_of[c]] : NULL;
+    if (hp) {
       pe = 0;
-      for (int p = 0; p < hyp[h].n; p++) pe += hyp[h].energy[p];
+      for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
     }
     orient = ssi_map_orientation(SX, SY, r.map);
     /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
@@ -476,7 +510,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
         if (o.autopair.hyp_flip_side != 2 && o.autopair.hyp_flip_side != by_y) continue;
         ss_error ferr = {{0}};
         const ss_status fs = add_flipped(X, Y, by_y, SX, &o, maps, oriented, info.hyp_energy, stride, lx, ly, cand,
-                                         from_pairs, free_of, hyp_of, info.hyp_flip_of, info.hyp_flip_by_y, &nc, &ferr);
+                                         from_pairs, free_of, hyp_of, info.hyp_flip_of, info.hyp_flip_by_y, flip_cap,
+                                         &nc, &ferr);
         /* the flips are optional: one side that fails (other than for memory) is skipped with a
          * note, instead of failing a match whose candidates are all mapped */
         if (fs == SS_ERR_NOMEM) {
@@ -564,6 +599,7 @@ done:
   ss_centre_signature_free(&own[0]);
   ss_centre_signature_free(&own[1]);
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
+  for (int h = 0; h < nrh; h++) ss_segment_pairs_free(&rhyp[h]);
   free(lx), free(ly), free(cand), free(segs), free(gdX), free(gdY), free(maps);
   return st;
 }
