@@ -22,7 +22,7 @@ awk 'NF != 2 || $1 !~ /^[0-9]+$/ || $2 !~ /^[0-9]+$/ { exit 1 }' "$TMP/pairs.txt
 # landmark-free match: its pairing line and a map of the right length
 "$BIN" match "$A" "$B" --no-refine -o "$TMP/m0.txt" > "$TMP/out" 2>&1 && ok || bad "match without landmarks: $(cat "$TMP/out")"
 grep -q '^landmark-free pairing' "$TMP/out" && grep -q '(paired protrusion centres)' "$TMP/out" && ok || bad "match summary: $(cat "$TMP/out")"
-grep -Eq '^hypotheses: [2-8] mapped, #[0-7]( \(the descriptors. own\)| \(the flip of #[0-7]\))? kept \(energy [^)]*orientation -?[0-9.]+; margin' "$TMP/out" && ok || bad "hypotheses line: $(cat "$TMP/out")"
+grep -Eq '^hypotheses: ([2-9]|1[0-6]) mapped, #([0-9]|1[0-5])( \(the descriptors. own\)| \(the flip of #[0-9]+ by [XY].s symmetry\)| \(from Y.s side\))? kept \(energy [^)]*orientation -?[0-9.]+; margin' "$TMP/out" && ok || bad "hypotheses line: $(cat "$TMP/out")"
 [ "$(wc -l < "$TMP/m0.txt")" -eq "$(sed -n 2p "$A" | awk '{print $1}')" ] && ok || bad "map length"
 if grep -q '^hypotheses: .*NOT confident' "$TMP/out"; then grep -q '^note: landmark-free map NOT confident' "$TMP/out" && ok || bad "no note for a map that is not confident"; fi
 # --json: the hypotheses, the one kept, the margin behind the confidence
@@ -32,7 +32,9 @@ python3 - "$TMP/j.json" <<'PY' && ok || bad "hypotheses in --json: $(cat "$TMP/j
 import json, sys
 r = json.load(open(sys.argv[1]))["results"][0]
 H, b = r["hypotheses"], r["hypothesis"]
-assert 2 <= len(H) <= 8 and 0 <= b < len(H), (len(H), b)
+assert 2 <= len(H) <= 16 and 0 <= b < len(H), (len(H), b)
+assert all(h.get("from", "Y") == "Y" for h in H)
+assert all("from" not in h for h in H[:r["descriptor_candidate"] + 1])  # X's own first
 E = [h["energy"] for h in H]
 assert E[b] == min(E), E
 # the margin: against the candidates whose maps differ from the kept one, in its orientation class
