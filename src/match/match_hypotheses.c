@@ -232,11 +232,12 @@ static int flips_wanted(const ss_autopair_info *info, const int *oriented, int n
  * protrusion centres (hyp_keep) and the images under that map of their mirror images on X (by_y 0),
  * or the mirror images on Y of their images (by_y 1; ssi_symmetry_map of that shape): the mirror map
  * turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to lx,
- * ly, cand, from_pairs, free_of, hyp_of (up to cap candidates in all) and sets flip_of[new] = c,
+ * ly, cand, from_pairs, free_of, pairs_of (up to cap candidates in all) and sets flip_of[new] = c,
  * flip_by_y[new] = by_y. On failure none is added. */
 static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int by_y, const ss_centre_signature *SX,
                              const ss_match_options *o, const int *maps, const int *oriented, const double *energy,
-                             int stride, int *lx, int *ly, int *cand, int *from_pairs, int *free_of, int *hyp_of,
+                             int stride, int *lx, int *ly, int *cand, int *from_pairs, int *free_of,
+                             const ss_segment_pairs **pairs_of,
                              int *flip_of, int *flip_by_y, int cap, int *nc_io, ss_error *err) {
   const int nc0 = *nc_io, m = SX->m;
   const size_t nX = (size_t)X->mesh->nv;
@@ -263,7 +264,7 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
         cx[q] = SX->centers[a],
         cy[q++] = by_y ? S[maps[nX * c + (size_t)SX->centers[a]]] : maps[nX * c + (size_t)S[SX->centers[a]]];
     if (q < 3 || repeats_free(nc, cand, free_of, lx, ly, stride, q)) continue;
-    cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, flip_of[nc] = c, flip_by_y[nc] = by_y;
+    cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = NULL, flip_of[nc] = c, flip_by_y[nc] = by_y;
     nc++;
   }
   free(S), free(kept);
@@ -360,10 +361,9 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
   if (!lx || !ly || !cand || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
-   * candidate (hypothesis hyp_of[c]'s protrusion pairs alone) */
-  int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES], hyp_of[SS_MAX_HYPOTHESES];
-  int rhyp_of[SS_MAX_HYPOTHESES]; /* Y's pairing hypothesis behind a candidate from Y's side (-1: none) */
-  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) rhyp_of[c] = -1;
+   * candidate (the protrusion pairs alone of the pairing pairs_of[c], X's or Y's; NULL: none behind it) */
+  int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES];
+  const ss_segment_pairs *pairs_of[SS_MAX_HYPOTHESES];
   if (nlg > 0) {
     gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
     gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
@@ -373,7 +373,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
           (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
         goto done;
     memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
-    cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, hyp_of[0] = -1, nc = 1;
+    cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, pairs_of[0] = NULL, nc = 1;
   }
   /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
    * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
@@ -385,7 +385,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     hused = h + 1;
     if (repeats_free(nc, cand, free_of, lx, ly, stride, cand[nc])) continue;
     from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
-    free_of[nc] = 1, hyp_of[nc] = h;
+    free_of[nc] = 1, pairs_of[nc] = &hyp[h];
     nc++, nfree++;
   }
   /* the descriptors' own candidate, landmark-free with several hypotheses only (one: the pairing's
@@ -394,7 +394,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && nc < SS_MAX_HYPOTHESES) {
     int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
     if ((st = descriptor_landmarks(X, Y, SX, &o, cx, cy, &nd, err))) goto done;
-    if (nd >= 3) cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, desc_c = nc++;
+    if (nd >= 3) cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = NULL, desc_c = nc++;
   }
   /* the other direction's (hyp_reverse): Y's pairing hypotheses read from X's side, then Y's
    * descriptors' candidate with its pairs swapped */
@@ -406,14 +406,14 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
       cand[nc] = kept_pairs(SX, &turned, o.autopair.hyp_keep, X, Y, cx, cy);
       if (repeats_free(nc, cand, free_of, lx, ly, stride, cand[nc])) continue;
-      from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, rhyp_of[nc] = h, info.hyp_from_y[nc] = 1;
+      from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = &rhyp[h], info.hyp_from_y[nc] = 1;
       nc++, nrev++;
     }
     if (o.autopair.hyp_descriptor_map && nc < SS_MAX_HYPOTHESES) {
       int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
       if ((st = descriptor_landmarks(Y, X, SY, &o, cy, cx, &nd, err))) goto done;
       if (nd >= 3 && !repeats_free(nc, cand, free_of, lx, ly, stride, nd))
-        cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, hyp_of[nc] = -1, info.hyp_from_y[nc++] = 1;
+        cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = NULL, info.hyp_from_y[nc++] = 1;
     }
   }
   if (nlg > 0) {
@@ -427,7 +427,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       int dup = ne == 0;
       for (int c = 1; c < nc && !dup; c++)
         dup = !free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
-      if (!dup) cand[nc] = nlg + ne, from_pairs[nc] = -1, free_of[nc] = 0, hyp_of[nc++] = -1;
+      if (!dup) cand[nc] = nlg + ne, from_pairs[nc] = -1, free_of[nc] = 0, pairs_of[nc++] = NULL;
     }
     free(kx), free(ky);
   }
@@ -465,7 +465,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     /* the pairing hypothesis behind it (landmark-free), X's or Y's */
-    const ss_segment_pairs *hp = hyp_of[c] >= 0 ? &hyp[hyp_of[c]] : rhyp_of[c] >= 0 ? &rhyp[rhyp_of[c]] : NULL;
+    const ss_segment_pairs *hp = pairs_of[c];
     if (hp) {
       pe = 0;
       for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
@@ -510,7 +510,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
         if (o.autopair.hyp_flip_side != 2 && o.autopair.hyp_flip_side != by_y) continue;
         ss_error ferr = {{0}};
         const ss_status fs = add_flipped(X, Y, by_y, SX, &o, maps, oriented, info.hyp_energy, stride, lx, ly, cand,
-                                         from_pairs, free_of, hyp_of, info.hyp_flip_of, info.hyp_flip_by_y, flip_cap,
+                                         from_pairs, free_of, pairs_of, info.hyp_flip_of, info.hyp_flip_by_y, flip_cap,
                                          &nc, &ferr);
         /* the flips are optional: one side that fails (other than for memory) is skipped with a
          * note, instead of failing a match whose candidates are all mapped */
