@@ -794,6 +794,56 @@ SS_API ss_status ss_match_prepared_auto(const ss_shape_prep *X, const ss_shape_p
 SS_API ss_status ss_match_refine(const ss_shape_prep *X, const ss_shape_prep *Y, const int *map_in,
                                  const ss_match_options *opts, int *map_out, double *C_out, ss_error *err);
 
+/* ss_map_polish's parameters (ss_map_polish_default_options gives the defaults named here). */
+typedef struct ss_map_polish_options {
+  int rounds;                 /* ICP rounds, 0..10000 (default 30; 0: the map is returned as given) */
+  int steps;                  /* ARAP local-global steps per round, 1..100 (default 3) */
+  /* the surface term's weight in the first and the last round (default 0.1 and 1), the pull towards
+   * the given map's images likewise (default 0.3 and 0.001); each moves geometrically in between,
+   * all in (0, 1e6], relative to ARAP's rigidity term on shapes scaled to unit area */
+  double w_surface_first, w_surface_last;
+  double w_map_first, w_map_last;
+  int neighbours;             /* nearest vertices of Y examined for one facing the same way, 1..64 (default 16) */
+  double min_normal_dot;      /* "facing the same way": normals' dot product above this, [-1, 1) (default 0) */
+  /* how far an image may move from the given one, along Y's edges, in units of √(Y's area), (0, 1e6]
+   * (default 0.1): where two parts of Y touch, the nearest vertex can lie on the other part */
+  double max_move;
+} ss_map_polish_options;
+
+/* Fills o with ss_map_polish's defaults (tuned on the FAUST_r and TOSCA_r tuning splits, docs/tuning.md).
+ *
+ * Outputs:
+ *   o        every field written
+ */
+SS_API void ss_map_polish_default_options(ss_map_polish_options *o);
+
+/* A point map X -> Y fitted to the surfaces: X, deformed as rigidly as possible (ARAP, cotangent
+ * weights), is pulled onto Y (point-to-plane ICP against Y's nearest vertex whose normal faces the
+ * same way) and, less and less over the rounds, towards the given map's images; each vertex's image
+ * is then the nearest vertex of Y facing the same way at its deformed position and within max_move
+ * of its given image along Y's edges (the given image when none of `neighbours` is). An outlier of
+ * the given map (an image farther from its neighbours' images than 5 times the edges between them,
+ * the median over the neighbours) does not pull: its vertex follows its neighbours, and its image
+ * stays within max_move of a neighbour's given image. The spectral refinement leaves a map off by about an edge length nearly
+ * everywhere where the poses stretch the surface; this spatial step mends much of that (FAUST_r,
+ * TOSCA_r: docs/tuning.md). It does not mend a part mapped to the wrong place (a left-right swap).
+ * Both shapes are scaled to unit area first, so the result does not depend on their scale, position
+ * or rotation. Each mesh must be consistently oriented; the two may face opposite ways (X's faces
+ * laid on their images vote, and Y's normals are turned round when most face against them).
+ *
+ * Inputs:
+ *   X, Y     triangle meshes (nv, nf >= 1, nonzero area, finite coordinates)
+ *   map_in   X->nv vertices of Y (0-based): entry i is the image of vertex i of X
+ *   opts     NULL: ss_map_polish_default_options
+ * Outputs:
+ *   map_out  X->nv entries, caller-allocated (may be map_in): the polished map
+ * Errors: SS_ERR_INVALID on NULL or empty meshes, a face index or map entry out of range, zero area,
+ *   non-finite coordinates, bad options; SS_ERR_NUMERIC if the deformation's system cannot be
+ *   factored; SS_ERR_NOMEM.
+ */
+SS_API ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, const ss_map_polish_options *opts,
+                               int *map_out, ss_error *err);
+
 /* The landmark-free pairing from two meshes: prepare both (opts->seg, max(autopair.descr_k,
  * autopair.orient_k) eigenpairs), their signatures, ss_pair_centres_auto (opts->autopair).
  *

@@ -215,6 +215,28 @@ ss_status ssi_chol_solve(ssi_chol *c, const double *B, double *X, int nrhs, ss_e
 }
 
 
+ss_status ssi_chol_refactor(ssi_chol *c, const ss_sparse *A, double alpha, const double *d, ss_error *err) {
+  if (!A || A->ncols != c->n || A->nrows != c->n) return ss_fail(err, SS_ERR_INVALID, "refactor: size mismatch");
+  cholmod_sparse *S = NULL;
+  ss_status st = shifted_upper(A, alpha, d, &c->cc, &S, err);
+  if (st) return st;
+  int ok = cholmod_factorize(S, c->L, &c->cc);
+  cholmod_free_sparse(&S, &c->cc);
+  if (!ok || c->cc.status == CHOLMOD_OUT_OF_MEMORY)
+    return ss_fail(err, c->cc.status == CHOLMOD_OUT_OF_MEMORY ? SS_ERR_NOMEM : SS_ERR_NUMERIC,
+                   "CHOLMOD factorisation failed (status %d)", c->cc.status);
+  if (c->L->minor < (size_t)c->n)
+    return ss_fail(err, SS_ERR_NUMERIC, "factorisation broke down at column %zu: matrix is singular", (size_t)c->L->minor);
+  if (!c->L->is_super) {
+    const int *Lp = c->L->p;
+    const double *Lx = c->L->x;
+    for (int j = 0; j < c->n; j++)
+      if (!isfinite(Lx[Lp[j]]) || Lx[Lp[j]] == 0.0)
+        return ss_fail(err, SS_ERR_NUMERIC, "shifted matrix is singular (pivot %g at column %d)", Lx[Lp[j]], j);
+  }
+  return SS_OK;
+}
+
 ss_status ssi_chol_inertia(ssi_chol *c, const ss_sparse *A, double alpha, const double *d, int *negative,
                           ss_error *err) {
   if (!A || A->ncols != c->n || A->nrows != c->n) return ss_fail(err, SS_ERR_INVALID, "inertia: size mismatch");

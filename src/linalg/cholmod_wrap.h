@@ -28,6 +28,10 @@ ss_status ssi_chol_solve(ssi_chol *c, const double *B, double *X, int nrhs, ss_e
 #define SSI_CHOL_SLOTS 16
 ss_status ssi_chol_solve_slot(ssi_chol *c, int slot, const double *B, double *X, int nrhs, ss_error *err);
 
+/* Factors A + alpha*diag(d) again into c, for an A of the pattern c was made from (a new diagonal, new
+ * values): no new analysis, the same ordering. On failure c is not to be solved with. */
+ss_status ssi_chol_refactor(ssi_chol *c, const ss_sparse *A, double alpha, const double *d, ss_error *err);
+
 /* Number of negative pivots of the LDLᵀ factorisation of A + alpha*diag(d) (same pattern and
  * ordering as the factored matrix: refactored without a new analysis, or, for a supernodal factor,
  * a simplicial LDLᵀ in the factor's ordering). By Sylvester's law of inertia, with A = W and
