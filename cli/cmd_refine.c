@@ -1,5 +1,6 @@
 /* specseg refine X Y MAP.txt -o OUT.txt [--k K] [--zoomout KMAX] [--zoomout-step S]
- *                    [--zoomout-samples N] [--fmap C.npy] [--json]: ss_match_refine on a given map. */
+ *                    [--zoomout-samples N] [--fmap C.npy] [--polish | --polish-only] [--json]:
+ * ss_match_refine on a given map, ss_map_polish after it or alone. */
 #include "cli.h"
 #include "cli_shape.h"
 #include "specseg/match.h"
@@ -10,7 +11,7 @@
 
 static const char USAGE[] =
     "usage: specseg refine X Y MAP.txt -o OUT.txt [--k K] [--zoomout KMAX] [--zoomout-step S]\n"
-    "                      [--zoomout-samples N] [--fmap C.npy] [--json]\n"
+    "                      [--zoomout-samples N] [--fmap C.npy] [--polish | --polish-only] [--json]\n"
     "\n"
     "A given point map X -> Y (another method's, or a rough one) through the refinement specseg match\n"
     "gives its own maps: the map's functional map on the first K eigenfunctions of both shapes (scaled\n"
@@ -29,6 +30,9 @@ static const char USAGE[] =
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
     "  --fmap FILE         the final functional map (functions on Y -> functions on X, KMAX x KMAX) as .npy\n"
+    "  --polish            then fit the map to the surfaces, as match's last step does: X deformed as rigidly\n"
+    "                      as possible onto Y, each vertex sent to the nearest vertex of Y facing the same way\n"
+    "  --polish-only       that step alone, on the map as given (no eigenpairs; --k, --zoomout* and --fmap unused)\n"
     "  --json              a JSON summary on standard output instead of the summary line\n"
     "One of the output files may be - (standard output).\n";
 
@@ -57,7 +61,7 @@ static ss_status shape_prep(cli_shape *s, const char *name, int kev, ss_shape_pr
 
 int cmd_refine(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *mapp = NULL, *outp = NULL, *fmapp = NULL;
-  int json = 0;
+  int json = 0, polish = 0, polish_only = 0;
   ss_match_options o;
   ss_match_default_options(&o);
   const cli_opt opts[] = {CLI_OPT_POS("X", &xp, NULL),
@@ -69,6 +73,8 @@ int cmd_refine(int argc, char **argv) {
                           CLI_OPT_INT("--zoomout", &o.fmap.zoomout_kmax, 1, 10000, NULL),
                           CLI_OPT_INT("--zoomout-step", &o.fmap.zoomout_step, 1, 10000, NULL),
                           CLI_OPT_INT("--zoomout-samples", &o.fmap.zoomout_samples, 0, 1000000000, NULL),
+                          CLI_OPT_FLAG("--polish", &polish, 1),
+                          CLI_OPT_FLAG("--polish-only", &polish_only, 1),
                           CLI_OPT_FLAG("--json", &json, 1),
                           CLI_OPT_END};
   cli_args A;
@@ -77,6 +83,8 @@ int cmd_refine(int argc, char **argv) {
   if (rc >= 0) return rc;
   if (!xp || !yp || !mapp) return cli_bad(&A, "needs two shapes X and Y and the map MAP.txt");
   if (!outp) return cli_bad(&A, "missing -o OUT.txt");
+  if (polish && polish_only) return cli_bad(&A, "--polish and --polish-only: choose one");
+  if (polish_only && fmapp) return cli_bad(&A, "--fmap needs the spectral refinement, which --polish-only skips");
   if (o.fmap.zoomout_kmax < o.fmap.k) return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
   const char *ins[3] = {xp, yp, mapp}, *outs[2] = {outp, fmapp};
   if (cli_count_std(ins, 3) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
@@ -115,7 +123,7 @@ int cmd_refine(int argc, char **argv) {
                      mn, lines[i], map[i], yn, SY.ps.mesh.nv - 1, yn);
       goto done;
     }
-  if (shape_prep(&SX, xn, kz, &ownX, &PX, &err) || shape_prep(&SY, yn, kz, &ownY, &PY, &err)) {
+  if (!polish_only && (shape_prep(&SX, xn, kz, &ownX, &PX, &err) || shape_prep(&SY, yn, kz, &ownY, &PY, &err))) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
@@ -124,22 +132,32 @@ int cmd_refine(int argc, char **argv) {
     rc = cli_error("out of memory");
     goto done;
   }
-  if (ss_match_refine(PX, PY, map, &o, map, C, &err)) {
+  if (!polish_only && ss_match_refine(PX, PY, map, &o, map, C, &err)) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
   const double t_refine = ss_time() - t1;
+  if ((polish || polish_only) && ss_map_polish(&SX.ps.mesh, &SY.ps.mesh, map, NULL, map, &err)) {
+    rc = cli_error("%s", err.msg);
+    goto done;
+  }
+  const double t_polish = ss_time() - t1 - t_refine;
   if (cli_write_ints(outp, map, n, &err) || (fmapp && cli_write_npy(fmapp, C, kz, kz, &err))) {
     rc = cli_error("%s", err.msg);
     goto done;
   }
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp);
   cli_job_int(&J, "vertices_x", SX.ps.mesh.nv), cli_job_int(&J, "vertices_y", SY.ps.mesh.nv);
-  cli_job_int(&J, "k", o.fmap.k), cli_job_int(&J, "zoomout", kz);
-  cli_job_num(&J, "t_prepare", t1 - t0), cli_job_num(&J, "t_refine", t_refine);
-  if (!json)
-    fprintf(report, "%d -> %d vertices, refined: k %d%s%d -> %s\n", SX.ps.mesh.nv, SY.ps.mesh.nv, o.fmap.k,
-            kz > o.fmap.k ? ", ZoomOut to " : ", no ZoomOut, k ", kz, cli_out_name(outp));
+  if (!polish_only) cli_job_int(&J, "k", o.fmap.k), cli_job_int(&J, "zoomout", kz);
+  cli_job_int(&J, "polished", polish || polish_only);
+  cli_job_num(&J, "t_prepare", t1 - t0), cli_job_num(&J, "t_refine", t_refine), cli_job_num(&J, "t_polish", t_polish);
+  if (!json && polish_only)
+    fprintf(report, "%d -> %d vertices, polished on the surfaces -> %s\n", SX.ps.mesh.nv, SY.ps.mesh.nv,
+            cli_out_name(outp));
+  else if (!json)
+    fprintf(report, "%d -> %d vertices, refined: k %d%s%d%s -> %s\n", SX.ps.mesh.nv, SY.ps.mesh.nv, o.fmap.k,
+            kz > o.fmap.k ? ", ZoomOut to " : ", no ZoomOut, k ", kz, polish ? ", polished on the surfaces" : "",
+            cli_out_name(outp));
 done:
   ss_shape_prep_free(&ownX), ss_shape_prep_free(&ownY);
   cli_shape_free(&SX), cli_shape_free(&SY);

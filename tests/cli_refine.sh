@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `specseg refine` on two poses of the built-in humanoid (ground truth = identity): a scrambled
-# identity refined comes back closer to it; the identity of a shape onto itself stays; the --fmap
-# output; a prepared shape gives the same map as its mesh; usage and input errors.
+# identity refined comes back closer to it, and polished on the surfaces closer still; the identity of
+# a shape onto itself stays; the --fmap output; a prepared shape gives the same map as its mesh; usage
+# and input errors.
 # Usage: cli_refine.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
@@ -31,10 +32,27 @@ opts="--k 20 --zoomout 60"
 # --zoomout = --k: no ZoomOut
 "$BIN" refine "$X" "$Y" "$TMP/rough.txt" -o "$TMP/proj.txt" --k 20 --zoomout 20 > "$TMP/out" 2>&1 &&
   grep -q "no ZoomOut" "$TMP/out" && ok || bad "no ZoomOut: $(cat "$TMP/out")"
+# --polish-only: the map fitted to the surfaces, much nearer the truth than the rough map; --polish:
+# after ZoomOut, the same as --polish-only on refine's own output; a prepared shape gives the same
+"$BIN" refine "$X" "$Y" "$TMP/rough.txt" -o "$TMP/pol.txt" --polish-only > "$TMP/out" 2> "$TMP/err" &&
+  grep -q "^$nv -> $nv vertices, polished on the surfaces -> .*pol.txt" "$TMP/out" && ok || bad "--polish-only: $(cat "$TMP/out" "$TMP/err")"
+"$BIN" error "$TMP/pol.txt" "$Y" > "$TMP/e2" 2>&1 &&
+  awk -v a="$(num "$TMP/e0")" -v b="$(num "$TMP/e2")" 'BEGIN { exit !(b < 0.5 * a) }' && ok ||
+  bad "polished error $(num "$TMP/e2") not below half the rough map's $(num "$TMP/e0")"
+"$BIN" refine "$X" "$Y" "$TMP/rough.txt" -o "$TMP/refpol.txt" $opts --polish > "$TMP/out" 2> "$TMP/err" &&
+  grep -q "ZoomOut to 60, polished on the surfaces" "$TMP/out" &&
+  "$BIN" refine "$X" "$Y" "$TMP/ref.txt" -o "$TMP/refpol2.txt" --polish-only > /dev/null 2>&1 &&
+  cmp -s "$TMP/refpol.txt" "$TMP/refpol2.txt" && ok || bad "--polish: $(cat "$TMP/out" "$TMP/err")"
+"$BIN" refine "$X" "$Y" "$TMP/rough.txt" -o "$TMP/r.txt" --polish --polish-only > /dev/null 2>&1; [ $? -eq 2 ] && ok ||
+  bad "--polish with --polish-only: want exit 2"
+"$BIN" refine "$X" "$Y" "$TMP/rough.txt" -o "$TMP/r.txt" --polish-only --fmap "$TMP/c.npy" > /dev/null 2>&1; [ $? -eq 2 ] &&
+  ok || bad "--polish-only with --fmap: want exit 2"
 # a prepared shape: the same map as from its mesh
 "$BIN" prepare "$X" -o "$TMP/x.sss" -k 60 > /dev/null 2>&1 && "$BIN" prepare "$Y" -o "$TMP/y.sss" -k 60 > /dev/null 2>&1 &&
   "$BIN" refine "$TMP/x.sss" "$TMP/y.sss" "$TMP/rough.txt" -o "$TMP/refp.txt" $opts > /dev/null 2> "$TMP/err" &&
   cmp -s "$TMP/refp.txt" "$TMP/ref.txt" && ok || bad "prepared shapes: $(cat "$TMP/err")"
+"$BIN" refine "$TMP/x.sss" "$TMP/y.sss" "$TMP/rough.txt" -o "$TMP/polp.txt" --polish-only > /dev/null 2> "$TMP/err" &&
+  cmp -s "$TMP/polp.txt" "$TMP/pol.txt" && ok || bad "prepared shapes, --polish-only: $(cat "$TMP/err")"
 "$BIN" refine "$TMP/x.sss" "$TMP/y.sss" "$TMP/rough.txt" -o "$TMP/r.txt" > /dev/null 2> "$TMP/err"; [ $? -eq 1 ] &&
   grep -q "specseg: error: .*x.sss was prepared with 60 eigenpairs but this refinement needs 110" "$TMP/err" && ok ||
   bad "too few eigenpairs in a .sss: $(cat "$TMP/err")"
