@@ -15,7 +15,7 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
-    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--one-way]\n"
+    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -63,7 +63,9 @@ static const char USAGE[] =
     "  --flip-by x|y|both  whose own left-right symmetry turns a mirrored hypothesis round (default\n"
     "                      both: X's, then Y's)\n"
     "  --final-zoomout KMAX the map kept among the hypotheses, once chosen, refined further by ZoomOut\n"
-    "                      from --zoomout's size up to KMAX, 0..10000 (default 150; 0: not)\n"
+    "                      from --zoomout's size up to KMAX, 0..10000 (default 150; 0: not)\n"    "  --no-polish         the map kept among the hypotheses is not then fitted to the surfaces (by default\n"
+    "                      X is deformed as rigidly as possible onto Y and each vertex sent to the nearest\n"
+    "                      vertex of Y facing the same way: specseg refine --polish-only)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -146,6 +148,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_FLAG("--one-way", &o.autopair.hyp_reverse, 0),
       CLI_OPT_INT("--hypotheses", &o.autopair.hypotheses, 1, SS_MAX_HYPOTHESES, NULL),
       CLI_OPT_INT("--final-zoomout", &o.autopair.hyp_final_kmax, 0, 10000, NULL),
+      CLI_OPT_FLAG("--no-polish", &o.autopair.hyp_final_polish, 0),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
@@ -313,6 +316,7 @@ int cmd_match(int argc, char **argv) {
   cli_job_int(&J, "paired", res.pairs.n), cli_job_str(&J, "probes", pn), cli_job_int(&J, "k", o.fmap.k);
   cli_job_int(&J, "zoomout", kz);
   if (res.autopair.used) cli_job_int(&J, "final_zoomout", res.autopair.hyp_final_k);
+  cli_job_int(&J, "polished", res.autopair.hyp_final_polished);
   if (o.refine != SS_REFINE_NONE) cli_job_str(&J, "refined", refined);
   if (res.notes[0]) cli_job_str(&J, "notes", res.notes);
   cli_job_int(&J, "descriptors", o.ndescr), cli_job_int(&J, "wks", !o.fmap.no_wks);
@@ -323,10 +327,11 @@ int cmd_match(int argc, char **argv) {
     char segs[64] = "no segments (std)";
     if (!std_only)
       snprintf(segs, sizeof segs, "%d of %d/%d segments paired", res.pairs.n, res.pairs.nx, res.pairs.ny);
-    fprintf(report, "%d -> %d vertices, %d landmarks%s, %s, probes %s, k %d%s%s%s -> %s\n", X->nv, Y->nv,
+    fprintf(report, "%d -> %d vertices, %d landmarks%s, %s, probes %s, k %d%s%s%s%s -> %s\n", X->nv, Y->nv,
             res.autopair.used ? res.autopair.hyp_landmarks : nl,
             res.autopair.used ? " (paired protrusion centres)" : "", segs, pn, o.fmap.k,
-            o.refine == SS_REFINE_NONE ? "" : ", refined: ", refined, dnote, cli_out_name(outp));
+            o.refine == SS_REFINE_NONE ? "" : ", refined: ", refined, res.autopair.hyp_final_polished ? ", polished" : "",
+            dnote, cli_out_name(outp));
     if (res.notes[0]) fprintf(report, "note: %s\n", res.notes);
   }
 done:

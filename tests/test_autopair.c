@@ -227,7 +227,7 @@ static void test_permuted_and_mirrored(void) {
     CHECK(mo.autopair.hyp_min_orientation == 0 && mo.autopair.hyp_confident_orientation == 0.45);
     ss_match_result res;
     double me0 = NAN; /* the default match's kept map: its own energy, whether confident, which */
-    int conf0 = 0, kept0 = -1;
+    int conf0 = 0, kept0 = -1, *map0 = NULL;
     if (ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e)) {
       printf("match: %s\n", e.msg);
       CHECK(0);
@@ -283,6 +283,9 @@ static void test_permuted_and_mirrored(void) {
       CHECK(ai->hyp_orientation[ai->hypothesis] > 0.5);
       CHECK(right > n / 2);
       me0 = ai->hyp_map_energy[ai->hypothesis], conf0 = ai->confident, kept0 = ai->hypothesis;
+      CHECK(ai->hyp_final_polished == 1);
+      map0 = malloc(sizeof(int) * (size_t)n);
+      if (map0) memcpy(map0, res.map, sizeof(int) * (size_t)n);
     }
     ss_match_result_free(&res);
     /* the orientation rule: without the reversed-segment term the mirror map (an isometry of the
@@ -361,6 +364,21 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_reverse = 2;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_reverse"));
     mo.autopair.hyp_reverse = 1;
+    /* the surface polish of the map kept (hyp_final_polish) is ss_map_polish of the map without it,
+     * bit for bit; the option is checked */
+    CHECK(mo.autopair.hyp_final_polish == 1);
+    mo.autopair.hyp_final_polish = 0;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+    CHECK(res.map && res.autopair.hyp_final_polished == 0 && res.autopair.hypothesis == kept0);
+    if (res.map && map0) {
+      CHECK(ss_map_polish(pX.mesh, pR.mesh, res.map, NULL, res.map, &e) == SS_OK);
+      CHECK(memcmp(res.map, map0, sizeof(int) * (size_t)n) == 0);
+    }
+    ss_match_result_free(&res);
+    mo.autopair.hyp_final_polish = 2;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_final_polish"));
+    mo.autopair.hyp_final_polish = 1;
+    free(map0);
     /* one hypothesis: the pairing's answer alone, as before the hypotheses */
     mo.autopair.hypotheses = 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);

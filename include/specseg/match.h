@@ -457,6 +457,10 @@ typedef struct ss_autopair_options {
    * starts from the protrusions of the shape it maps), and where it goes wrong from X's side it is
    * often right from Y's. 1 (default): on; 0: off (docs/tuning.md) */
   int hyp_reverse;
+  /* the map kept, after hyp_final_kmax, polished on the surfaces (ss_map_polish, its defaults): 1
+   * (default) on, 0 off. In a match that forms hypotheses (landmark-free, or beside landmarks), not
+   * with SS_REFINE_NONE. The result's C stays the functional map before it (docs/tuning.md) */
+  int hyp_final_polish;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 16
@@ -568,6 +572,8 @@ typedef struct ss_autopair_info {
   /* the basis size the map kept was refined to after the choice (hyp_final_kmax; 0: not refined
    * further) */
   int hyp_final_k;
+  /* 1 when the map kept was polished on the surfaces after the choice (hyp_final_polish) */
+  int hyp_final_polished;
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

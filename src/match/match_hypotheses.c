@@ -208,8 +208,9 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
       !(a->hyp_flip_orient >= 0 && a->hyp_flip_orient <= 1e6) || !(a->hyp_w_orientation >= 0) ||
       !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2 ||
-      a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000 || a->hyp_reverse < 0 || a->hyp_reverse > 1)
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000, hyp_reverse 0 or 1",
+      a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000 || a->hyp_reverse < 0 || a->hyp_reverse > 1 ||
+      a->hyp_final_polish < 0 || a->hyp_final_polish > 1)
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000, hyp_reverse 0 or 1, hyp_final_polish 0 or 1",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -546,9 +547,13 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* NaN (no such energy) compares false: not flagged by it */
   const int high_map_energy = kept_map_energy > o.autopair.hyp_max_map_energy;
   if (!best_oriented || low_orient || high_map_energy) info.confident = 0;
-  /* the map kept, refined further, with landmarks or without (its time is ZoomOut's) */
+  /* the map kept, refined further and polished, with landmarks or without (their time is ZoomOut's) */
   const double t_final = ss_time();
   if ((st = refine_kept(X, Y, &o, out, &info.hyp_final_k, err))) goto done;
+  if (o.autopair.hyp_final_polish && o.refine != SS_REFINE_NONE && out->map) {
+    if ((st = ss_map_polish(X->mesh, Y->mesh, out->map, NULL, out->map, err))) goto done;
+    info.hyp_final_polished = 1;
+  }
   out->t_zoomout += ss_time() - t_final;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
