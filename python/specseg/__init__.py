@@ -33,7 +33,7 @@ from ._validate import as_int32_array as _as_int32_array, as_uint8_array as _as_
 from ._version import __version__
 
 __all__ = ["SpecsegError", "LibraryVersionWarning", "read_mesh", "write_mesh", "laplacian", "eigs", "smooth",
-           "remesh", "segment", "Segmentation", "geodesic", "wks", "hks", "match", "Match", "refine", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
+           "remesh", "segment", "Segmentation", "geodesic", "wks", "hks", "match", "Match", "refine", "polish", "prepare", "Shape", "k_needed", "pair", "Pairing", "error", "render", "write_png",
            "label_colors", "align_labels", "library_version", "library_path", "render_library_path"]
 
 #: Path of the loaded core library (libspecseg.so...).
@@ -820,6 +820,63 @@ def refine(VX, FX, VY=None, FY=None, map=None, k=None, zoomout=None, zoomout_ste
         for p in own:
             lib.ss_shape_prep_free(C.byref(p))
     return out, Cm.reshape(kz, kz).T.copy()
+
+
+def polish(VX, FX, VY=None, FY=None, map=None):
+    """A point map X -> Y fitted to the surfaces, as ``specseg refine --polish-only`` and the last
+    step of a landmark-free `match`: X, deformed as rigidly as possible, is pulled onto Y (the nearest
+    vertex of Y facing the same way) and, less and less, towards the map's images; each vertex then
+    goes to the nearest vertex of Y facing the same way, at most 0.1 sqrt(area) from its given image
+    along Y's edges. It mends the error of about one edge length that ZoomOut leaves where the poses
+    stretch the surface; a part mapped to the wrong place stays. Needs each mesh consistently oriented.
+
+    ``polish(X, Y, map)`` with two `Shape` objects uses their meshes.
+
+    Parameters
+    ----------
+    VX, FX, VY, FY : array_like
+        The meshes X (nX vertices) and Y (nY vertices); or two Shape objects as VX and FX, the map
+        then third.
+    map : array_like of int, shape (nX,)
+        Entry i is the vertex of Y (0..nY-1) that vertex i of X goes to.
+
+    Returns
+    -------
+    numpy.ndarray of int32, shape (nX,)
+        The polished map.
+
+    Raises
+    ------
+    ValueError
+        A map of the wrong length or with entries off Y, wrong mesh shapes.
+    SpecsegError
+        The library refused the meshes (zero area, non-finite coordinates).
+    """
+    if not _clib.has("ss_map_polish"):
+        raise NotImplementedError("this libspecseg (%s) has no ss_map_polish" % library_path)
+    if isinstance(VX, Shape) or isinstance(FX, Shape):
+        if not (isinstance(VX, Shape) and isinstance(FX, Shape)):
+            raise ValueError("polish takes two Shape objects or two meshes (VX, FX, VY, FY)")
+        if map is None and FY is None:
+            map, VY = VY, None
+        if VY is not None or FY is not None:
+            raise ValueError("polish(X, Y, map) with Shape objects: no VY / FY")
+        VX, FX, VY, FY = VX.V, VX.F, FX.V, FX.F
+    if VY is None or FY is None:
+        raise ValueError("polish needs VX, FX, VY, FY and the map (or two Shape objects and the map)")
+    mx, VX, FX = _clib.as_mesh(VX, FX)
+    my, VY, FY = _clib.as_mesh(VY, FY)
+    nX, nY = VX.shape[0], VY.shape[0]
+    if map is None:
+        raise ValueError("polish needs the map to polish")
+    m = np.atleast_1d(np.asarray(map))
+    if m.ndim != 1 or m.size != nX:
+        raise ValueError("map must have one entry per vertex of X (%d), got shape %s" % (nX, m.shape))
+    m = _indices(m, nX, "map", nY)
+    out, e = np.zeros(nX, dtype=np.int32), _err()
+    _check(_clib.compute(lib.ss_map_polish, C.byref(mx), C.byref(my), _clib.ptr(m, C.c_int), None,
+                         _clib.ptr(out, C.c_int), C.byref(e)), e)
+    return out
 
 
 class Shape:

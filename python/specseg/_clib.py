@@ -170,6 +170,12 @@ class ss_match_options(C.Structure):
                 ("std_pairs", C.c_int)]
 
 
+class ss_map_polish_options(C.Structure):
+    _fields_ = [("rounds", C.c_int), ("steps", C.c_int), ("w_surface_first", C.c_double),
+                ("w_surface_last", C.c_double), ("w_map_first", C.c_double), ("w_map_last", C.c_double),
+                ("neighbours", C.c_int), ("min_normal_dot", C.c_double), ("max_move", C.c_double)]
+
+
 class ss_segment_pairs(C.Structure):
     _fields_ = [("n", C.c_int), ("sx", C.POINTER(C.c_int)), ("sy", C.POINTER(C.c_int)),
                 ("energy", C.POINTER(C.c_double)), ("nx", C.c_int), ("ny", C.c_int)]
@@ -223,7 +229,7 @@ class ss_render_scene(C.Structure):
 # checked against ss_struct_size (core) and ss_render_struct_size (render library) at load time
 CORE_MIRRORS = [ss_error, ss_mesh, ss_sparse, ss_cmcf_options, ss_remesh_options, ss_segment_options,
                 ss_segmentation, ss_fmap_match_options, ss_match_options, ss_segment_pairs, ss_match_result,
-                ss_autopair_options, ss_shape_prep, ss_centre_signature, ss_prepared_shape]
+                ss_autopair_options, ss_shape_prep, ss_centre_signature, ss_prepared_shape, ss_map_polish_options]
 RENDER_MIRRORS = [ss_render_options, ss_render_scene]
 
 
@@ -528,6 +534,8 @@ _sig(lib, "ss_shape_prep_compute_spectral", _i, _PM, _i, C.POINTER(ss_shape_prep
 _sig(lib, "ss_shape_prep_free", None, C.POINTER(ss_shape_prep))
 _sig(lib, "ss_match_refine", _i, C.POINTER(ss_shape_prep), C.POINTER(ss_shape_prep), _PI, C.POINTER(ss_match_options), _PI,
      _PD, _PE)
+_sig(lib, "ss_map_polish_default_options", None, C.POINTER(ss_map_polish_options))
+_sig(lib, "ss_map_polish", _i, _PM, _PM, _PI, C.POINTER(ss_map_polish_options), _PI, _PE)
 _sig(lib, "ss_match_prepared_shapes", _i, _PS, _PS, _i, _PI, _PI, C.POINTER(ss_match_options), C.POINTER(ss_match_result),
      C.c_char_p, C.c_size_t, _PE)
 _sig(render_lib, "ss_render_default_options", None, C.POINTER(ss_render_options))

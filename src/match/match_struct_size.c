@@ -10,5 +10,6 @@ const ss_struct_size_entry ss_match_struct_sizes[] = {
     {"ss_shape_prep", sizeof(ss_shape_prep)},
     {"ss_centre_signature", sizeof(ss_centre_signature)},
     {"ss_prepared_shape", sizeof(ss_prepared_shape)},
+    {"ss_map_polish_options", sizeof(ss_map_polish_options)},
     {NULL, 0},
 };

@@ -214,6 +214,18 @@ else:
             check(False, "refine accepted %r" % sorted(bad))
         except ValueError:
             check(True, "")
+    # --- polish: the CLI's map, from arrays and from Shapes; the identity stays; bad maps refused ---
+    cli("refine", MESH, MESH, path("rough.txt"), "--polish-only", "-o", path("po.txt"))
+    mp = specseg.polish(V, F, V, F, rough)
+    check(np.array_equal(mp, np.loadtxt(path("po.txt"), dtype=np.int64)), "polish: the CLI's map")
+    check(np.array_equal(specseg.polish(S, S, rough), mp), "polish(Shape, Shape, map)")
+    check(np.array_equal(specseg.polish(V, F, V, F, ident), ident), "polish: the identity onto itself stays")
+    for bad in (dict(map=rough[:-1]), dict(map=np.where(ident == 0, n, ident))):
+        try:
+            specseg.polish(S, S, **bad)
+            check(False, "polish accepted %r" % sorted(bad))
+        except ValueError:
+            check(True, "")
     try:
         specseg.refine(S30, S30, rough, k=20, zoomout=40)
         check(False, "refine: a Shape with too few eigenpairs accepted")
