@@ -833,9 +833,10 @@ SS_API void ss_map_polish_default_options(ss_map_polish_options *o);
  * stays within max_move of a neighbour's given image. The spectral refinement leaves a map off by about an edge length nearly
  * everywhere where the poses stretch the surface; this spatial step mends much of that (FAUST_r,
  * TOSCA_r: docs/tuning.md). It does not mend a part mapped to the wrong place (a left-right swap).
- * Both shapes are scaled to unit area first, so the result does not depend on their scale, position
- * or rotation. Each mesh must be consistently oriented; the two may face opposite ways (X's faces
- * laid on their images vote, and Y's normals are turned round when most face against them).
+ * Both shapes are scaled to unit area first, so their scale, position and rotation do not change the
+ * result (up to rounding). Each mesh must be consistently oriented; the two may face opposite ways
+ * (X's faces laid on their images vote, and Y's normals are turned round when most face against
+ * them).
  *
  * Inputs:
  *   X, Y     triangle meshes (nv, nf >= 1, nonzero area, finite coordinates)
