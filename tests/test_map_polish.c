@@ -80,29 +80,6 @@ static void check_knn(void) {
   free(P);
 }
 
-/* the identity with every vertex moved to a neighbour of a neighbour (a seeded random walk) */
-static void scrambled_identity(const ss_mesh *m, unsigned seed, int *map) {
-  const int n = m->nv;
-  int *deg = calloc((size_t)n + 1, sizeof(int)), *adj = malloc(sizeof(int) * 6 * (size_t)m->nf), *fill = calloc((size_t)n, sizeof(int));
-  for (int f = 0; f < m->nf; f++)
-    for (int c = 0; c < 3; c++) deg[m->F[3 * f + c] + 1] += 2;
-  for (int i = 0; i < n; i++) deg[i + 1] += deg[i];
-  for (int f = 0; f < m->nf; f++)
-    for (int c = 0; c < 3; c++) {
-      const int a = m->F[3 * f + c], b = m->F[3 * f + (c + 1) % 3], d = m->F[3 * f + (c + 2) % 3];
-      adj[deg[a] + fill[a]++] = b, adj[deg[a] + fill[a]++] = d;
-    }
-  unsigned s = seed;
-  for (int i = 0; i < n; i++) {
-    int v = i;
-    for (int step = 0; step < 2; step++) {
-      const int k = deg[v + 1] - deg[v];
-      if (k > 0) v = adj[deg[v] + (int)(rnd(&s) % (unsigned)k)];
-    }
-    map[i] = v;
-  }
-  free(deg), free(adj), free(fill);
-}
 
 /* an n x n grid of spacing h at (x0, y0, z), faces up (+z) */
 static void grid(int n, double h, double x0, double y0, double z, double *V, int *F) {
@@ -180,7 +157,7 @@ int main(void) {
   CHECK(memcmp(out, id, sizeof(int) * n) == 0);
 
   /* pose 0 -> 5, the identity scrambled by 2-step walks: polished much nearer the truth */
-  scrambled_identity(&X, 7u, rough);
+  tl_scrambled_identity(X.nv, X.nf, X.F, 7u, rough);
   const double e_rough = map_error(&Y, n, rough);
   CHECK(ss_map_polish(&X, &Y, rough, NULL, out, &e) == SS_OK);
   const double e_polished = map_error(&Y, n, out);

@@ -16,31 +16,6 @@ static double map_error(const ss_mesh *Y, int n, const int *map) {
   return mean;
 }
 
-/* the identity with every vertex moved to a neighbour of a neighbour (a random walk of two steps
- * along the edges, seeded): a map off by about two edge lengths everywhere */
-static void scrambled_identity(const ss_mesh *m, unsigned seed, int *map) {
-  const int n = m->nv;
-  int *deg = calloc((size_t)n + 1, sizeof(int)), *adj = malloc(sizeof(int) * 6 * (size_t)m->nf), *fill = calloc((size_t)n, sizeof(int));
-  for (int f = 0; f < m->nf; f++)
-    for (int c = 0; c < 3; c++) deg[m->F[3 * f + c] + 1] += 2;
-  for (int i = 0; i < n; i++) deg[i + 1] += deg[i];
-  for (int f = 0; f < m->nf; f++)
-    for (int c = 0; c < 3; c++) {
-      const int a = m->F[3 * f + c], b = m->F[3 * f + (c + 1) % 3], d = m->F[3 * f + (c + 2) % 3];
-      adj[deg[a] + fill[a]++] = b, adj[deg[a] + fill[a]++] = d;
-    }
-  unsigned s = seed;
-  for (int i = 0; i < n; i++) {
-    int v = i;
-    for (int step = 0; step < 2; step++) {
-      s = s * 1103515245u + 12345u;
-      const int k = deg[v + 1] - deg[v];
-      if (k > 0) v = adj[deg[v] + (int)((s >> 8) % (unsigned)k)];
-    }
-    map[i] = v;
-  }
-  free(deg), free(adj), free(fill);
-}
 
 int main(void) {
   ss_error e;
@@ -60,7 +35,7 @@ int main(void) {
       *ref = malloc(sizeof(int) * n), *alias = malloc(sizeof(int) * n);
   double *C = malloc(sizeof(double) * kz * kz), *Cref = malloc(sizeof(double) * kz * kz), *C0 = malloc(sizeof(double) * k * k);
   for (int i = 0; i < n; i++) id[i] = i;
-  scrambled_identity(&X, 7u, rough);
+  tl_scrambled_identity(X.nv, X.nf, X.F, 7u, rough);
   ss_match_options o;
   ss_match_default_options(&o);
   o.fmap.k = k, o.fmap.zoomout_kmax = kz, o.fmap.zoomout_step = 4;

@@ -68,4 +68,31 @@ static inline double tl_mirror_map(const double *V, int nv, int *sym) {
     return tl_fail ? 1 : tl_skip ? 77 : 0;                                               \
   } while (0)
 
+/* The identity map of a mesh (nv vertices, nf triangles F) with every vertex moved to a neighbour of
+ * a neighbour (a random walk of two steps along the edges, seeded): a map off by about two edge
+ * lengths everywhere. */
+static inline void tl_scrambled_identity(int nv, int nf, const int *F, unsigned seed, int *map) {
+  int *deg = calloc((size_t)nv + 1, sizeof(int)), *adj = malloc(sizeof(int) * 6 * (size_t)nf),
+      *fill = calloc((size_t)nv, sizeof(int));
+  for (int f = 0; f < nf; f++)
+    for (int c = 0; c < 3; c++) deg[F[3 * f + c] + 1] += 2;
+  for (int i = 0; i < nv; i++) deg[i + 1] += deg[i];
+  for (int f = 0; f < nf; f++)
+    for (int c = 0; c < 3; c++) {
+      const int a = F[3 * f + c], b = F[3 * f + (c + 1) % 3], d = F[3 * f + (c + 2) % 3];
+      adj[deg[a] + fill[a]++] = b, adj[deg[a] + fill[a]++] = d;
+    }
+  unsigned s = seed;
+  for (int i = 0; i < nv; i++) {
+    int v = i;
+    for (int step = 0; step < 2; step++) {
+      s = s * 1103515245u + 12345u;
+      const int k = deg[v + 1] - deg[v];
+      if (k > 0) v = adj[deg[v] + (int)((s >> 8) % (unsigned)k)];
+    }
+    map[i] = v;
+  }
+  free(deg), free(adj), free(fill);
+}
+
 #endif

@@ -721,6 +721,32 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         lib.ss_match_result_free(C.byref(r))
 
 
+def _shape_pair(VX, FX, VY, FY, map, what):
+    """(X, Y, map) when refine / polish got two Shape objects and the map (VX, FX, VY or map=), None
+    when they got meshes; refuses a mix."""
+    if not (isinstance(VX, Shape) or isinstance(FX, Shape)):
+        if VY is None or FY is None:
+            raise ValueError("%s needs VX, FX, VY, FY and the map (or two Shape objects and the map)" % what)
+        return None
+    if not (isinstance(VX, Shape) and isinstance(FX, Shape)):
+        raise ValueError("%s takes two Shape objects or two meshes (VX, FX, VY, FY)" % what)
+    if map is None and FY is None:
+        map, VY = VY, None
+    if VY is not None or FY is not None:
+        raise ValueError("%s(X, Y, map) with Shape objects: no VY / FY" % what)
+    return VX, FX, map
+
+
+def _map_entries(map, nX, nY, what):
+    """The map as int32 entries checked against X's and Y's vertex counts."""
+    if map is None:
+        raise ValueError("%s needs the map to %s" % (what, what))
+    m = np.atleast_1d(np.asarray(map))
+    if m.ndim != 1 or m.size != nX:
+        raise ValueError("map must have one entry per vertex of X (%d), got shape %s" % (nX, m.shape))
+    return _indices(m, nX, "map", nY)
+
+
 def refine(VX, FX, VY=None, FY=None, map=None, k=None, zoomout=None, zoomout_step=None, zoomout_samples=None):
     """A given point map X -> Y (another method's, or a rough one) through the refinement `match`
     gives its own maps: the map's functional map on the first k eigenfunctions of both shapes (scaled
@@ -765,32 +791,20 @@ def refine(VX, FX, VY=None, FY=None, map=None, k=None, zoomout=None, zoomout_ste
     """
     if not _clib.has("ss_match_refine"):
         raise NotImplementedError("this libspecseg (%s) has no ss_match_refine" % library_path)
-    shapes = isinstance(VX, Shape) or isinstance(FX, Shape)
+    pair = _shape_pair(VX, FX, VY, FY, map, "refine")
+    shapes = pair is not None
     if shapes:
-        if not (isinstance(VX, Shape) and isinstance(FX, Shape)):
-            raise ValueError("refine takes two Shape objects or two meshes (VX, FX, VY, FY)")
-        if map is None and FY is None:
-            map, VY = VY, None
-        if VY is not None or FY is not None:
-            raise ValueError("refine(X, Y, map) with Shape objects: no VY / FY")
-        X, Y = VX, FX
+        X, Y, map = pair
         X._check(), Y._check()
         for name, sh in (("X", X), ("Y", Y)):
             if sh._s.has_proxy:
                 raise ValueError("%s is matched through a coarse proxy (above 100,000 vertices): refine its mesh" % name)
         nX, nY = X.n, Y.n
     else:
-        if VY is None or FY is None:
-            raise ValueError("refine needs VX, FX, VY, FY and the map (or two Shape objects and the map)")
         mx, VX, FX = _clib.as_mesh(VX, FX)
         my, VY, FY = _clib.as_mesh(VY, FY)
         nX, nY = VX.shape[0], VY.shape[0]
-    if map is None:
-        raise ValueError("refine needs the map to refine")
-    m = np.atleast_1d(np.asarray(map))
-    if m.ndim != 1 or m.size != nX:
-        raise ValueError("map must have one entry per vertex of X (%d), got shape %s" % (nX, m.shape))
-    m = _indices(m, nX, "map", nY)
+    m = _map_entries(map, nX, nY, "refine")
     o = _clib.ss_match_options()
     lib.ss_match_default_options(C.byref(o))
     for val, name, field, lo in ((k, "k", "k", 1), (zoomout, "zoomout", "zoomout_kmax", 1),
@@ -854,25 +868,14 @@ def polish(VX, FX, VY=None, FY=None, map=None):
     """
     if not _clib.has("ss_map_polish"):
         raise NotImplementedError("this libspecseg (%s) has no ss_map_polish" % library_path)
-    if isinstance(VX, Shape) or isinstance(FX, Shape):
-        if not (isinstance(VX, Shape) and isinstance(FX, Shape)):
-            raise ValueError("polish takes two Shape objects or two meshes (VX, FX, VY, FY)")
-        if map is None and FY is None:
-            map, VY = VY, None
-        if VY is not None or FY is not None:
-            raise ValueError("polish(X, Y, map) with Shape objects: no VY / FY")
-        VX, FX, VY, FY = VX.V, VX.F, FX.V, FX.F
-    if VY is None or FY is None:
-        raise ValueError("polish needs VX, FX, VY, FY and the map (or two Shape objects and the map)")
+    pair = _shape_pair(VX, FX, VY, FY, map, "polish")
+    if pair is not None:
+        X, Y, map = pair
+        VX, FX, VY, FY = X.V, X.F, Y.V, Y.F
     mx, VX, FX = _clib.as_mesh(VX, FX)
     my, VY, FY = _clib.as_mesh(VY, FY)
-    nX, nY = VX.shape[0], VY.shape[0]
-    if map is None:
-        raise ValueError("polish needs the map to polish")
-    m = np.atleast_1d(np.asarray(map))
-    if m.ndim != 1 or m.size != nX:
-        raise ValueError("map must have one entry per vertex of X (%d), got shape %s" % (nX, m.shape))
-    m = _indices(m, nX, "map", nY)
+    m = _map_entries(map, VX.shape[0], VY.shape[0], "polish")
+    nX = VX.shape[0]
     out, e = np.zeros(nX, dtype=np.int32), _err()
     _check(_clib.compute(lib.ss_map_polish, C.byref(mx), C.byref(my), _clib.ptr(m, C.c_int), None,
                          _clib.ptr(out, C.c_int), C.byref(e)), e)
