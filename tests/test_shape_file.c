@@ -336,22 +336,26 @@ int main(void) {
     CX.prep.mesh = NULL, CX.sig.prep = NULL;
     CHECK(ss_match_prepared_shapes(&CX, SY, nl, lm, lm, &o, &d, NULL, 0, &e) == SS_OK && same_result(&a, &d));
     /* the map kept was refined further, to hyp_final_kmax (with landmarks too: the hypotheses beside
-     * them): the same hypothesis as without that step, and the map ss_match_refine gives from that
-     * one's map (k 110 -> 150) */
+     * them), then polished on the surfaces: the same hypothesis as without those steps, and the map
+     * ss_match_refine gives from that one's map (k 110 -> 150), through ss_map_polish */
     {
       CHECK(c.autopair.hyp_final_k == o.autopair.hyp_final_kmax && c.kc == o.autopair.hyp_final_kmax);
       ss_match_options o0 = o, ro = o;
-      o0.autopair.hyp_final_kmax = 0;
+      o0.autopair.hyp_final_kmax = 0, o0.autopair.hyp_final_polish = 0;
       ss_match_result b = {0};
       CHECK(ss_match_prepared_shapes(SX, SY, nl, lm, lm, &o0, &b, NULL, 0, &e) == SS_OK && b.autopair.hyp_final_k == 0);
       CHECK(b.autopair.hypothesis == c.autopair.hypothesis && b.autopair.confident == c.autopair.confident);
       ro.fmap.k = o.fmap.zoomout_kmax, ro.fmap.zoomout_kmax = o.autopair.hyp_final_kmax;
       int *rm = malloc(sizeof(int) * (size_t)X.nv);
       CHECK(rm && ss_match_refine(ss_prepared_shape_matched(SX), ss_prepared_shape_matched(SY), b.map, &ro, rm, NULL, &e) == SS_OK);
-      CHECK_MSG(rm && !memcmp(rm, c.map, sizeof(int) * (size_t)X.nv), "the further refinement is not ss_match_refine's");
+      CHECK(c.autopair.hyp_final_polished == 1 && b.autopair.hyp_final_polished == 0);
+      CHECK(rm && ss_map_polish(ss_prepared_shape_matched(SX)->mesh, ss_prepared_shape_matched(SY)->mesh, rm, NULL, rm,
+                                &e) == SS_OK);
+      CHECK_MSG(rm && !memcmp(rm, c.map, sizeof(int) * (size_t)X.nv),
+                "the further refinement and the polish are not ss_match_refine's then ss_map_polish's");
       int moved = 0;
       for (int i = 0; i < X.nv; i++) moved += b.map[i] != c.map[i];
-      printf("%d landmarks: the further refinement to %d moved %d of %d images\n", nl, c.kc, moved, X.nv);
+      printf("%d landmarks: the further refinement to %d and the polish moved %d of %d images\n", nl, c.kc, moved, X.nv);
       free(rm);
       ss_match_result_free(&b);
     }
