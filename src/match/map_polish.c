@@ -2,7 +2,7 @@
  * X is as rigid as possible (ARAP, Sorkine & Alexa 2007) and whose correspondences are the nearest
  * points of Y facing the same way. A spectral refinement (ZoomOut) leaves a map off by about an edge
  * length nearly everywhere when the poses stretch the surface; this step is a spatial objective that
- * does not share that bias (docs/tuning.md, "ARAP polish"). */
+ * does not share that bias (docs/tuning.md, "The map kept, polished on the surfaces"). */
 #include "mesh/knn3.h"
 #include "linalg/cholmod_wrap.h"
 #include "specseg/geodesic.h"
