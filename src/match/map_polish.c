@@ -4,6 +4,7 @@
  * length nearly everywhere when the poses stretch the surface; this step is a spatial objective that
  * does not share that bias (docs/tuning.md, "The map kept, polished on the surfaces"). */
 #include "mesh/knn3.h"
+#include "mesh/mesh_geometry.h"
 #include "linalg/cholmod_wrap.h"
 #include "specseg/geodesic.h"
 #include "specseg/laplacian.h"
@@ -53,18 +54,6 @@ static void vertex_normals(int nv, int nf, const int *F, const double *P, double
     const double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (l > 0) n[0] /= l, n[1] /= l, n[2] /= l;
   }
-}
-
-static double mesh_area(const ss_mesh *m) {
-  double s = 0;
-  for (int f = 0; f < m->nf; f++) {
-    const double *a = m->V + 3 * (size_t)m->F[3 * f], *b = m->V + 3 * (size_t)m->F[3 * f + 1],
-                 *c = m->V + 3 * (size_t)m->F[3 * f + 2];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    s += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  }
-  return s;
 }
 
 /* The rotation R (row-major, kept as the unit quaternion q: w, x, y, z) maximising tr(Rᵀ A), warm
@@ -184,6 +173,7 @@ static void facing_nearest(const ssi_knn3 *tree, int nv, const double *P, const 
 ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, const ss_map_polish_options *opts,
                         int *map_out, ss_error *err) {
   ss_map_polish_options o;
+  ss_status st0;
   if (opts) o = *opts;
   else ss_map_polish_default_options(&o);
   if (!X || !Y || !X->V || !Y->V || !X->F || !Y->F || X->nv < 1 || Y->nv < 1 || X->nf < 1 || Y->nf < 1)
@@ -201,7 +191,10 @@ ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, c
     if (X->F[f] < 0 || X->F[f] >= nx) return ss_fail(err, SS_ERR_INVALID, "map polish: a face of X is off its vertices");
   for (int f = 0; f < 3 * Y->nf; f++)
     if (Y->F[f] < 0 || Y->F[f] >= ny) return ss_fail(err, SS_ERR_INVALID, "map polish: a face of Y is off its vertices");
-  const double ax = mesh_area(X), ay = mesh_area(Y);
+  if ((st0 = ssi_mesh_check_coordinates(X, "map polish: X", err)) ||
+      (st0 = ssi_mesh_check_coordinates(Y, "map polish: Y", err)))
+    return st0;
+  const double ax = ss_mesh_area(X), ay = ss_mesh_area(Y);
   if (!(ax > 0 && ay > 0 && isfinite(ax) && isfinite(ay)))
     return ss_fail(err, SS_ERR_INVALID, "map polish: a mesh of zero or non-finite area");
   if (o.rounds == 0) {
@@ -232,16 +225,6 @@ ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, c
   memcpy(T, map_in, sizeof(int) * (size_t)nx);
   for (size_t i = 0; i < n3; i++) Xn[i] = X->V[i] * sx;
   for (size_t i = 0; i < 3 * (size_t)ny; i++) Yn[i] = Y->V[i] * sy;
-  for (size_t i = 0; i < n3; i++)
-    if (!isfinite(Xn[i])) {
-      st = ss_fail(err, SS_ERR_INVALID, "map polish: a non-finite coordinate in X");
-      goto done;
-    }
-  for (size_t i = 0; i < 3 * (size_t)ny; i++)
-    if (!isfinite(Yn[i])) {
-      st = ss_fail(err, SS_ERR_INVALID, "map polish: a non-finite coordinate in Y");
-      goto done;
-    }
   /* ARAP's edge weights: the cotangent weights, clamped positive (a negative weight, across an obtuse
    * pair of angles, would reward stretching that edge) */
   ss_mesh Xu = *X;
