@@ -814,6 +814,12 @@ typedef struct ss_map_polish_options {
   /* how far an image may move from the given one, along Y's edges, in units of √(Y's area), (0, 1e6]
    * (default 0.1): where two parts of Y touch, the nearest vertex can lie on the other part */
   double max_move;
+  /* 1 (default): then a second pass over each thick region the map turns over (X's faces laid on
+   * their images face against Y there; at least 0.5 % of X, and Y at least 0.08 √area thick there:
+   * a torso's front sent to its back), which max_move keeps out of the first pass's reach: from the
+   * first pass's map, such a region (and 4 rings around it) does not pull and may move anywhere, and
+   * the rest's deformation places it; 0: not */
+  int mend_mirrored;
 } ss_map_polish_options;
 
 /* Fills o with ss_map_polish's defaults (tuned on the FAUST_r and TOSCA_r tuning splits, docs/tuning.md).
@@ -832,7 +838,9 @@ SS_API void ss_map_polish_default_options(ss_map_polish_options *o);
  * the median over the neighbours) does not pull: its vertex follows its neighbours, and its image
  * stays within max_move of a neighbour's given image. The spectral refinement leaves a map off by about an edge length nearly
  * everywhere where the poses stretch the surface; this spatial step mends much of that (FAUST_r,
- * TOSCA_r: docs/tuning.md). It does not mend a part mapped to the wrong place (a left-right swap).
+ * TOSCA_r: docs/tuning.md). A thick region the map turns over (a torso's front sent to its back)
+ * lies beyond max_move: a second pass (mend_mirrored) releases it and lets the rest's deformation
+ * place it. It does not mend a part mapped onto another (a left-right swap of limbs).
  * Both shapes are scaled to unit area first, so their scale, position and rotation do not change the
  * result (up to rounding). Each mesh must be consistently oriented; the two may face opposite ways
  * (X's faces laid on their images vote, and Y's normals are turned round when most face against

@@ -173,7 +173,7 @@ class ss_match_options(C.Structure):
 class ss_map_polish_options(C.Structure):
     _fields_ = [("rounds", C.c_int), ("steps", C.c_int), ("w_surface_first", C.c_double),
                 ("w_surface_last", C.c_double), ("w_map_first", C.c_double), ("w_map_last", C.c_double),
-                ("neighbours", C.c_int), ("min_normal_dot", C.c_double), ("max_move", C.c_double)]
+                ("neighbours", C.c_int), ("min_normal_dot", C.c_double), ("max_move", C.c_double), ("mend_mirrored", C.c_int)]
 
 
 class ss_segment_pairs(C.Structure):

@@ -23,6 +23,7 @@ void ss_map_polish_default_options(ss_map_polish_options *o) {
   o->neighbours = 16;
   o->min_normal_dot = 0;
   o->max_move = 0.1;
+  o->mend_mirrored = 1;
 }
 
 /* a given image farther from its neighbours' images than this many times the edges between them
@@ -35,7 +36,7 @@ static int options_ok(const ss_map_polish_options *o) {
     if (!(w[i] > 0 && w[i] <= 1e6)) return 0;
   return o->rounds >= 0 && o->rounds <= 10000 && o->steps >= 1 && o->steps <= 100 && o->neighbours >= 1 &&
          o->neighbours <= 64 && o->min_normal_dot >= -1 && o->min_normal_dot < 1 && o->max_move > 0 &&
-         o->max_move <= 1e6;
+         o->max_move <= 1e6 && (o->mend_mirrored == 0 || o->mend_mirrored == 1);
 }
 
 /* the area-weighted vertex normals of positions P over the faces F (zero where no face or all
@@ -170,6 +171,285 @@ static void facing_nearest(const ssi_knn3 *tree, int nv, const double *P, const 
   }
 }
 
+/* what one polish pass works with: both shapes at unit area, X's clamped cotangent Laplacian L and
+ * vertex areas a, Y's normals, kd-tree and edge graph, the factor, and the pass's work arrays */
+typedef struct polish_ctx {
+  ss_map_polish_options o;
+  const ss_mesh *X;
+  int nx, ny, kq;
+  double *Xn, *Yn, *NY, *P, *NP, *tgt, *B, *sol, *a, *d, *R, *q;
+  int *near, *pulls, *guard;
+  ss_sparse L;
+  ssi_knn3 *tree;
+  ssi_chol *chol;
+  ss_graph gy;
+  reach_ws rw;
+} polish_ctx;
+
+/* A region of X whose images are turned over is mended in a second pass when it is at least this
+ * share of X's vertices and thick: a torso's front sent to its back, out of max_move's reach. A thin
+ * part turned over (a leg's front and back exchanged) the first pass mends, and released it drifts
+ * onto the parts beside it (docs/tuning.md, "Mirrored regions"). */
+#define MIRROR_FACING (-0.3) /* X's normals on the images against Y's there, smoothed: below this */
+#define MIRROR_SMOOTHING 2   /* rounds of 1-ring averaging of that facing */
+#define MIRROR_MIN_SHARE 0.005
+#define MIRROR_THICKNESS 0.08 /* no vertex of Y facing the other way this near (unit area), at half of them */
+#define MIRROR_MARGIN 4       /* rings of X released around such a region and around the map's tears */
+#define MIRROR_FILL_SWEEPS 300 /* Gauss-Seidel sweeps placing the released vertices between the rest */
+
+/* One pass: polish the map T into out (out may be T). released (NULL: none): vertices of X that, with
+ * T's tears and MIRROR_MARGIN rings around both, do not pull towards their images, start between the
+ * others (harmonic) and may move anywhere but near a neighbour that pulls. */
+static ss_status polish_pass(polish_ctx *c, const int *T, const int *released, int *out, ss_error *err) {
+  const ss_map_polish_options *o = &c->o;
+  const ss_sparse *L = &c->L;
+  const int nx = c->nx;
+  const double *Xn = c->Xn, *Yn = c->Yn, *a = c->a;
+  double *P = c->P, *NP = c->NP, *NY = c->NY, *tgt = c->tgt, *B = c->B, *sol = c->sol, *d = c->d, *R = c->R,
+         *q = c->q;
+  int *pulls = c->pulls, *guard = c->guard;
+  ss_status st;
+  /* the given images that tear the surface (an image far from its neighbours' images, relative to
+   * the edges between them: a given map's outliers) do not pull: such a vertex follows its neighbours,
+   * starts at their images' mean, and its image may move within max_move of a neighbour's given image
+   * instead of its own */
+  for (int i = 0; i < nx; i++) {
+    double r[64];
+    int m = 0;
+    for (int p = L->colptr[i]; p < L->colptr[i + 1] && m < 64; p++) {
+      const int j = L->rowind[p];
+      if (j == i) continue;
+      const double *xi = Xn + 3 * (size_t)i, *xj = Xn + 3 * (size_t)j;
+      const double *yi = Yn + 3 * (size_t)T[i], *yj = Yn + 3 * (size_t)T[j];
+      const double ex = sqrt((xi[0] - xj[0]) * (xi[0] - xj[0]) + (xi[1] - xj[1]) * (xi[1] - xj[1]) +
+                             (xi[2] - xj[2]) * (xi[2] - xj[2]));
+      const double ey = sqrt((yi[0] - yj[0]) * (yi[0] - yj[0]) + (yi[1] - yj[1]) * (yi[1] - yj[1]) +
+                             (yi[2] - yj[2]) * (yi[2] - yj[2]));
+      double v = ex > 0 ? ey / ex : (ey > 0 ? INFINITY : 0);
+      int k = m++; /* insertion, sorted */
+      while (k > 0 && r[k - 1] > v) r[k] = r[k - 1], k--;
+      r[k] = v;
+    }
+    pulls[i] = (m == 0 || r[(m - 1) / 2] <= TEAR_RATIO) && !(released && released[i]);
+  }
+  if (released) /* the regions and the given map's tears (their seams), grown by MIRROR_MARGIN rings */
+    for (int r = 0; r < MIRROR_MARGIN; r++) {
+      for (int i = 0; i < nx; i++) c->near[i] = !pulls[i];
+      for (int i = 0; i < nx; i++)
+        if (c->near[i])
+          for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++) pulls[L->rowind[p]] = 0;
+    }
+  for (int i = 0; i < nx; i++) {
+    guard[i] = T[i];
+    if (pulls[i]) continue;
+    guard[i] = -1;
+    for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++)
+      if (L->rowind[p] != i && pulls[L->rowind[p]]) {
+        guard[i] = T[L->rowind[p]];
+        break;
+      }
+  }
+  for (int i = 0; i < nx; i++) {
+    memcpy(P + 3 * (size_t)i, Yn + 3 * (size_t)T[i], sizeof(double) * 3);
+    if (!pulls[i]) {
+      double m[3] = {0, 0, 0};
+      int k = 0;
+      for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++) {
+        const int j = L->rowind[p];
+        if (j == i || !pulls[j]) continue;
+        for (int u = 0; u < 3; u++) m[u] += Yn[3 * (size_t)T[j] + u];
+        k++;
+      }
+      if (k > 0)
+        for (int u = 0; u < 3; u++) P[3 * (size_t)i + u] = m[u] / k;
+    }
+    q[4 * (size_t)i] = 1, q[4 * (size_t)i + 1] = q[4 * (size_t)i + 2] = q[4 * (size_t)i + 3] = 0;
+  }
+  if (released) /* the released region starts as the harmonic fill between the others' images */
+    for (int s = 0; s < MIRROR_FILL_SWEEPS; s++)
+      for (int i = 0; i < nx; i++) {
+        if (pulls[i]) continue;
+        double m[3] = {0, 0, 0};
+        int k = 0;
+        for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++) {
+          const int j = L->rowind[p];
+          if (j == i) continue;
+          for (int u = 0; u < 3; u++) m[u] += P[3 * (size_t)j + u];
+          k++;
+        }
+        if (k > 0)
+          for (int u = 0; u < 3; u++) P[3 * (size_t)i + u] = m[u] / k;
+      }
+  for (int r = 0; r < o->rounds; r++) {
+    /* the weights move geometrically from their first to their last value: a stiff, map-led start,
+     * then the surface takes over */
+    const double t = o->rounds > 1 ? (double)r / (o->rounds - 1) : 1;
+    const double ws = o->w_surface_first * pow(o->w_surface_last / o->w_surface_first, t);
+    const double wm = o->w_map_first * pow(o->w_map_last / o->w_map_first, t);
+    /* each vertex's target: its position projected onto the tangent plane of the facing nearest
+     * vertex of Y (point-to-plane ICP) */
+    vertex_normals(nx, c->X->nf, c->X->F, P, NP);
+    if (r == 0) {
+      /* X's faces laid on their images face as Y's there, mostly, when the two meshes are oriented
+       * alike: otherwise (one faces inwards) Y's normals are turned round */
+      double agree = 0;
+      for (int i = 0; i < nx; i++) {
+        const double *n = NP + 3 * (size_t)i, *m = NY + 3 * (size_t)T[i];
+        agree += a[i] * (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]);
+      }
+      if (agree < 0)
+        for (size_t i = 0; i < 3 * (size_t)c->ny; i++) NY[i] = -NY[i];
+    }
+    facing_nearest(c->tree, nx, P, NP, NY, T, c->kq, o->min_normal_dot, c->near);
+    for (int i = 0; i < nx; i++) {
+      const double *p = P + 3 * (size_t)i, *y = Yn + 3 * (size_t)c->near[i], *n = NY + 3 * (size_t)c->near[i];
+      const double h = (p[0] - y[0]) * n[0] + (p[1] - y[1]) * n[1] + (p[2] - y[2]) * n[2];
+      for (int u = 0; u < 3; u++) tgt[3 * (size_t)i + u] = p[u] - h * n[u];
+      d[i] = a[i] * (ws + (pulls[i] ? wm : 0));
+    }
+    /* (one analysis: the diagonal alone changes from round to round) */
+    if ((st = c->chol ? ssi_chol_refactor(c->chol, L, 1, d, err) : ssi_chol_factor(L, 1, d, &c->chol, err))) return st;
+    for (int s = 0; s < o->steps; s++) {
+      /* local: each vertex's rotation from its star's edges, rest (X) to current (P) */
+#pragma omp parallel for schedule(static)
+      for (int i = 0; i < nx; i++) {
+        double A[9] = {0};
+        for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++) {
+          const int j = L->rowind[p];
+          if (j == i) continue;
+          const double w = -L->val[p];
+          const double e[3] = {Xn[3 * (size_t)i] - Xn[3 * (size_t)j], Xn[3 * (size_t)i + 1] - Xn[3 * (size_t)j + 1],
+                               Xn[3 * (size_t)i + 2] - Xn[3 * (size_t)j + 2]};
+          const double f[3] = {P[3 * (size_t)i] - P[3 * (size_t)j], P[3 * (size_t)i + 1] - P[3 * (size_t)j + 1],
+                               P[3 * (size_t)i + 2] - P[3 * (size_t)j + 2]};
+          for (int u = 0; u < 3; u++)
+            for (int v = 0; v < 3; v++) A[3 * u + v] += w * f[u] * e[v];
+        }
+        fit_rotation(A, q + 4 * (size_t)i, R + 9 * (size_t)i);
+      }
+      /* global: (L + diag(d)) P = Σ_j w_ij (R_i + R_j)/2 (x_i - x_j) + a_i (ws target_i + wm Y[T(i)]) */
+#pragma omp parallel for schedule(static)
+      for (int i = 0; i < nx; i++) {
+        double b[3] = {0, 0, 0};
+        const double *Ri = R + 9 * (size_t)i;
+        for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++) {
+          const int j = L->rowind[p];
+          if (j == i) continue;
+          const double w = -0.5 * L->val[p], *Rj = R + 9 * (size_t)j;
+          const double e[3] = {Xn[3 * (size_t)i] - Xn[3 * (size_t)j], Xn[3 * (size_t)i + 1] - Xn[3 * (size_t)j + 1],
+                               Xn[3 * (size_t)i + 2] - Xn[3 * (size_t)j + 2]};
+          for (int u = 0; u < 3; u++)
+            b[u] += w * ((Ri[3 * u] + Rj[3 * u]) * e[0] + (Ri[3 * u + 1] + Rj[3 * u + 1]) * e[1] +
+                         (Ri[3 * u + 2] + Rj[3 * u + 2]) * e[2]);
+        }
+        const double *yt = Yn + 3 * (size_t)T[i];
+        const double wi = pulls[i] ? wm : 0;
+        for (int u = 0; u < 3; u++) B[(size_t)u * nx + i] = b[u] + a[i] * (ws * tgt[3 * (size_t)i + u] + wi * yt[u]);
+      }
+      if ((st = ssi_chol_solve(c->chol, B, sol, 3, err))) return st;
+      for (int i = 0; i < nx; i++)
+        for (int u = 0; u < 3; u++) P[3 * (size_t)i + u] = sol[(size_t)u * nx + i];
+    }
+  }
+  /* the map: each vertex's facing nearest vertex of Y at its polished position */
+  vertex_normals(nx, c->X->nf, c->X->F, P, NP);
+  for (int i = 0; i < nx; i++) {
+    int idx[64];
+    double d2[64];
+    const double *n = NP + 3 * (size_t)i;
+    ssi_knn3_query(c->tree, P + 3 * (size_t)i, c->kq, idx, d2);
+    int got = T[i];
+    for (int k = 0; k < c->kq; k++) {
+      const double *m = NY + 3 * (size_t)idx[k];
+      if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > o->min_normal_dot &&
+          (guard[i] < 0 || within(&c->gy, guard[i], idx[k], o->max_move, &c->rw))) {
+        got = idx[k];
+        break;
+      }
+    }
+    out[i] = got;
+  }
+  return SS_OK;
+}
+
+/* Whether Y has a vertex facing against normal n within `radius` of y (nearest first, the search
+ * widened until it passes the radius) */
+static int facing_back_within(const polish_ctx *c, const double *y, const double *n, double radius, int *idx,
+                              double *d2) {
+  for (int k = 64;; k *= 4) {
+    if (k > c->ny) k = c->ny;
+    ssi_knn3_query(c->tree, y, k, idx, d2);
+    for (int j = 0; j < k && d2[j] <= radius * radius; j++) {
+      const double *m = c->NY + 3 * (size_t)idx[j];
+      if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < -0.5) return 1;
+    }
+    if (d2[k - 1] > radius * radius || k == c->ny) return 0;
+  }
+}
+
+/* The vertices of X in thick regions that the map T turns over (see MIRROR_*) into released (0/1);
+ * *found: whether there is any. */
+static ss_status mirrored_regions(polish_ctx *c, const int *T, int *released, int *found, ss_error *err) {
+  const int nx = c->nx;
+  const ss_sparse *L = &c->L;
+  double *f = malloc(sizeof(double) * (size_t)nx), *g = malloc(sizeof(double) * (size_t)nx),
+         *d2 = malloc(sizeof(double) * (size_t)c->ny);
+  int *stack = malloc(sizeof(int) * (size_t)nx), *seen = calloc((size_t)nx, sizeof(int)),
+      *idx = malloc(sizeof(int) * (size_t)c->ny);
+  *found = 0;
+  if (!f || !g || !d2 || !stack || !seen || !idx) {
+    free(f), free(g), free(d2), free(stack), free(seen), free(idx);
+    return ss_fail(err, SS_ERR_NOMEM, "map polish: out of memory");
+  }
+  /* f: X's normals laid on the images against Y's there (Y's as the first pass turned them) */
+  for (int i = 0; i < nx; i++) memcpy(c->P + 3 * (size_t)i, c->Yn + 3 * (size_t)T[i], sizeof(double) * 3);
+  vertex_normals(nx, c->X->nf, c->X->F, c->P, c->NP);
+  double agree = 0;
+  for (int i = 0; i < nx; i++) {
+    const double *n = c->NP + 3 * (size_t)i, *m = c->NY + 3 * (size_t)T[i];
+    f[i] = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+    agree += c->a[i] * f[i];
+  }
+  if (agree < 0) /* (most of the map keeps the orientation: the rest is what is turned over) */
+    for (int i = 0; i < nx; i++) f[i] = -f[i];
+  for (int s = 0; s < MIRROR_SMOOTHING; s++) {
+    for (int i = 0; i < nx; i++) {
+      double sum = 0, w = 0;
+      for (int p = L->colptr[i]; p < L->colptr[i + 1]; p++) {
+        const int j = L->rowind[p];
+        sum += c->a[j] * f[j], w += c->a[j];
+      }
+      g[i] = w > 0 ? sum / w : f[i];
+    }
+    memcpy(f, g, sizeof(double) * (size_t)nx);
+  }
+  /* the connected regions below MIRROR_FACING; seen: 1 visited, 2 released */
+  for (int i = 0; i < nx; i++) released[i] = 0;
+  for (int i = 0; i < nx; i++) {
+    if (seen[i] || !(f[i] < MIRROR_FACING)) continue;
+    int top = 0, n = 0;
+    stack[top++] = i, seen[i] = 1;
+    while (top > n) { /* stack[0..n) visited, [n, top) to visit: it ends holding the region */
+      const int v = stack[n++];
+      for (int p = L->colptr[v]; p < L->colptr[v + 1]; p++) {
+        const int j = L->rowind[p];
+        if (!seen[j] && f[j] < MIRROR_FACING) seen[j] = 1, stack[top++] = j;
+      }
+    }
+    if (n < MIRROR_MIN_SHARE * nx) continue;
+    int thick = 0;
+    for (int k = 0; k < n; k++) {
+      const int v = stack[k];
+      thick += !facing_back_within(c, c->Yn + 3 * (size_t)T[v], c->NY + 3 * (size_t)T[v], MIRROR_THICKNESS, idx, d2);
+    }
+    if (2 * thick < n) continue;
+    for (int k = 0; k < n; k++) released[stack[k]] = 1;
+    *found = 1;
+  }
+  free(f), free(g), free(d2), free(stack), free(seen), free(idx);
+  return SS_OK;
+}
+
 ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, const ss_map_polish_options *opts,
                         int *map_out, ss_error *err) {
   ss_map_polish_options o;
@@ -181,7 +461,7 @@ ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, c
   if (!map_in || !map_out) return ss_fail(err, SS_ERR_INVALID, "map polish: NULL map");
   if (!options_ok(&o))
     return ss_fail(err, SS_ERR_INVALID, "map polish: rounds 0..10000, steps 1..100, the four weights in (0, 1e6], "
-                   "neighbours 1..64, min_normal_dot in [-1, 1), max_move in (0, 1e6]");
+                   "neighbours 1..64, min_normal_dot in [-1, 1), max_move in (0, 1e6], mend_mirrored 0 or 1");
   const int nx = X->nv, ny = Y->nv;
   for (int i = 0; i < nx; i++)
     if (map_in[i] < 0 || map_in[i] >= ny)
@@ -204,50 +484,52 @@ ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, c
   const double sx = 1 / sqrt(ax), sy = 1 / sqrt(ay); /* both at unit area: the step does not see scale */
 
   ss_status st = SS_OK;
-  ss_sparse W = {0}, L = {0};
-  ssi_knn3 *tree = NULL;
-  ssi_chol *chol = NULL;
-  ss_graph gy = {0};
-  reach_ws rw = {0};
+  polish_ctx c = {0};
+  c.o = o, c.X = X, c.nx = nx, c.ny = ny;
+  c.kq = o.neighbours < ny ? o.neighbours : ny;
   const size_t n3 = 3 * (size_t)nx;
-  double *Xn = malloc(sizeof(double) * n3), *Yn = malloc(sizeof(double) * 3 * (size_t)ny),
-         *NY = malloc(sizeof(double) * 3 * (size_t)ny), *P = malloc(sizeof(double) * n3),
-         *NP = malloc(sizeof(double) * n3), *tgt = malloc(sizeof(double) * n3), *B = malloc(sizeof(double) * n3),
-         *sol = malloc(sizeof(double) * n3), *a = malloc(sizeof(double) * (size_t)nx),
-         *d = malloc(sizeof(double) * (size_t)nx), *R = malloc(sizeof(double) * 9 * (size_t)nx),
-         *q = malloc(sizeof(double) * 4 * (size_t)nx);
-  int *T = malloc(sizeof(int) * (size_t)nx), *near = malloc(sizeof(int) * (size_t)nx),
-      *pulls = malloc(sizeof(int) * (size_t)nx), *guard = malloc(sizeof(int) * (size_t)nx);
-  if (!Xn || !Yn || !NY || !P || !NP || !tgt || !B || !sol || !a || !d || !R || !q || !T || !near || !pulls || !guard) {
+  ss_sparse W = {0};
+  int *T = malloc(sizeof(int) * (size_t)nx), *released = NULL;
+  c.Xn = malloc(sizeof(double) * n3), c.Yn = malloc(sizeof(double) * 3 * (size_t)ny);
+  c.NY = malloc(sizeof(double) * 3 * (size_t)ny), c.P = malloc(sizeof(double) * n3);
+  c.NP = malloc(sizeof(double) * n3), c.tgt = malloc(sizeof(double) * n3), c.B = malloc(sizeof(double) * n3);
+  c.sol = malloc(sizeof(double) * n3), c.a = malloc(sizeof(double) * (size_t)nx);
+  c.d = malloc(sizeof(double) * (size_t)nx), c.R = malloc(sizeof(double) * 9 * (size_t)nx);
+  c.q = malloc(sizeof(double) * 4 * (size_t)nx);
+  c.near = malloc(sizeof(int) * (size_t)nx), c.pulls = malloc(sizeof(int) * (size_t)nx);
+  c.guard = malloc(sizeof(int) * (size_t)nx);
+  if (!T || !c.Xn || !c.Yn || !c.NY || !c.P || !c.NP || !c.tgt || !c.B || !c.sol || !c.a || !c.d || !c.R || !c.q ||
+      !c.near || !c.pulls || !c.guard) {
     st = ss_fail(err, SS_ERR_NOMEM, "map polish: out of memory");
     goto done;
   }
   memcpy(T, map_in, sizeof(int) * (size_t)nx);
-  for (size_t i = 0; i < n3; i++) Xn[i] = X->V[i] * sx;
-  for (size_t i = 0; i < 3 * (size_t)ny; i++) Yn[i] = Y->V[i] * sy;
+  for (size_t i = 0; i < n3; i++) c.Xn[i] = X->V[i] * sx;
+  for (size_t i = 0; i < 3 * (size_t)ny; i++) c.Yn[i] = Y->V[i] * sy;
   /* ARAP's edge weights: the cotangent weights, clamped positive (a negative weight, across an obtuse
    * pair of angles, would reward stretching that edge) */
   ss_mesh Xu = *X;
-  Xu.V = Xn;
+  Xu.V = c.Xn;
   if ((st = ss_cotan_stiffness(&Xu, &W, err))) goto done;
-  if ((st = ss_mass_lumped(&Xu, SS_MASS_BARYCENTRIC, a, err))) goto done;
+  if ((st = ss_mass_lumped(&Xu, SS_MASS_BARYCENTRIC, c.a, err))) goto done;
   {
     double mean = 0;
-    for (int i = 0; i < nx; i++) mean += a[i];
+    for (int i = 0; i < nx; i++) mean += c.a[i];
     mean /= nx;
-    for (int i = 0; i < nx; i++) a[i] = a[i] / mean > 1e-6 ? a[i] / mean : 1e-6; /* (an unreferenced vertex) */
+    for (int i = 0; i < nx; i++) c.a[i] = c.a[i] / mean > 1e-6 ? c.a[i] / mean : 1e-6; /* (an unreferenced vertex) */
   }
   /* L: the weighted graph Laplacian of the clamped weights, same pattern as W */
-  L.nrows = L.ncols = nx;
-  L.colptr = malloc(sizeof(int) * ((size_t)nx + 1));
-  L.rowind = malloc(sizeof(int) * (size_t)W.colptr[nx]);
-  L.val = malloc(sizeof(double) * (size_t)W.colptr[nx]);
-  if (!L.colptr || !L.rowind || !L.val) {
+  ss_sparse *L = &c.L;
+  L->nrows = L->ncols = nx;
+  L->colptr = malloc(sizeof(int) * ((size_t)nx + 1));
+  L->rowind = malloc(sizeof(int) * (size_t)W.colptr[nx]);
+  L->val = malloc(sizeof(double) * (size_t)W.colptr[nx]);
+  if (!L->colptr || !L->rowind || !L->val) {
     st = ss_fail(err, SS_ERR_NOMEM, "map polish: out of memory");
     goto done;
   }
-  memcpy(L.colptr, W.colptr, sizeof(int) * ((size_t)nx + 1));
-  memcpy(L.rowind, W.rowind, sizeof(int) * (size_t)W.colptr[nx]);
+  memcpy(L->colptr, W.colptr, sizeof(int) * ((size_t)nx + 1));
+  memcpy(L->rowind, W.rowind, sizeof(int) * (size_t)W.colptr[nx]);
   for (int j = 0; j < nx; j++) {
     double diag = 0;
     int dpos = -1;
@@ -257,173 +539,51 @@ ss_status ss_map_polish(const ss_mesh *X, const ss_mesh *Y, const int *map_in, c
         continue;
       }
       const double w = -W.val[p] > 1e-6 ? -W.val[p] : 1e-6;
-      L.val[p] = -w, diag += w;
+      L->val[p] = -w, diag += w;
     }
-    if (dpos >= 0) L.val[dpos] = diag;
+    if (dpos >= 0) L->val[dpos] = diag;
     else if (diag != 0) { /* (ss_cotan_stiffness stores every diagonal of a referenced vertex) */
       st = ss_fail(err, SS_ERR_NUMERIC, "map polish: stiffness without a diagonal");
       goto done;
     }
   }
-  vertex_normals(ny, Y->nf, Y->F, Yn, NY);
-  if ((st = ssi_knn3_build(ny, Yn, &tree, err))) goto done;
+  vertex_normals(ny, Y->nf, Y->F, c.Yn, c.NY);
+  if ((st = ssi_knn3_build(ny, c.Yn, &c.tree, err))) goto done;
   {
     ss_mesh Yu = *Y;
-    Yu.V = Yn;
-    if ((st = ss_graph_edges(&Yu, &gy, err))) goto done;
-    const size_t arcs = (size_t)gy.ptr[ny] + 1;
-    rw.dist = malloc(sizeof(double) * (size_t)ny), rw.touched = malloc(sizeof(int) * (size_t)ny);
-    rw.heap = malloc(sizeof(int) * arcs), rw.key = malloc(sizeof(double) * arcs);
-    if (!rw.dist || !rw.touched || !rw.heap || !rw.key) {
+    Yu.V = c.Yn;
+    if ((st = ss_graph_edges(&Yu, &c.gy, err))) goto done;
+    const size_t arcs = (size_t)c.gy.ptr[ny] + 1;
+    c.rw.dist = malloc(sizeof(double) * (size_t)ny), c.rw.touched = malloc(sizeof(int) * (size_t)ny);
+    c.rw.heap = malloc(sizeof(int) * arcs), c.rw.key = malloc(sizeof(double) * arcs);
+    if (!c.rw.dist || !c.rw.touched || !c.rw.heap || !c.rw.key) {
       st = ss_fail(err, SS_ERR_NOMEM, "map polish: out of memory");
       goto done;
     }
-    for (int v = 0; v < ny; v++) rw.dist[v] = INFINITY;
+    for (int v = 0; v < ny; v++) c.rw.dist[v] = INFINITY;
   }
-  /* the given images that tear the surface (an image far from its neighbours' images, relative to
-   * the edges between them: a given map's outliers) do not pull: such a vertex follows its neighbours,
-   * starts at their images' mean, and its image may move within max_move of a neighbour's given image
-   * instead of its own */
-  for (int i = 0; i < nx; i++) {
-    double r[64];
-    int m = 0;
-    for (int p = L.colptr[i]; p < L.colptr[i + 1] && m < 64; p++) {
-      const int j = L.rowind[p];
-      if (j == i) continue;
-      const double *xi = Xn + 3 * (size_t)i, *xj = Xn + 3 * (size_t)j;
-      const double *yi = Yn + 3 * (size_t)T[i], *yj = Yn + 3 * (size_t)T[j];
-      const double ex = sqrt((xi[0] - xj[0]) * (xi[0] - xj[0]) + (xi[1] - xj[1]) * (xi[1] - xj[1]) +
-                             (xi[2] - xj[2]) * (xi[2] - xj[2]));
-      const double ey = sqrt((yi[0] - yj[0]) * (yi[0] - yj[0]) + (yi[1] - yj[1]) * (yi[1] - yj[1]) +
-                             (yi[2] - yj[2]) * (yi[2] - yj[2]));
-      double v = ex > 0 ? ey / ex : (ey > 0 ? INFINITY : 0);
-      int k = m++; /* insertion, sorted */
-      while (k > 0 && r[k - 1] > v) r[k] = r[k - 1], k--;
-      r[k] = v;
+  if ((st = polish_pass(&c, T, NULL, map_out, err))) goto done;
+  if (o.mend_mirrored) {
+    /* a thick region the map turns over (a torso's front sent to its back) is out of the first pass's
+     * reach: its images are held within max_move of the given ones. Released from them, it is placed
+     * again by the deformation of the rest, from the first pass's map. */
+    released = malloc(sizeof(int) * (size_t)nx);
+    if (!released) {
+      st = ss_fail(err, SS_ERR_NOMEM, "map polish: out of memory");
+      goto done;
     }
-    pulls[i] = m == 0 || r[(m - 1) / 2] <= TEAR_RATIO;
-  }
-  for (int i = 0; i < nx; i++) {
-    guard[i] = T[i];
-    if (pulls[i]) continue;
-    guard[i] = -1;
-    for (int p = L.colptr[i]; p < L.colptr[i + 1]; p++)
-      if (L.rowind[p] != i && pulls[L.rowind[p]]) {
-        guard[i] = T[L.rowind[p]];
-        break;
-      }
-  }
-  for (int i = 0; i < nx; i++) {
-    memcpy(P + 3 * (size_t)i, Yn + 3 * (size_t)T[i], sizeof(double) * 3);
-    if (!pulls[i]) {
-      double c[3] = {0, 0, 0};
-      int k = 0;
-      for (int p = L.colptr[i]; p < L.colptr[i + 1]; p++) {
-        const int j = L.rowind[p];
-        if (j == i || !pulls[j]) continue;
-        for (int u = 0; u < 3; u++) c[u] += Yn[3 * (size_t)T[j] + u];
-        k++;
-      }
-      if (k > 0)
-        for (int u = 0; u < 3; u++) P[3 * (size_t)i + u] = c[u] / k;
+    int found = 0;
+    if ((st = mirrored_regions(&c, map_out, released, &found, err))) goto done;
+    if (found) {
+      memcpy(T, map_out, sizeof(int) * (size_t)nx);
+      if ((st = polish_pass(&c, T, released, map_out, err))) goto done;
     }
-    q[4 * (size_t)i] = 1, q[4 * (size_t)i + 1] = q[4 * (size_t)i + 2] = q[4 * (size_t)i + 3] = 0;
-  }
-  const int kq = o.neighbours < ny ? o.neighbours : ny;
-  for (int r = 0; r < o.rounds; r++) {
-    /* the weights move geometrically from their first to their last value: a stiff, map-led start,
-     * then the surface takes over */
-    const double t = o.rounds > 1 ? (double)r / (o.rounds - 1) : 1;
-    const double ws = o.w_surface_first * pow(o.w_surface_last / o.w_surface_first, t);
-    const double wm = o.w_map_first * pow(o.w_map_last / o.w_map_first, t);
-    /* each vertex's target: its position projected onto the tangent plane of the facing nearest
-     * vertex of Y (point-to-plane ICP) */
-    vertex_normals(nx, X->nf, X->F, P, NP);
-    if (r == 0) {
-      /* X's faces laid on their images face as Y's there, mostly, when the two meshes are oriented
-       * alike: otherwise (one faces inwards) Y's normals are turned round */
-      double agree = 0;
-      for (int i = 0; i < nx; i++) {
-        const double *n = NP + 3 * (size_t)i, *m = NY + 3 * (size_t)T[i];
-        agree += a[i] * (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]);
-      }
-      if (agree < 0)
-        for (size_t i = 0; i < 3 * (size_t)ny; i++) NY[i] = -NY[i];
-    }
-    facing_nearest(tree, nx, P, NP, NY, T, kq, o.min_normal_dot, near);
-    for (int i = 0; i < nx; i++) {
-      const double *p = P + 3 * (size_t)i, *y = Yn + 3 * (size_t)near[i], *n = NY + 3 * (size_t)near[i];
-      const double h = (p[0] - y[0]) * n[0] + (p[1] - y[1]) * n[1] + (p[2] - y[2]) * n[2];
-      for (int c = 0; c < 3; c++) tgt[3 * (size_t)i + c] = p[c] - h * n[c];
-      d[i] = a[i] * (ws + (pulls[i] ? wm : 0));
-    }
-    /* (one analysis: the diagonal alone changes from round to round) */
-    if ((st = chol ? ssi_chol_refactor(chol, &L, 1, d, err) : ssi_chol_factor(&L, 1, d, &chol, err))) goto done;
-    for (int s = 0; s < o.steps; s++) {
-      /* local: each vertex's rotation from its star's edges, rest (X) to current (P) */
-#pragma omp parallel for schedule(static)
-      for (int i = 0; i < nx; i++) {
-        double A[9] = {0};
-        for (int p = L.colptr[i]; p < L.colptr[i + 1]; p++) {
-          const int j = L.rowind[p];
-          if (j == i) continue;
-          const double w = -L.val[p];
-          const double e[3] = {Xn[3 * (size_t)i] - Xn[3 * (size_t)j], Xn[3 * (size_t)i + 1] - Xn[3 * (size_t)j + 1],
-                               Xn[3 * (size_t)i + 2] - Xn[3 * (size_t)j + 2]};
-          const double f[3] = {P[3 * (size_t)i] - P[3 * (size_t)j], P[3 * (size_t)i + 1] - P[3 * (size_t)j + 1],
-                               P[3 * (size_t)i + 2] - P[3 * (size_t)j + 2]};
-          for (int u = 0; u < 3; u++)
-            for (int v = 0; v < 3; v++) A[3 * u + v] += w * f[u] * e[v];
-        }
-        fit_rotation(A, q + 4 * (size_t)i, R + 9 * (size_t)i);
-      }
-      /* global: (L + diag(d)) P = Σ_j w_ij (R_i + R_j)/2 (x_i - x_j) + a_i (ws target_i + wm Y[T(i)]) */
-#pragma omp parallel for schedule(static)
-      for (int i = 0; i < nx; i++) {
-        double b[3] = {0, 0, 0};
-        const double *Ri = R + 9 * (size_t)i;
-        for (int p = L.colptr[i]; p < L.colptr[i + 1]; p++) {
-          const int j = L.rowind[p];
-          if (j == i) continue;
-          const double w = -0.5 * L.val[p], *Rj = R + 9 * (size_t)j;
-          const double e[3] = {Xn[3 * (size_t)i] - Xn[3 * (size_t)j], Xn[3 * (size_t)i + 1] - Xn[3 * (size_t)j + 1],
-                               Xn[3 * (size_t)i + 2] - Xn[3 * (size_t)j + 2]};
-          for (int u = 0; u < 3; u++)
-            b[u] += w * ((Ri[3 * u] + Rj[3 * u]) * e[0] + (Ri[3 * u + 1] + Rj[3 * u + 1]) * e[1] +
-                         (Ri[3 * u + 2] + Rj[3 * u + 2]) * e[2]);
-        }
-        const double *yt = Yn + 3 * (size_t)T[i];
-        const double wi = pulls[i] ? wm : 0;
-        for (int u = 0; u < 3; u++) B[(size_t)u * nx + i] = b[u] + a[i] * (ws * tgt[3 * (size_t)i + u] + wi * yt[u]);
-      }
-      if ((st = ssi_chol_solve(chol, B, sol, 3, err))) goto done;
-      for (int i = 0; i < nx; i++)
-        for (int u = 0; u < 3; u++) P[3 * (size_t)i + u] = sol[(size_t)u * nx + i];
-    }
-  }
-  /* the map: each vertex's facing nearest vertex of Y at its polished position */
-  vertex_normals(nx, X->nf, X->F, P, NP);
-  for (int i = 0; i < nx; i++) {
-    int idx[64];
-    double d2[64];
-    const double *n = NP + 3 * (size_t)i;
-    ssi_knn3_query(tree, P + 3 * (size_t)i, kq, idx, d2);
-    int got = T[i];
-    for (int c = 0; c < kq; c++) {
-      const double *m = NY + 3 * (size_t)idx[c];
-      if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > o.min_normal_dot &&
-          (guard[i] < 0 || within(&gy, guard[i], idx[c], o.max_move, &rw))) {
-        got = idx[c];
-        break;
-      }
-    }
-    map_out[i] = got;
   }
 done:
-  ss_sparse_free(&W), ss_sparse_free(&L);
-  ssi_knn3_free(tree), ssi_chol_free(chol), ss_graph_free(&gy);
-  free(rw.dist), free(rw.key), free(rw.heap), free(rw.touched);
-  free(Xn), free(Yn), free(NY), free(P), free(NP), free(tgt), free(B), free(sol), free(a), free(d), free(R), free(q),
-      free(T), free(near), free(pulls), free(guard);
+  ss_sparse_free(&W), ss_sparse_free(&c.L);
+  ssi_knn3_free(c.tree), ssi_chol_free(c.chol), ss_graph_free(&c.gy);
+  free(c.rw.dist), free(c.rw.key), free(c.rw.heap), free(c.rw.touched);
+  free(c.Xn), free(c.Yn), free(c.NY), free(c.P), free(c.NP), free(c.tgt), free(c.B), free(c.sol), free(c.a), free(c.d),
+      free(c.R), free(c.q), free(c.near), free(c.pulls), free(c.guard), free(T), free(released);
   return st;
 }
