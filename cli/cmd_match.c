@@ -317,6 +317,10 @@ int cmd_match(int argc, char **argv) {
   cli_job_int(&J, "zoomout", kz);
   if (res.autopair.used) cli_job_int(&J, "final_zoomout", res.autopair.hyp_final_k);
   cli_job_int(&J, "polished", res.autopair.hyp_final_polished);
+  if (res.autopair.used) {
+    cli_job_int(&J, "rechecked", res.autopair.hyp_rechecked);
+    cli_job_int(&J, "recheck_from", res.autopair.hyp_recheck_from);
+  }
   if (o.refine != SS_REFINE_NONE) cli_job_str(&J, "refined", refined);
   if (res.notes[0]) cli_job_str(&J, "notes", res.notes);
   cli_job_int(&J, "descriptors", o.ndescr), cli_job_int(&J, "wks", !o.fmap.no_wks);

@@ -270,7 +270,8 @@ static void test_permuted_and_mirrored(void) {
         printf("  %d candidates from Y's side (Y's search: %d hypotheses)\n", from_y, nrh);
         for (int r = 0; r < nrh; r++) ss_segment_pairs_free(&rh[r]);
       }
-      for (int h = 0; h < ai->hypotheses; h++) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
+      /* (the least energy is the first choice; a recheck in doubt may keep another, below) */
+      for (int h = 0; h < ai->hypotheses; h++) CHECK(ai->hyp_energy[ai->hyp_recheck_from] <= ai->hyp_energy[h]);
       /* the hypothesis energy is its three terms: distortion, reversed segments, the map's own
        * selection energy (every candidate is refined with SS_REFINE_BEST here, so it has one) */
       for (int h = 0; h < ai->hypotheses; h++) {
@@ -296,15 +297,26 @@ static void test_permuted_and_mirrored(void) {
       mo.autopair.hyp_confident_orientation = 0.99; /* no map reaches it: flagged, with a note saying why */
       CHECK_MSG(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
       const ss_autopair_info *ai = &res.autopair;
-      const int kept_up = ai->hyp_orientation[ai->hypothesis] >= 0;
+      const int first = ai->hyp_recheck_from;
+      const int kept_up = ai->hyp_orientation[first] >= 0;
       int any = 0;
       for (int h = 0; h < ai->hypotheses; h++) any |= ai->hyp_orientation[h] >= 0;
       printf("reflection, no reversed-segment term: #%d of %d kept, orientation %.3f\n", ai->hypothesis,
              ai->hypotheses, ai->hyp_orientation[ai->hypothesis]);
       CHECK(kept_up || !any);
       for (int h = 0; h < ai->hypotheses; h++)
-        if ((ai->hyp_orientation[h] >= 0) == kept_up) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
+        if ((ai->hyp_orientation[h] >= 0) == kept_up) CHECK(ai->hyp_energy[first] <= ai->hyp_energy[h]);
       CHECK(!ai->confident);
+      /* in doubt, the closest candidates were polished and compared again (hyp_recheck_window): the
+       * first choice among them; another kept only from within the window, as oriented, with a note */
+      printf("  recheck: %d polished, #%d kept, first choice #%d\n", ai->hyp_rechecked, ai->hypothesis, first);
+      CHECK(ai->hyp_rechecked >= 1 && ai->hyp_rechecked <= ai->hypotheses);
+      if (ai->hypothesis != first) {
+        CHECK(ai->hyp_energy[ai->hypothesis] - ai->hyp_energy[first] < mo.autopair.hyp_recheck_window);
+        CHECK((ai->hyp_orientation[ai->hypothesis] >= mo.autopair.hyp_min_orientation) ==
+              (ai->hyp_orientation[first] >= mo.autopair.hyp_min_orientation));
+        CHECK_MSG(strstr(res.notes, "compared again") != NULL, "notes '%s'", res.notes);
+      }
       CHECK_MSG(strstr(res.notes, "orientation score") != NULL, "notes '%s'", res.notes);
       /* no map keeps orientation clearly, so flipped candidates are looked for: only of candidates
        * that reverse it (here none does; test_flip has a pair where every one does) */
@@ -378,6 +390,11 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_final_polish = 2;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_final_polish"));
     mo.autopair.hyp_final_polish = 1;
+    mo.autopair.hyp_recheck_window = -1;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_recheck_window"));
+    mo.autopair.hyp_recheck_window = NAN;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    mo.autopair.hyp_recheck_window = 0.05;
     free(map0);
     /* one hypothesis: the pairing's answer alone, as before the hypotheses */
     mo.autopair.hypotheses = 1;

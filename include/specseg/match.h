@@ -461,6 +461,12 @@ typedef struct ss_autopair_options {
    * (default) on, 0 off. In a match that forms hypotheses (landmark-free, or beside landmarks), not
    * with SS_REFINE_NONE. The result's C stays the functional map before it (docs/tuning.md) */
   int hyp_final_polish;
+  /* landmark-free, when the choice is not confident: the map kept and every candidate within this
+   * much of its energy (eligible, as oriented, differing from it) are polished on the surfaces
+   * (ss_map_polish) and compared again, each energy with the polished map's distortion in place of
+   * its own; the least is kept (mapped again for its whole result; a note says so). The confidence
+   * stays that of the first choice. Default 0.05; 0: not. Not with SS_REFINE_NONE (docs/tuning.md) */
+  double hyp_recheck_window;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 16
@@ -574,6 +580,9 @@ typedef struct ss_autopair_info {
   int hyp_final_k;
   /* 1 when the map kept was polished on the surfaces after the choice (hyp_final_polish) */
   int hyp_final_polished;
+  /* candidates polished for the recheck in doubt (hyp_recheck_window; 0: none), and the hypothesis
+   * chosen before it (= hypothesis when it stood) */
+  int hyp_rechecked, hyp_recheck_from;
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

@@ -60,6 +60,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_final_kmax = 150;
   o->hyp_reverse = 1;
   o->hyp_final_polish = 1;
+  o->hyp_recheck_window = 0.05;
 }
 
 static double cpu_now(void) {

@@ -209,8 +209,8 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       !(a->hyp_flip_orient >= 0 && a->hyp_flip_orient <= 1e6) || !(a->hyp_w_orientation >= 0) ||
       !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2 ||
       a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000 || a->hyp_reverse < 0 || a->hyp_reverse > 1 ||
-      a->hyp_final_polish < 0 || a->hyp_final_polish > 1)
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000, hyp_reverse 0 or 1, hyp_final_polish 0 or 1",
+      a->hyp_final_polish < 0 || a->hyp_final_polish > 1 || !(a->hyp_recheck_window >= 0 && a->hyp_recheck_window <= 1e6))
+    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000, hyp_reverse 0 or 1, hyp_final_polish 0 or 1, hyp_recheck_window in [0, 1e6]",
                    a->hypotheses, SS_MAX_HYPOTHESES);
   return SS_OK;
 }
@@ -306,6 +306,53 @@ static ss_status refine_kept(const ss_shape_prep *X, const ss_shape_prep *Y, con
   out->map = map, out->C = C, out->kc = kf;
   *k_done = kf;
   return SS_OK;
+}
+
+/* Candidate c's map (the match with its landmarks: cand[c] pairs at lx / ly + c * stride; its
+ * pairing's segments when from_pairs[c] >= 0) */
+static ss_status map_candidate(const ss_shape_prep *X, const ss_shape_prep *Y, int c, const int *cand, const int *lx,
+                               const int *ly, int stride, const int *from_pairs, const int *free_of,
+                               const ss_segment_pairs *hyp, const ss_match_options *o, const ss_match_options *oall,
+                               const ssi_zoomout_plan *zp, ss_match_result *r, ss_error *err) {
+  const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
+  if (from_pairs[c] >= 0) return ssi_match_core_planned(X, Y, nl, cx, cy, &hyp[from_pairs[c]], oall, zp, r, err);
+  ss_match_options ok = *o;
+  if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
+  return ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, r, err);
+}
+
+/* Where the landmark-free choice is in doubt: the map kept and each candidate within `window` of its
+ * energy that is eligible, as oriented, and differs from it (hyp_differ_share) are polished on the
+ * surfaces (ss_map_polish), and each energy is taken again with the polished map's distortion in
+ * place of its own. The orientation terms stay those of the map as it was: the polish turns every
+ * part to face Y's way, so after it they no longer tell a mirror image from the map. A map right
+ * but for thin parts turned over (a leg's front and back exchanged) loses its distortion to the
+ * polish, a wrong one does not (TOSCA_r cat4 -> cat9; docs/tuning.md). *choice: the candidate of
+ * least such energy; *polished: how many were polished. */
+static ss_status recheck_polished(const ss_shape_prep *X, const ss_shape_prep *Y, ssi_hyp_ctx *hc, int nc,
+                                  const int *maps, const int *eligible, const int *oriented, double window,
+                                  double differ_share, const ss_autopair_info *info, int *choice, int *polished,
+                                  ss_error *err) {
+  const int kept = info->hypothesis, nX = X->mesh->nv;
+  *choice = kept, *polished = 0;
+  int *pm = malloc(sizeof(int) * (size_t)nX);
+  if (!pm) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  ss_status st = SS_OK;
+  double least = INFINITY;
+  for (int c = 0; c < nc; c++) {
+    if (c != kept && !(eligible[c] && oriented[c] == oriented[kept] && info->hyp_differ[c] >= differ_share &&
+                       info->hyp_energy[c] - info->hyp_energy[kept] < window))
+      continue;
+    double dist = NAN;
+    if ((st = ss_map_polish(X->mesh, Y->mesh, maps + (size_t)nX * c, NULL, pm, err)) ||
+        (st = ssi_hyp_distortion(hc, pm, &dist, err)))
+      break;
+    (*polished)++;
+    const double E = info->hyp_energy[c] - info->hyp_distortion[c] + dist;
+    if (E < least) least = E, *choice = c;
+  }
+  free(pm);
+  return st;
 }
 
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
@@ -455,14 +502,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   const int flip_cap = o.autopair.hyp_reverse ? SS_MAX_HYPOTHESES : 8;
   char flip_skipped[sizeof(ss_error) + 96] = "";
   for (int c = 0; c < nc; c++) {
-    const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
-    if (from_pairs[c] >= 0) {
-      if ((st = ssi_match_core_planned(X, Y, nl, cx, cy, &hyp[from_pairs[c]], &oall, zp, &r, err))) goto done;
-    } else {
-      ss_match_options ok = o;
-      if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
-      if ((st = ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, &r, err))) goto done;
-    }
+    const int nl = cand[c];
+    if ((st = map_candidate(X, Y, c, cand, lx, ly, stride, from_pairs, free_of, hyp, &o, &oall, zp, &r, err))) goto done;
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     /* the pairing hypothesis behind it (landmark-free), X's or Y's */
@@ -547,6 +588,25 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   /* NaN (no such energy) compares false: not flagged by it */
   const int high_map_energy = kept_map_energy > o.autopair.hyp_max_map_energy;
   if (!best_oriented || low_orient || high_map_energy) info.confident = 0;
+  info.hyp_recheck_from = info.hypothesis;
+  if (nlg == 0 && nc > 1 && !info.confident && o.autopair.hyp_recheck_window > 0 && o.refine != SS_REFINE_NONE) {
+    int choice;
+    if ((st = recheck_polished(X, Y, &hc, nc, maps, eligible, oriented, o.autopair.hyp_recheck_window,
+                               o.autopair.hyp_differ_share, &info, &choice, &info.hyp_rechecked, err)))
+      goto done;
+    if (choice != info.hypothesis) { /* mapped again, for the whole result of that candidate */
+      if ((st = map_candidate(X, Y, choice, cand, lx, ly, stride, from_pairs, free_of, hyp, &o, &oall, zp, &r, err)))
+        goto done;
+      ss_match_result_free(out);
+      *out = r, info.hypothesis = choice, info.hyp_landmarks = cand[choice];
+      memset(&r, 0, sizeof r);
+      char msg[220];
+      snprintf(msg, sizeof msg, "the choice in doubt, the %d closest candidates polished and compared again: #%d kept "
+               "instead of #%d (the confidence below is #%d's)", info.hyp_rechecked, choice, info.hyp_recheck_from,
+               info.hyp_recheck_from);
+      ssi_match_note(out, msg);
+    }
+  }
   /* the map kept, refined further and polished, with landmarks or without (their time is ZoomOut's) */
   const double t_final = ss_time();
   if ((st = refine_kept(X, Y, &o, out, &info.hyp_final_k, err))) goto done;
