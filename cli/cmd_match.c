@@ -15,7 +15,8 @@ static const char USAGE[] =
     "usage: specseg match X Y [--landmarks LM.txt] -o MAP.txt [--probes std|asa|diff]\n"
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
-    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--one-way]\n"
+    "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--no-recheck]\n"
+    "                     [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
     "Point-to-point map X -> Y by functional maps (paper section 6) with corresponding landmarks and\n"
@@ -66,6 +67,9 @@ static const char USAGE[] =
     "                      from --zoomout's size up to KMAX, 0..10000 (default 150; 0: not)\n"    "  --no-polish         the map kept among the hypotheses is not then fitted to the surfaces (by default\n"
     "                      X is deformed as rigidly as possible onto Y and each vertex sent to the nearest\n"
     "                      vertex of Y facing the same way: specseg refine --polish-only)\n"
+    "  --no-recheck        without --landmarks, a choice in doubt (not confident) is not rechecked (by\n"
+    "                      default the map kept and the candidates within 0.05 of its energy are polished\n"
+    "                      and compared again by their polished maps' distortion; a note names a change)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -118,7 +122,7 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
 
 int cmd_match(int argc, char **argv) {
   const char *xp = NULL, *yp = NULL, *lmp = NULL, *outp = NULL, *fmapp = NULL, *pairsp = NULL, *dxp = NULL, *dyp = NULL;
-  int timings = 0, json = 0;
+  int timings = 0, json = 0, no_recheck = 0;
   ss_match_options o;
   ss_match_default_options(&o);
   o.probes = SS_PROBES_DIFF;
@@ -149,6 +153,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_INT("--hypotheses", &o.autopair.hypotheses, 1, SS_MAX_HYPOTHESES, NULL),
       CLI_OPT_INT("--final-zoomout", &o.autopair.hyp_final_kmax, 0, 10000, NULL),
       CLI_OPT_FLAG("--no-polish", &o.autopair.hyp_final_polish, 0),
+      CLI_OPT_FLAG("--no-recheck", &no_recheck, 1),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
@@ -162,6 +167,7 @@ int cmd_match(int argc, char **argv) {
     return cli_bad(&A, "--zoomout %d is below --k %d", o.fmap.zoomout_kmax, o.fmap.k);
   if (o.fmap.descr_k < o.fmap.k) o.fmap.descr_k = o.fmap.k; /* a larger --k takes the descriptors along */
   if (o.fmap.no_wks && !dxp) return cli_bad(&A, "--no-wks needs --descriptors DX.npy DY.npy (they replace the WKS)");
+  if (no_recheck) o.autopair.hyp_recheck_window = 0;
   o.std_pairs = pairsp != NULL; /* the pairs file is written for every probe set */
   const char *ins[5] = {xp, yp, lmp ? lmp : "", dxp ? dxp : "", dyp ? dyp : ""}, *outs[3] = {outp, fmapp, pairsp};
   if (cli_count_std(ins, 5) > 1) return cli_bad(&A, "only one input can come from standard input ('-')");
