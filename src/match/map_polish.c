@@ -423,7 +423,7 @@ static ss_status mirrored_regions(polish_ctx *c, const int *T, int *released, in
     }
     memcpy(f, g, sizeof(double) * (size_t)nx);
   }
-  /* the connected regions below MIRROR_FACING; seen: 1 visited, 2 released */
+  /* the connected regions below MIRROR_FACING (seen: visited) */
   for (int i = 0; i < nx; i++) released[i] = 0;
   for (int i = 0; i < nx; i++) {
     if (seen[i] || !(f[i] < MIRROR_FACING)) continue;
