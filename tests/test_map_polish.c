@@ -142,19 +142,17 @@ static void check_mirrored(void) {
   }
   CHECK(nb > 0);
   cz /= nb;
-  for (int i = 0; i < n; i++) {
+  ssi_knn3 *tree = NULL;
+  CHECK(ssi_knn3_build(n, Y.V, &tree, &e) == SS_OK);
+  for (int i = 0; i < n && tree; i++) {
     const double *x = X.V + 3 * (size_t)i, *y = Y.V + 3 * (size_t)i;
     in[i] = i;
     if (!(x[1] > 1.2 && x[1] < 1.45 && fabs(x[0]) < 0.12 && x[2] > cz)) continue;
-    const double m[3] = {y[0], y[1], 2 * cz - y[2]};
-    double best = INFINITY;
-    for (int j = 0; j < n; j++) {
-      const double *v = Y.V + 3 * (size_t)j;
-      const double d = (v[0] - m[0]) * (v[0] - m[0]) + (v[1] - m[1]) * (v[1] - m[1]) + (v[2] - m[2]) * (v[2] - m[2]);
-      if (d < best) best = d, in[i] = j;
-    }
+    const double m[3] = {y[0], y[1], 2 * cz - y[2]}; /* its mirror image; in[i]: Y's vertex nearest it */
+    ssi_knn3_query(tree, m, 1, in + i, NULL);
     patch[i] = 1, np++;
   }
+  ssi_knn3_free(tree);
   double *err = malloc(sizeof(double) * n), mean;
   ss_error ge;
   double on[3];
