@@ -174,12 +174,30 @@ static int same_set(int n, const int *a, const int *b, int m, const int *c, cons
   return 1;
 }
 
-/* whether the landmark set of candidate nc (count cnt, at lx / ly + stride · nc) repeats an earlier
- * landmark-free candidate's */
-static int repeats_free(int nc, const int *cand, const int *free_of, const int *lx, const int *ly, int stride, int cnt) {
-  const int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
-  for (int c = 0; c < nc; c++)
-    if (free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, cnt, cx, cy)) return 1;
+/* The candidates of a match, nc of them (SS_MAX_HYPOTHESES at most). Candidate c: its n[c] landmark
+ * pairs (cand_x / cand_y: stride ints each); seg[c], the pairing whose segments its map uses (NULL: its
+ * landmarks pair the segments); lm_free[c], whether it is landmark-free; pairs_of[c], the pairing
+ * hypothesis behind it, X's or Y's (NULL: none). The slot nc is where the next one is written. */
+typedef struct {
+  int nc, stride, *lx, *ly;
+  int n[SS_MAX_HYPOTHESES], lm_free[SS_MAX_HYPOTHESES];
+  const ss_segment_pairs *seg[SS_MAX_HYPOTHESES], *pairs_of[SS_MAX_HYPOTHESES];
+} cand_set;
+
+static int *cand_x(const cand_set *cs, int c) { return cs->lx + (size_t)cs->stride * c; }
+static int *cand_y(const cand_set *cs, int c) { return cs->ly + (size_t)cs->stride * c; }
+
+/* Candidate nc: the cnt landmark pairs already written in its slot, and what it comes from */
+static void cand_push(cand_set *cs, int cnt, const ss_segment_pairs *seg, int lm_free, const ss_segment_pairs *pairs_of) {
+  const int c = cs->nc++;
+  cs->n[c] = cnt, cs->seg[c] = seg, cs->lm_free[c] = lm_free, cs->pairs_of[c] = pairs_of;
+}
+
+/* whether the cnt landmark pairs in slot nc repeat an earlier landmark-free candidate's */
+static int repeats_free(const cand_set *cs, int cnt) {
+  const int *cx = cand_x(cs, cs->nc), *cy = cand_y(cs, cs->nc);
+  for (int c = 0; c < cs->nc; c++)
+    if (cs->lm_free[c] && same_set(cs->n[c], cand_x(cs, c), cand_y(cs, c), cnt, cx, cy)) return 1;
   return 0;
 }
 
@@ -232,15 +250,15 @@ static int flips_wanted(const ss_autopair_info *info, const int *oriented, int n
  * hypothesis energy (energy[c]; the best mirror first, when room runs short), the landmarks X's
  * protrusion centres (hyp_keep) and the images under that map of their mirror images on X (by_y 0),
  * or the mirror images on Y of their images (by_y 1; ssi_symmetry_map of that shape): the mirror map
- * turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to lx,
- * ly, cand, from_pairs, free_of, pairs_of (up to cap candidates in all) and sets flip_of[new] = c,
- * flip_by_y[new] = by_y. On failure none is added. */
+ * turned the right way round. A set equal to an earlier landmark-free one is skipped. Appends to cs
+ * (up to cap candidates in all) and sets info's hyp_flip_of[new] = c, hyp_flip_by_y[new] = by_y. On
+ * failure none is added. */
 static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int by_y, const ss_centre_signature *SX,
-                             const ss_match_options *o, const int *maps, const int *oriented, const double *energy,
-                             int stride, int *lx, int *ly, int *cand, int *from_pairs, int *free_of,
-                             const ss_segment_pairs **pairs_of,
-                             int *flip_of, int *flip_by_y, int cap, int *nc_io, ss_error *err) {
-  const int nc0 = *nc_io, m = SX->m;
+                             const ss_match_options *o, const int *maps, const int *oriented, int cap, cand_set *cs,
+                             ss_autopair_info *info, ss_error *err) {
+  const int nc0 = cs->nc, m = SX->m;
+  const double *energy = info->hyp_energy;
+  int *flip_of = info->hyp_flip_of;
   const size_t nX = (size_t)X->mesh->nv;
   const ss_shape_prep *Z = by_y ? Y : X; /* the shape whose own symmetry turns the maps round */
   int any = 0;
@@ -250,26 +268,25 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
   ss_status st = S && kept ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   if (!st) st = ssi_symmetry_map(Z, o, o->autopair.hyp_flip_orient, S, err);
   if (!st) ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
-  int nc = nc0, order[SS_MAX_HYPOTHESES];
+  int order[SS_MAX_HYPOTHESES];
   for (int i = 0; i < nc0; i++) {
     int j = i; /* insertion by energy, ties in candidate order */
     for (; j > 0 && energy[order[j - 1]] > energy[i]; j--) order[j] = order[j - 1];
     order[j] = i;
   }
-  for (int i = 0; !st && i < nc0 && nc < cap; i++) {
+  for (int i = 0; !st && i < nc0 && cs->nc < cap; i++) {
     const int c = order[i];
     if (flip_of[c] >= 0 || oriented[c]) continue; /* (a flip is not flipped back) */
-    int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, q = 0;
+    int *cx = cand_x(cs, cs->nc), *cy = cand_y(cs, cs->nc), q = 0;
     for (int a = 0; a < m; a++)
       if (kept[a]) /* x -> T(S_X(x)), or x -> S_Y(T(x)) */
         cx[q] = SX->centers[a],
         cy[q++] = by_y ? S[maps[nX * c + (size_t)SX->centers[a]]] : maps[nX * c + (size_t)S[SX->centers[a]]];
-    if (q < 3 || repeats_free(nc, cand, free_of, lx, ly, stride, q)) continue;
-    cand[nc] = q, from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = NULL, flip_of[nc] = c, flip_by_y[nc] = by_y;
-    nc++;
+    if (q < 3 || repeats_free(cs, q)) continue;
+    flip_of[cs->nc] = c, info->hyp_flip_by_y[cs->nc] = by_y;
+    cand_push(cs, q, NULL, 1, NULL);
   }
   free(S), free(kept);
-  *nc_io = nc;
   return st;
 }
 
@@ -308,16 +325,15 @@ static ss_status refine_kept(const ss_shape_prep *X, const ss_shape_prep *Y, con
   return SS_OK;
 }
 
-/* Candidate c's map (the match with its landmarks: cand[c] pairs at lx / ly + c * stride; its
- * pairing's segments when from_pairs[c] >= 0) */
-static ss_status map_candidate(const ss_shape_prep *X, const ss_shape_prep *Y, int c, const int *cand, const int *lx,
-                               const int *ly, int stride, const int *from_pairs, const int *free_of,
-                               const ss_segment_pairs *hyp, const ss_match_options *o, const ss_match_options *oall,
-                               const ssi_zoomout_plan *zp, ss_match_result *r, ss_error *err) {
-  const int nl = cand[c], *cx = lx + (size_t)stride * c, *cy = ly + (size_t)stride * c;
-  if (from_pairs[c] >= 0) return ssi_match_core_planned(X, Y, nl, cx, cy, &hyp[from_pairs[c]], oall, zp, r, err);
+/* Candidate c's map: the match with its landmarks, and its pairing's segments when it has one (with
+ * the options oall, else o) */
+static ss_status map_candidate(const ss_shape_prep *X, const ss_shape_prep *Y, const cand_set *cs, int c,
+                               const ss_match_options *o, const ss_match_options *oall, const ssi_zoomout_plan *zp,
+                               ss_match_result *r, ss_error *err) {
+  const int nl = cs->n[c], *cx = cand_x(cs, c), *cy = cand_y(cs, c);
+  if (cs->seg[c]) return ssi_match_core_planned(X, Y, nl, cx, cy, cs->seg[c], oall, zp, r, err);
   ss_match_options ok = *o;
-  if (free_of[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
+  if (cs->lm_free[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
   return ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, r, err);
 }
 
@@ -379,7 +395,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   ss_match_result r;
   memset(&r, 0, sizeof r);
   ssi_zoomout_plan plan = {0};
-  int *lx = NULL, *ly = NULL, *cand = NULL, *maps = NULL;
+  cand_set cs = {0};
+  int *maps = NULL;
   double *segs = NULL, *gdX = NULL, *gdY = NULL;
   ss_status st = SS_OK;
   double t0 = ss_time();
@@ -399,19 +416,14 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   int mx = 1;
   for (int h = 0; h < nh; h++)
     if (hyp[h].n > mx) mx = hyp[h].n;
-  /* the candidates' landmark sets: cand[c] = its count, its sets at lx / ly + c * stride */
+  /* the candidates' landmark sets: room for the given landmarks and every centre */
   if (SX->m > mx) mx = SX->m; /* the descriptors' candidates */
   if (SY->m > mx) mx = SY->m;
-  const int stride = nlg + mx, ncap = SS_MAX_HYPOTHESES;
-  lx = malloc(sizeof(int) * (size_t)stride * ncap);
-  ly = malloc(sizeof(int) * (size_t)stride * ncap);
-  cand = malloc(sizeof(int) * (size_t)ncap);
+  cs.stride = nlg + mx;
+  cs.lx = malloc(sizeof(int) * (size_t)cs.stride * SS_MAX_HYPOTHESES);
+  cs.ly = malloc(sizeof(int) * (size_t)cs.stride * SS_MAX_HYPOTHESES);
   segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
-  if (!lx || !ly || !cand || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  /* from_pairs[c]: hypothesis whose pairing is the segments' (-1: none); free[c]: a landmark-free
-   * candidate (the protrusion pairs alone of the pairing pairs_of[c], X's or Y's; NULL: none behind it) */
-  int nc = 0, from_pairs[SS_MAX_HYPOTHESES], free_of[SS_MAX_HYPOTHESES];
-  const ss_segment_pairs *pairs_of[SS_MAX_HYPOTHESES];
+  if (!cs.lx || !cs.ly || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
   if (nlg > 0) {
     gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
     gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
@@ -420,62 +432,60 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       if ((st = ss_graph_dijkstra(&hc.gX, &lgX[i], 1, 0, gdX + (size_t)X->mesh->nv * i, NULL, err)) ||
           (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
         goto done;
-    memcpy(lx, lgX, sizeof(int) * (size_t)nlg), memcpy(ly, lgY, sizeof(int) * (size_t)nlg);
-    cand[0] = nlg, from_pairs[0] = -1, free_of[0] = 0, pairs_of[0] = NULL, nc = 1;
+    memcpy(cs.lx, lgX, sizeof(int) * (size_t)nlg), memcpy(cs.ly, lgY, sizeof(int) * (size_t)nlg);
+    cand_push(&cs, nlg, NULL, 0, NULL);
   }
   /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
    * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
    * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
   int nfree = 0, hused = nh < want ? nh : want; /* hypotheses looked at (the agreeing pairs below use as many) */
-  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nfree < want && nc < SS_MAX_HYPOTHESES; h++) {
-    int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
-    cand[nc] = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, cx, cy);
+  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nfree < want && cs.nc < SS_MAX_HYPOTHESES;
+       h++) {
+    const int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc));
     hused = h + 1;
-    if (repeats_free(nc, cand, free_of, lx, ly, stride, cand[nc])) continue;
-    from_pairs[nc] = cand[nc] < hyp[h].n ? -1 : h;
-    free_of[nc] = 1, pairs_of[nc] = &hyp[h];
-    nc++, nfree++;
+    if (repeats_free(&cs, nk)) continue;
+    cand_push(&cs, nk, nk < hyp[h].n ? NULL : &hyp[h], 1, &hyp[h]);
+    nfree++;
   }
   /* the descriptors' own candidate, landmark-free with several hypotheses only (one: the pairing's
    * answer alone) */
   int desc_c = -1;
-  if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && nc < SS_MAX_HYPOTHESES) {
-    int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
-    if ((st = descriptor_landmarks(X, Y, SX, &o, cx, cy, &nd, err))) goto done;
-    if (nd >= 3) cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = NULL, desc_c = nc++;
+  if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && cs.nc < SS_MAX_HYPOTHESES) {
+    int nd = 0;
+    if ((st = descriptor_landmarks(X, Y, SX, &o, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err))) goto done;
+    if (nd >= 3) desc_c = cs.nc, cand_push(&cs, nd, NULL, 1, NULL);
   }
   /* the other direction's (hyp_reverse): Y's pairing hypotheses read from X's side, then Y's
    * descriptors' candidate with its pairs swapped */
   if (nlg == 0 && o.autopair.hyp_reverse && want > 1) {
     if ((st = ss_pair_centres_hypotheses(SY, SX, &o.autopair, SS_MAX_HYPOTHESES, rhyp, &nrh, NULL, err))) goto done;
     int nrev = 0;
-    for (int h = 0; h < nrh && nrev < want && nc < SS_MAX_HYPOTHESES; h++) {
+    for (int h = 0; h < nrh && nrev < want && cs.nc < SS_MAX_HYPOTHESES; h++) {
       const ss_segment_pairs turned = {rhyp[h].n, rhyp[h].sy, rhyp[h].sx, rhyp[h].energy, rhyp[h].ny, rhyp[h].nx};
-      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
-      cand[nc] = kept_pairs(SX, &turned, o.autopair.hyp_keep, X, Y, cx, cy);
-      if (repeats_free(nc, cand, free_of, lx, ly, stride, cand[nc])) continue;
-      from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = &rhyp[h], info.hyp_from_y[nc] = 1;
-      nc++, nrev++;
+      const int nk = kept_pairs(SX, &turned, o.autopair.hyp_keep, X, Y, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc));
+      if (repeats_free(&cs, nk)) continue;
+      info.hyp_from_y[cs.nc] = 1;
+      cand_push(&cs, nk, NULL, 1, &rhyp[h]);
+      nrev++;
     }
-    if (o.autopair.hyp_descriptor_map && nc < SS_MAX_HYPOTHESES) {
-      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc, nd = 0;
-      if ((st = descriptor_landmarks(Y, X, SY, &o, cy, cx, &nd, err))) goto done;
-      if (nd >= 3 && !repeats_free(nc, cand, free_of, lx, ly, stride, nd))
-        cand[nc] = nd, from_pairs[nc] = -1, free_of[nc] = 1, pairs_of[nc] = NULL, info.hyp_from_y[nc++] = 1;
+    if (o.autopair.hyp_descriptor_map && cs.nc < SS_MAX_HYPOTHESES) {
+      int nd = 0;
+      if ((st = descriptor_landmarks(Y, X, SY, &o, cand_y(&cs, cs.nc), cand_x(&cs, cs.nc), &nd, err))) goto done;
+      if (nd >= 3 && !repeats_free(&cs, nd)) info.hyp_from_y[cs.nc] = 1, cand_push(&cs, nd, NULL, 1, NULL);
     }
   }
   if (nlg > 0) {
     int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
     if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int h = 0; h < hused && nc < SS_MAX_HYPOTHESES; h++) {
+    for (int h = 0; h < hused && cs.nc < SS_MAX_HYPOTHESES; h++) {
       int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
-      int *cx = lx + (size_t)stride * nc, *cy = ly + (size_t)stride * nc;
+      int *cx = cand_x(&cs, cs.nc), *cy = cand_y(&cs, cs.nc);
       memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
       int ne = agreeing_pairs(&hc, nlg, gdX, gdY, nk, kx, ky, o.autopair.hyp_landmark_tol, cx + nlg, cy + nlg);
       int dup = ne == 0;
-      for (int c = 1; c < nc && !dup; c++)
-        dup = !free_of[c] && same_set(cand[c], lx + (size_t)stride * c, ly + (size_t)stride * c, nlg + ne, cx, cy);
-      if (!dup) cand[nc] = nlg + ne, from_pairs[nc] = -1, free_of[nc] = 0, pairs_of[nc++] = NULL;
+      for (int c = 1; c < cs.nc && !dup; c++)
+        dup = !cs.lm_free[c] && same_set(cs.n[c], cand_x(&cs, c), cand_y(&cs, c), nlg + ne, cx, cy);
+      if (!dup) cand_push(&cs, nlg + ne, NULL, 0, NULL);
     }
     free(kx), free(ky);
   }
@@ -489,25 +499,25 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES];
   const size_t nX = (size_t)X->mesh->nv;
   /* every candidate's map, to tell the candidates that differ from the returned one */
-  if (nc > 1 && !(maps = malloc(sizeof(int) * nX * SS_MAX_HYPOTHESES))) {
+  if (cs.nc > 1 && !(maps = malloc(sizeof(int) * nX * SS_MAX_HYPOTHESES))) {
     st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
     goto done;
   }
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
-  if (nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
+  if (cs.nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
   for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1; /* (flip_by_y: 0 by memset) */
   int flips_looked = 0;
   /* the flips' room: the 8 candidates in all that a match had before hyp_reverse, all of it with it */
   const int flip_cap = o.autopair.hyp_reverse ? SS_MAX_HYPOTHESES : 8;
   char flip_skipped[sizeof(ss_error) + 96] = "";
-  for (int c = 0; c < nc; c++) {
-    const int nl = cand[c];
-    if ((st = map_candidate(X, Y, c, cand, lx, ly, stride, from_pairs, free_of, hyp, &o, &oall, zp, &r, err))) goto done;
+  for (int c = 0; c < cs.nc; c++) {
+    const int nl = cs.n[c];
+    if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &r, err))) goto done;
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     /* the pairing hypothesis behind it (landmark-free), X's or Y's */
-    const ss_segment_pairs *hp = pairs_of[c];
+    const ss_segment_pairs *hp = cs.pairs_of[c];
     if (hp) {
       pe = 0;
       for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
@@ -516,7 +526,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
      * whole mirror has the lower distortion and even the lower reversed-segment share; docs/tuning.md) */
     oriented[c] = !(orient < o.autopair.hyp_min_orientation);
-    if (nc > 1) {
+    if (cs.nc > 1) {
       memcpy(maps + nX * c, r.map, sizeof(int) * nX);
       if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
       double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
@@ -532,7 +542,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     int off = 0;
     for (int i = 0; i < nlg; i++)
       off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
-    eligible[c] = !free_of[c] || off <= nlg / 4, lm_off[c] = off;
+    eligible[c] = !cs.lm_free[c] || off <= nlg / 4, lm_off[c] = off;
     if (c == 0 || (eligible[c] && (oriented[c] > oriented[info.hypothesis] || (oriented[c] == oriented[info.hypothesis] && E < best)))) {
       if (c > 0) ss_match_result_free(out);
       *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
@@ -542,18 +552,16 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     /* once the first candidates are mapped: the flipped ones, when the map kept is not clearly
      * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs)
      * or a mirror image beats it */
-    if (c == nc - 1 && !flips_looked) {
+    if (c == cs.nc - 1 && !flips_looked) {
       flips_looked = 1;
-      const int want_flips = nlg == 0 && nc > 1 && o.autopair.hyp_flip_orient > 0 &&
-                             flips_wanted(&info, oriented, nc, info.hypothesis, o.autopair.hyp_confident_orientation);
+      const int want_flips = nlg == 0 && cs.nc > 1 && o.autopair.hyp_flip_orient > 0 &&
+                             flips_wanted(&info, oriented, cs.nc, info.hypothesis, o.autopair.hyp_confident_orientation);
       /* by X's own symmetry, then by Y's (hyp_flip_side): where one shape's symmetry map fails (a
        * cat curled up) the other's turns the mirror round */
       for (int by_y = 0; want_flips && by_y < 2; by_y++) {
         if (o.autopair.hyp_flip_side != 2 && o.autopair.hyp_flip_side != by_y) continue;
         ss_error ferr = {{0}};
-        const ss_status fs = add_flipped(X, Y, by_y, SX, &o, maps, oriented, info.hyp_energy, stride, lx, ly, cand,
-                                         from_pairs, free_of, pairs_of, info.hyp_flip_of, info.hyp_flip_by_y, flip_cap,
-                                         &nc, &ferr);
+        const ss_status fs = add_flipped(X, Y, by_y, SX, &o, maps, oriented, flip_cap, &cs, &info, &ferr);
         /* the flips are optional: one side that fails (other than for memory) is skipped with a
          * note, instead of failing a match whose candidates are all mapped */
         if (fs == SS_ERR_NOMEM) {
@@ -566,6 +574,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
       }
     }
   }
+  const int nc = cs.nc;
   info.hypotheses = nc;
   const int best_oriented = nc > 0 && oriented[info.hypothesis];
   info.hyp_descriptor = desc_c;
@@ -595,10 +604,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
                                o.autopair.hyp_differ_share, &info, &choice, &info.hyp_rechecked, err)))
       goto done;
     if (choice != info.hypothesis) { /* mapped again, for the whole result of that candidate */
-      if ((st = map_candidate(X, Y, choice, cand, lx, ly, stride, from_pairs, free_of, hyp, &o, &oall, zp, &r, err)))
+      if ((st = map_candidate(X, Y, &cs, choice, &o, &oall, zp, &r, err)))
         goto done;
       ss_match_result_free(out);
-      *out = r, info.hypothesis = choice, info.hyp_landmarks = cand[choice];
+      *out = r, info.hypothesis = choice, info.hyp_landmarks = cs.n[choice];
       memset(&r, 0, sizeof r);
       char msg[220];
       snprintf(msg, sizeof msg, "the choice in doubt, the %d closest candidates polished and compared again: #%d kept "
@@ -624,7 +633,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     char msg[256];
     snprintf(msg, sizeof msg, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
              "under the map kept (hypothesis #%d%s); check them", lm_off[info.hypothesis], nlg,
-             o.autopair.hyp_landmark_tol, info.hypothesis, free_of[info.hypothesis] ? ", landmark-free" : "");
+             o.autopair.hyp_landmark_tol, info.hypothesis, cs.lm_free[info.hypothesis] ? ", landmark-free" : "");
     ssi_match_note(out, msg);
   }
   if (!best_oriented) {
@@ -665,7 +674,7 @@ done:
   ss_centre_signature_free(&own[1]);
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
   for (int h = 0; h < nrh; h++) ss_segment_pairs_free(&rhyp[h]);
-  free(lx), free(ly), free(cand), free(segs), free(gdX), free(gdY), free(maps);
+  free(cs.lx), free(cs.ly), free(segs), free(gdX), free(gdY), free(maps);
   return st;
 }
 
