@@ -411,7 +411,9 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
    * not kept) */
   if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, SS_MAX_HYPOTHESES, hyp, &nh, &info, err))) goto done;
   if (nlg > 0) info.used = 0;
-  if (((want > 1 && nh > 1) || nlg > 0) && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+  /* the given landmarks' distance fields need the graphs now; landmark-free, the context is built
+   * once the candidates are known (below) */
+  if (nlg > 0 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
   double t_pair = ss_time() - t0;
   int mx = 1;
   for (int h = 0; h < nh; h++)
@@ -503,6 +505,9 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
     goto done;
   }
+  /* the distortion context whenever candidates are compared: Y's hypotheses or the descriptors'
+   * candidate can make several even where X's search gave one */
+  if (cs.nc > 1 && !hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
   if (cs.nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
