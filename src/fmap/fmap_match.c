@@ -1,6 +1,7 @@
 /* The functional-map matching pipeline of paper §6: STD (WKS + landmark wave-kernel maps, descriptor
  * commutativity, NO17), plus paired extra probes (ASA raw / DIFF wave-filtered), optional ZoomOut. */
 #include "fmap/fmap_options.h"
+#include "fmap/fmap_work.h"
 #include "specseg/laplacian.h"
 
 #include <cblas.h>
@@ -62,6 +63,12 @@ ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
 ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
                         int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
                         const ss_fmap_match_options *opts, int *map, double *C, ss_error *err) {
+  return ssi_fmap_match_in(X, Y, nl, lmX, lmY, nextra, extraX, extraY, extra_filter, opts, NULL, map, C, err);
+}
+
+ss_status ssi_fmap_match_in(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
+                            int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
+                            const ss_fmap_match_options *opts, ssi_fmap_work *work, int *map, double *C, ss_error *err) {
   ss_fmap_match_options o;
   ss_status st = ssi_fmap_options_resolve(opts, &o, err);
   if (st) return st;
@@ -100,8 +107,9 @@ ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, 
   /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
   ss_fmap_weights w;
   if ((st = ss_fmap_pair_weights(&sX, &sY, &o, &w, err))) goto done;
-  if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto done;
-  if ((st = ss_fmap_system_solve(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, o.w_extra, o.extra_dcomm, Ck, err)))
+  if ((st = ssi_fmap_system_new_in(k, k, Y->evals, X->evals, &bY, &bX, &w, work, &sys, err))) goto done;
+  if ((st = ssi_fmap_system_solve_in(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, o.w_extra, o.extra_dcomm,
+                                     work, Ck, err)))
     goto done;
   st = ss_fmap_match_finish(&sX, &sY, &o, Ck, map, C, err);
 done:

@@ -14,6 +14,7 @@
  * it falls back to a double factorisation when refinement stalls), so the solution has double
  * accuracy. */
 #include "specseg/fmap.h"
+#include "fmap_work.h"
 
 #include <cblas.h>
 #include <lapacke.h>
@@ -28,7 +29,27 @@ struct ss_fmap_system {
   ss_fmap_weights w;
   double *N;   /* m x m, base probes, before the constant column is fixed */
   double *rhs; /* m */
+  int lent;    /* N is a work's (ssi_fmap_system_new_in), not freed with the system */
 };
+
+void ssi_fmap_work_free(ssi_fmap_work *w) {
+  if (!w) return;
+  free(w->N), free(w->own), free(w->F);
+  memset(w, 0, sizeof *w);
+}
+
+/* room for m unknowns in w (its contents are not kept when it grows) */
+static int work_reserve(ssi_fmap_work *w, size_t m) {
+  if (w->m >= m) return 1;
+  ssi_fmap_work_free(w);
+  w->N = malloc(sizeof(double) * m * m), w->own = malloc(sizeof(double) * m * m), w->F = malloc(sizeof(float) * m * m);
+  if (!w->N || !w->own || !w->F) {
+    ssi_fmap_work_free(w);
+    return 0;
+  }
+  w->m = m;
+  return 1;
+}
 
 static inline size_t pk(int a, int b) { /* packed upper-triangle index, a <= b */
   return (size_t)b * (b + 1) / 2 + a;
@@ -185,8 +206,10 @@ done:
  * until max|b − N x| ≤ max|x|·‖N‖∞·ε·√m, a double factorisation when the single one fails or 30
  * steps do not converge — without its NaN scan, its separate norm pass and its repacking of N for
  * every residual (dsymm; dsymv reads the triangle in place). */
-static ss_status solve_spd(size_t m, const double *N, size_t ld, const double *b, double *x, ss_error *err) {
-  float *F = malloc(sizeof(float) * m * m), *r32 = malloc(sizeof(float) * m);
+static ss_status solve_spd(size_t m, const double *N, size_t ld, const double *b, float *F_work, double *x,
+                           ss_error *err) {
+  float *F_own = F_work ? NULL : malloc(sizeof(float) * m * m), *F = F_work ? F_work : F_own,
+        *r32 = malloc(sizeof(float) * m);
   double *r = malloc(sizeof(double) * m), *rowsum = calloc(m, sizeof(double));
   ss_status st = SS_OK;
   if (!F || !r32 || !r || !rowsum) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
@@ -223,7 +246,7 @@ static ss_status solve_spd(size_t m, const double *N, size_t ld, const double *b
     }
   }
   if (!done) { /* the double factorisation, of a copy (N is the caller's) */
-    free(F), F = NULL;
+    free(F_own), F_own = NULL;
     double *D = malloc(sizeof(double) * m * m);
     if (!D) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
     for (size_t j = 0; j < m; j++) memcpy(D + j + m * j, N + j + ld * j, sizeof(double) * (m - j));
@@ -234,7 +257,7 @@ static ss_status solve_spd(size_t m, const double *N, size_t ld, const double *b
     if (info != 0) st = ss_fail(err, SS_ERR_NUMERIC, "fmap: normal equations not positive definite (dpotrf info %d)", (int)info);
   }
 done:
-  free(F), free(r32), free(r), free(rowsum);
+  free(F_own), free(r32), free(r), free(rowsum);
   return st;
 }
 
@@ -252,6 +275,12 @@ static ss_status check_probes(const ss_fmap_probes *S, const ss_fmap_probes *T, 
 
 ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const double *evals_T, const ss_fmap_probes *S,
                              const ss_fmap_probes *T, const ss_fmap_weights *w, ss_fmap_system **out, ss_error *err) {
+  return ssi_fmap_system_new_in(k_S, k_T, evals_S, evals_T, S, T, w, NULL, out, err);
+}
+
+ss_status ssi_fmap_system_new_in(int k_S, int k_T, const double *evals_S, const double *evals_T, const ss_fmap_probes *S,
+                                 const ss_fmap_probes *T, const ss_fmap_weights *w, ssi_fmap_work *work,
+                                 ss_fmap_system **out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "fmap: NULL output");
   *out = NULL;
   if (k_S < 1 || k_T < 1 || !w || !evals_S || !evals_T) return ss_fail(err, SS_ERR_INVALID, "fmap: bad sizes");
@@ -264,7 +293,11 @@ ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const doub
   ss_fmap_system *s = calloc(1, sizeof *s);
   if (!s) return ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory");
   s->k_S = k_S, s->k_T = k_T, s->m = m, s->w = *w;
-  s->N = calloc(m * m, sizeof(double));
+  if (work && work_reserve(work, m)) {
+    s->N = work->N, s->lent = 1;
+    for (size_t j = 0; j < m; j++) memset(s->N + j + m * j, 0, sizeof(double) * (m - j)); /* the triangle formed */
+  } else if (!work)
+    s->N = calloc(m * m, sizeof(double));
   s->rhs = calloc(m, sizeof(double));
   if (!s->N || !s->rhs) {
     ss_fmap_system_free(s);
@@ -287,13 +320,18 @@ ss_status ss_fmap_system_new(int k_S, int k_T, const double *evals_S, const doub
 
 void ss_fmap_system_free(ss_fmap_system *s) {
   if (!s) return;
-  free(s->N);
+  if (!s->lent) free(s->N);
   free(s->rhs);
   free(s);
 }
 
 ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
                                double w_extra, int extra_dcomm, double *C, ss_error *err) {
+  return ssi_fmap_system_solve_in(s, S_extra, T_extra, w_extra, extra_dcomm, NULL, C, err);
+}
+
+ss_status ssi_fmap_system_solve_in(const ss_fmap_system *s, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
+                                   double w_extra, int extra_dcomm, ssi_fmap_work *work, double *C, ss_error *err) {
   if (!s || !C) return ss_fail(err, SS_ERR_INVALID, "fmap: NULL system or output");
   const int k_S = s->k_S, k_T = s->k_T;
   const size_t m = s->m;
@@ -303,7 +341,10 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
   if (have_extra && !(w_extra >= 0)) return ss_fail(err, SS_ERR_INVALID, "fmap: negative extra-probe weight %g", w_extra);
   /* the base system as it is, or a copy with the extra block's terms */
   const int add = have_extra && S_extra->p > 0;
-  double *own = add ? malloc(sizeof(double) * m * m) : NULL, *rhs = malloc(sizeof(double) * m), *x = malloc(sizeof(double) * m);
+  /* a work's buffers when they have room (not grown here: its N may be lent to a live system) */
+  const int use_work = work && work->m >= m;
+  double *own_alloc = add && !use_work ? malloc(sizeof(double) * m * m) : NULL, *own = use_work && add ? work->own : own_alloc;
+  double *rhs = malloc(sizeof(double) * m), *x = malloc(sizeof(double) * m);
   const double *N = add ? own : s->N;
   if ((add && !own) || !rhs || !x) { st = ss_fail(err, SS_ERR_NOMEM, "fmap: out of memory (%zu unknowns)", m); goto done; }
   memcpy(rhs, s->rhs, sizeof(double) * m);
@@ -323,7 +364,7 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
     memset(x, 0, sizeof(double) * f0);
     x[0] = v;
   }
-  if ((st = solve_spd(m - f0, N + f0 + m * f0, m, rhs + f0, x + f0, err))) goto done;
+  if ((st = solve_spd(m - f0, N + f0 + m * f0, m, rhs + f0, use_work ? work->F : NULL, x + f0, err))) goto done;
   /* a solution of infinities or NaNs, or all zero (the probes carry nothing, or weights near
    * DBL_MAX overflowed the system: its diagonal infinite, the solution 0), would make a point map
    * of no meaning without a word; no real pair's system gives either */
@@ -336,7 +377,7 @@ ss_status ss_fmap_system_solve(const ss_fmap_system *s, const ss_fmap_probes *S_
   }
   memcpy(C, x, sizeof(double) * m);
 done:
-  free(own);
+  free(own_alloc);
   free(rhs);
   free(x);
   return st;

@@ -132,12 +132,13 @@ ss_status ssi_match_plan(const ss_shape_prep *X, const ss_shape_prep *Y, const s
 ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX, const int *lmY,
                          const ss_segment_pairs *pairs_in, const ss_match_options *opts_in, ss_match_result *out,
                          ss_error *err) {
-  return ssi_match_core_planned(X, Y, nl, lmX, lmY, pairs_in, opts_in, NULL, out, err);
+  return ssi_match_core_planned(X, Y, nl, lmX, lmY, pairs_in, opts_in, NULL, NULL, out, err);
 }
 
 ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
                                  const int *lmY, const ss_segment_pairs *pairs_in, const ss_match_options *opts_in,
-                                 const ssi_zoomout_plan *given_plan, ss_match_result *out, ss_error *err) {
+                                 const ssi_zoomout_plan *given_plan, ssi_fmap_work *work, ss_match_result *out,
+                                 ss_error *err) {
   double t_start = ss_time();
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
@@ -277,7 +278,7 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
       if ((st = ss_fmap_base_probes(&sX, nl, lmX, &fo[c], ops, &bX, err))) goto fail;
       if ((st = ss_fmap_base_probes(&sY, nl, lmY, &fo[c], ops, &bY, err))) goto fail;
       /* source S = Y, target T = X: C maps functions on Y to functions on X, so its point map is X -> Y */
-      if ((st = ss_fmap_system_new(k, k, Y->evals, X->evals, &bY, &bX, &w, &sys, err))) goto fail;
+      if ((st = ssi_fmap_system_new_in(k, k, Y->evals, X->evals, &bY, &bX, &w, work, &sys, err))) goto fail;
     }
     if (c == 1) {
       ss_probe_filter filt = o.probes == SS_PROBES_DIFF ? SS_PROBE_WAVE : SS_PROBE_RAW;
@@ -287,7 +288,8 @@ ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y,
       if ((st = ss_fmap_extra_probes(&sY, nl, np, EY, filt, &fo[1], xops, &xY, err))) goto fail;
     }
     if (!(Ck[c] = malloc(sizeof(double) * (size_t)k * k))) goto nomem;
-    if ((st = ss_fmap_system_solve(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, Ck[c], err))) {
+    if ((st = ssi_fmap_system_solve_in(sys, c ? &xY : NULL, c ? &xX : NULL, o.fmap.w_extra, o.fmap.extra_dcomm, work,
+                                       Ck[c], err))) {
       if (st == SS_ERR_NUMERIC) explain_singular(X->mesh, Y->mesh, nl, c ? np : 0, k, err);
       goto fail;
     }

@@ -65,7 +65,8 @@ static ss_fmap_shape fmap_shape_of(const ss_shape_prep *p) {
  * any pairing hypothesis to be right (a quadruped curled up), its protrusions still land near their
  * partners. */
 static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *SX,
-                                      const ss_match_options *o, int *lx, int *ly, int *nl, ss_error *err) {
+                                      const ss_match_options *o, ssi_fmap_work *fw, int *lx, int *ly, int *nl,
+                                      ss_error *err) {
   const int m = SX->m, kmin = X->kev < Y->kev ? X->kev : Y->kev;
   const ss_fmap_match_options fo = fmap_options_within(&o->fmap, kmin, o->fmap.k, o->autopair.hyp_descriptor_orient);
   int *T = malloc(sizeof(int) * (size_t)X->mesh->nv), *kept = malloc(sizeof(int) * (size_t)m);
@@ -74,7 +75,7 @@ static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_pre
     return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   }
   const ss_fmap_shape sX = fmap_shape_of(X), sY = fmap_shape_of(Y);
-  ss_status st = ss_fmap_match(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, T, NULL, err);
+  ss_status st = ssi_fmap_match_in(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, fw, T, NULL, err);
   if (!st) {
     int q = 0;
     ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
@@ -326,15 +327,15 @@ static ss_status refine_kept(const ss_shape_prep *X, const ss_shape_prep *Y, con
 }
 
 /* Candidate c's map: the match with its landmarks, and its pairing's segments when it has one (with
- * the options oall, else o) */
+ * the options oall, else o); the ZoomOut plan zp and the solver's buffers fw shared by all */
 static ss_status map_candidate(const ss_shape_prep *X, const ss_shape_prep *Y, const cand_set *cs, int c,
                                const ss_match_options *o, const ss_match_options *oall, const ssi_zoomout_plan *zp,
-                               ss_match_result *r, ss_error *err) {
+                               ssi_fmap_work *fw, ss_match_result *r, ss_error *err) {
   const int nl = cs->n[c], *cx = cand_x(cs, c), *cy = cand_y(cs, c);
-  if (cs->seg[c]) return ssi_match_core_planned(X, Y, nl, cx, cy, cs->seg[c], oall, zp, r, err);
+  if (cs->seg[c]) return ssi_match_core_planned(X, Y, nl, cx, cy, cs->seg[c], oall, zp, fw, r, err);
   ss_match_options ok = *o;
   if (cs->lm_free[c] && ok.pairing.min_landmarks > nl) ok.pairing.min_landmarks = nl;
-  return ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, r, err);
+  return ssi_match_core_planned(X, Y, nl, cx, cy, NULL, &ok, zp, fw, r, err);
 }
 
 /* Where the landmark-free choice is in doubt: the map kept and each candidate within `window` of its
@@ -395,6 +396,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   ss_match_result r;
   memset(&r, 0, sizeof r);
   ssi_zoomout_plan plan = {0};
+  ssi_fmap_work fw = {0}; /* the functional-map systems' buffers, for every candidate */
   cand_set cs = {0};
   int *maps = NULL;
   double *segs = NULL, *gdX = NULL, *gdY = NULL;
@@ -454,7 +456,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   int desc_c = -1;
   if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && cs.nc < SS_MAX_HYPOTHESES) {
     int nd = 0;
-    if ((st = descriptor_landmarks(X, Y, SX, &o, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err))) goto done;
+    if ((st = descriptor_landmarks(X, Y, SX, &o, &fw, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err))) goto done;
     if (nd >= 3) desc_c = cs.nc, cand_push(&cs, nd, NULL, 1, NULL);
   }
   /* the other direction's (hyp_reverse): Y's pairing hypotheses read from X's side, then Y's
@@ -472,7 +474,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     }
     if (o.autopair.hyp_descriptor_map && cs.nc < SS_MAX_HYPOTHESES) {
       int nd = 0;
-      if ((st = descriptor_landmarks(Y, X, SY, &o, cand_y(&cs, cs.nc), cand_x(&cs, cs.nc), &nd, err))) goto done;
+      if ((st = descriptor_landmarks(Y, X, SY, &o, &fw, cand_y(&cs, cs.nc), cand_x(&cs, cs.nc), &nd, err))) goto done;
       if (nd >= 3 && !repeats_free(&cs, nd)) info.hyp_from_y[cs.nc] = 1, cand_push(&cs, nd, NULL, 1, NULL);
     }
   }
@@ -518,7 +520,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   char flip_skipped[sizeof(ss_error) + 96] = "";
   for (int c = 0; c < cs.nc; c++) {
     const int nl = cs.n[c];
-    if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &r, err))) goto done;
+    if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &fw, &r, err))) goto done;
     double E = 0, dist = NAN, orient = NAN, pe = NAN;
     const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     /* the pairing hypothesis behind it (landmark-free), X's or Y's */
@@ -609,7 +611,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
                                o.autopair.hyp_differ_share, &info, &choice, &info.hyp_rechecked, err)))
       goto done;
     if (choice != info.hypothesis) { /* mapped again, for the whole result of that candidate */
-      if ((st = map_candidate(X, Y, &cs, choice, &o, &oall, zp, &r, err)))
+      if ((st = map_candidate(X, Y, &cs, choice, &o, &oall, zp, &fw, &r, err)))
         goto done;
       ss_match_result_free(out);
       *out = r, info.hypothesis = choice, info.hyp_landmarks = cs.n[choice];
@@ -675,6 +677,7 @@ done:
   ss_match_result_free(&r);
   ssi_hyp_ctx_free(&hc);
   ssi_zoomout_plan_free(&plan);
+  ssi_fmap_work_free(&fw);
   ss_centre_signature_free(&own[0]);
   ss_centre_signature_free(&own[1]);
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);

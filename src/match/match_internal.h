@@ -4,6 +4,7 @@
 
 #include "specseg/match.h"
 #include "fmap/fmap_options.h"
+#include "fmap/fmap_work.h"
 
 /* Appends "; msg" (msg alone when the first) to r->notes, truncating. */
 void ssi_match_note(ss_match_result *r, const char *msg);
@@ -26,10 +27,11 @@ ss_status ssi_match_core(const ss_shape_prep *X, const ss_shape_prep *Y, int nl,
                          ss_error *err);
 
 /* ssi_match_core with a ZoomOut plan made by the caller for these shapes and options (ssi_match_plan;
- * NULL: made here): the hypotheses of one match share it, as it depends on the shapes alone. */
+ * NULL: made here): the hypotheses of one match share it, as it depends on the shapes alone; and
+ * with the functional-map solver's buffers in work (NULL: its own), which they share too. */
 ss_status ssi_match_core_planned(const ss_shape_prep *X, const ss_shape_prep *Y, int nl, const int *lmX,
                                  const int *lmY, const ss_segment_pairs *pairs_in, const ss_match_options *opts_in,
-                                 const ssi_zoomout_plan *plan, ss_match_result *out, ss_error *err);
+                                 const ssi_zoomout_plan *plan, ssi_fmap_work *work, ss_match_result *out, ss_error *err);
 
 /* the ZoomOut size of a match: fmap.zoomout_kmax when it refines beyond fmap.k, else fmap.k */
 int ssi_match_zoomout_size(const ss_match_options *o);
