@@ -10,6 +10,7 @@
  * operators, 16 extra probes, as a match's at k = 50. */
 #include "specseg/fmap.h"
 #include "fmap/fmap_work.h"
+#include "../tests/fmap_random.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,22 +18,7 @@
 #include <sys/resource.h>
 #include <time.h>
 
-static unsigned rng_state = 11u;
-static double urand(void) {
-  rng_state = rng_state * 1664525u + 1013904223u;
-  return (rng_state >> 8) / 8388608.0 - 1.0;
-}
-
-static void random_probes(int k, int p, int nd, int no, ss_fmap_probes *P) {
-  const size_t kk = (size_t)k * (k + 1) / 2;
-  P->k = k, P->p = p, P->nd = nd, P->no = no;
-  P->A = malloc(sizeof(double) * (size_t)k * p);
-  P->P = malloc(sizeof(double) * kk * (nd ? nd : 1));
-  P->O = malloc(sizeof(double) * (size_t)k * k * (no ? no : 1));
-  for (size_t i = 0; i < (size_t)k * p; i++) P->A[i] = urand();
-  for (size_t i = 0; i < kk * nd; i++) P->P[i] = urand();
-  for (size_t i = 0; i < (size_t)k * k * no; i++) P->O[i] = urand();
-}
+static unsigned rng = 11u;
 
 static double cpu_now(void) { return (double)clock() / CLOCKS_PER_SEC; }
 static long faults_now(void) {
@@ -59,10 +45,10 @@ int main(int argc, char **argv) {
   }
   if (k < 3 || k > 200 || ns < 1 || rounds < 1 || rounds > 50) { fprintf(stderr, "bench_fmap_work: bad sizes\n"); return 2; }
   ss_fmap_probes bS, bT, xS, xT;
-  random_probes(k, 110, 110, 2, &bS), random_probes(k, 110, 110, 2, &bT);
-  random_probes(k, 16, 16, 0, &xS), random_probes(k, 16, 16, 0, &xT);
+  fr_random_probes(k, 110, 110, 2, &rng, &bS), fr_random_probes(k, 110, 110, 2, &rng, &bT);
+  fr_random_probes(k, 16, 16, 0, &rng, &xS), fr_random_probes(k, 16, 16, 0, &rng, &xT);
   double *eS = malloc(sizeof(double) * k), *eT = malloc(sizeof(double) * k);
-  for (int i = 0; i < k; i++) eS[i] = 0.1 * i + 0.01 * urand(), eT[i] = 0.1 * i + 0.01 * urand();
+  for (int i = 0; i < k; i++) eS[i] = 0.1 * i + 0.01 * fr_urand(&rng), eT[i] = 0.1 * i + 0.01 * fr_urand(&rng);
   eS[0] = eT[0] = 0;
   const ss_fmap_weights w = {1.0, 1e-3, 1e-2, 1, 1.0, 1e-3};
   const size_t kk = (size_t)k * k;

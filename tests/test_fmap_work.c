@@ -4,26 +4,10 @@
  * small for a system leaves its solve to allocate. */
 #include "specseg/fmap.h"
 #include "fmap/fmap_work.h"
+#include "fmap_random.h"
 #include "testlib.h"
 
-static unsigned rng_state = 7u;
-static double urand(void) { /* uniform in [-1, 1) */
-  rng_state = rng_state * 1664525u + 1013904223u;
-  return (rng_state >> 8) / 8388608.0 - 1.0;
-}
-
-/* k-sized random probes: p descriptors, nd of them with (packed, symmetric) operators, no
- * orientation operators */
-static void random_probes(int k, int p, int nd, int no, ss_fmap_probes *P) {
-  const size_t kk = (size_t)k * (k + 1) / 2;
-  P->k = k, P->p = p, P->nd = nd, P->no = no;
-  P->A = malloc(sizeof(double) * (size_t)k * p);
-  P->P = nd ? malloc(sizeof(double) * kk * nd) : NULL;
-  P->O = no ? malloc(sizeof(double) * (size_t)k * k * no) : NULL;
-  for (size_t i = 0; i < (size_t)k * p; i++) P->A[i] = urand();
-  for (size_t i = 0; i < kk * nd; i++) P->P[i] = urand();
-  for (size_t i = 0; i < (size_t)k * k * no; i++) P->O[i] = urand();
-}
+static unsigned rng = 7u;
 
 /* one pair of size k: base probes, extra probes and eigenvalues */
 typedef struct pair {
@@ -36,10 +20,10 @@ typedef struct pair {
 static void pair_make(int k, pair *q) {
   memset(q, 0, sizeof *q);
   q->k = k;
-  random_probes(k, k + 4, 3, 1, &q->bS), random_probes(k, k + 4, 3, 1, &q->bT);
-  random_probes(k, 5, 2, 0, &q->xS), random_probes(k, 5, 2, 0, &q->xT);
+  fr_random_probes(k, k + 4, 3, 1, &rng, &q->bS), fr_random_probes(k, k + 4, 3, 1, &rng, &q->bT);
+  fr_random_probes(k, 5, 2, 0, &rng, &q->xS), fr_random_probes(k, 5, 2, 0, &rng, &q->xT);
   q->eS = malloc(sizeof(double) * k), q->eT = malloc(sizeof(double) * k);
-  for (int i = 0; i < k; i++) q->eS[i] = 0.1 * i + 0.01 * urand(), q->eT[i] = 0.1 * i + 0.01 * urand();
+  for (int i = 0; i < k; i++) q->eS[i] = 0.1 * i + 0.01 * fr_urand(&rng), q->eT[i] = 0.1 * i + 0.01 * fr_urand(&rng);
   q->eS[0] = q->eT[0] = 0;
   q->w = (ss_fmap_weights){1.0, 0.5, 0.1, 1, 1.0, 0.01};
 }
