@@ -334,6 +334,7 @@ static void test_permuted_and_mirrored(void) {
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_flip_orient = 1e300; /* finite, but it would swamp the symmetry map's system */
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    CHECK_MSG(strstr(e.msg, "match: hyp_flip_orient 1e+300 outside [0, 1e+06]"), "%s", e.msg);
     const double dflt_w_orient = mo.fmap.w_orient;
     mo.fmap.w_orient = 1e300;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
@@ -350,6 +351,7 @@ static void test_permuted_and_mirrored(void) {
     CHECK(mo.autopair.hyp_flip_side == 2);
     mo.autopair.hyp_flip_side = 3;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    CHECK_MSG(strstr(e.msg, "hyp_flip_side 3 outside 0..2"), "%s", e.msg);
     mo.autopair.hyp_flip_side = -1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_flip_side = 2;
@@ -429,6 +431,16 @@ static void test_permuted_and_mirrored(void) {
     }
     mo.autopair.hypotheses = SS_MAX_HYPOTHESES + 1;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    { /* the option named, with its value and range */
+      char want[64];
+      snprintf(want, sizeof want, "hypotheses %d outside 1..%d", SS_MAX_HYPOTHESES + 1, SS_MAX_HYPOTHESES);
+      CHECK_MSG(strstr(e.msg, want), "%s", e.msg);
+    }
+    const double dflt_keep = mo.autopair.hyp_keep;
+    mo.autopair.hypotheses = 4, mo.autopair.hyp_keep = 0;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
+    CHECK_MSG(strstr(e.msg, "hyp_keep 0 outside (0, 1]"), "%s", e.msg);
+    mo.autopair.hyp_keep = dflt_keep;
     /* three landmarks on their mirrors, hypotheses beside them (hyp_landmarks 1): the map of least
      * hypothesis energy, on the mirrors; off (the default): the landmarks' map alone */
     mo.autopair.hypotheses = 4;

@@ -8,6 +8,7 @@
 #include "match/hypotheses.h"
 #include "match/match_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -214,23 +215,46 @@ static double map_differ_share(const ss_mesh *Y, double tol_abs, int nX, const i
   return nX > 0 ? (double)far / nX : 0;
 }
 
+/* one option's range check, naming the option and its value (NaN is outside every range) */
+static int real_outside(double v, double lo, double hi, const char *name, ss_error *err) {
+  if (v >= lo && v <= hi) return 0;
+  ss_fail(err, SS_ERR_INVALID, "match: %s %g outside [%g, %g]", name, v, lo, hi);
+  return 1;
+}
+static int int_outside(int v, int lo, int hi, const char *name, ss_error *err) {
+  if (v >= lo && v <= hi) return 0;
+  ss_fail(err, SS_ERR_INVALID, "match: %s %d outside %d..%d", name, v, lo, hi);
+  return 1;
+}
+
+/* the hypotheses' options (ss_autopair_options.hyp_*): the first one out of its range is named */
 static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) {
-  if (a->hypotheses < 1 || a->hypotheses > SS_MAX_HYPOTHESES || !(a->hyp_gap >= 0) ||
-      !(a->hyp_w_reversed >= 0) || !isfinite(a->hyp_w_reversed) ||
-      !isfinite(a->hyp_reversed_below) || !(a->hyp_keep > 0 && a->hyp_keep <= 1) ||
-      !isfinite(a->hyp_min_margin) || !(a->hyp_landmark_tol >= 0) ||
-      a->hyp_landmarks < 0 || a->hyp_landmarks > 2 || !(a->hyp_differ_tol >= 0) || !isfinite(a->hyp_differ_tol) ||
-      !(a->hyp_differ_share >= 0 && a->hyp_differ_share <= 1) ||
-      !(a->hyp_min_orientation >= -1 && a->hyp_min_orientation <= 1) ||
-      !(a->hyp_confident_orientation >= -1 && a->hyp_confident_orientation <= 1) || a->hyp_descriptor_map < 0 ||
-      a->hyp_descriptor_map > 1 || !(a->hyp_descriptor_orient >= 0 && a->hyp_descriptor_orient <= 1e6) ||
-      !(a->hyp_w_map >= 0) || !isfinite(a->hyp_w_map) || isnan(a->hyp_max_map_energy) ||
-      !(a->hyp_flip_orient >= 0 && a->hyp_flip_orient <= 1e6) || !(a->hyp_w_orientation >= 0) ||
-      !isfinite(a->hyp_w_orientation) || a->hyp_flip_side < 0 || a->hyp_flip_side > 2 ||
-      a->hyp_final_kmax < 0 || a->hyp_final_kmax > 10000 || a->hyp_reverse < 0 || a->hyp_reverse > 1 ||
-      a->hyp_final_polish < 0 || a->hyp_final_polish > 1 || !(a->hyp_recheck_window >= 0 && a->hyp_recheck_window <= 1e6))
-    return ss_fail(err, SS_ERR_INVALID, "match: hypotheses %d (1..%d), hyp_gap >= 0, hyp_w_reversed >= 0 and hyp_reversed_below finite, hyp_keep in (0, 1], hyp_landmark_tol >= 0, hyp_landmarks 0..2, hyp_differ_tol finite >= 0, hyp_differ_share in [0, 1], hyp_min_orientation and hyp_confident_orientation in [-1, 1], hyp_descriptor_map 0 or 1, hyp_descriptor_orient in [0, 1e6], hyp_w_map finite >= 0, hyp_max_map_energy not NaN, hyp_flip_orient in [0, 1e6], hyp_w_orientation finite >= 0, hyp_flip_side 0..2, hyp_final_kmax 0..10000, hyp_reverse 0 or 1, hyp_final_polish 0 or 1, hyp_recheck_window in [0, 1e6]",
-                   a->hypotheses, SS_MAX_HYPOTHESES);
+  const double F = DBL_MAX, I = INFINITY;
+  if (int_outside(a->hypotheses, 1, SS_MAX_HYPOTHESES, "hypotheses", err) ||
+      real_outside(a->hyp_gap, 0, I, "hyp_gap", err) || real_outside(a->hyp_w_reversed, 0, F, "hyp_w_reversed", err) ||
+      real_outside(a->hyp_reversed_below, -F, F, "hyp_reversed_below", err) ||
+      real_outside(a->hyp_min_margin, -F, F, "hyp_min_margin", err) ||
+      real_outside(a->hyp_landmark_tol, 0, I, "hyp_landmark_tol", err) ||
+      int_outside(a->hyp_landmarks, 0, 2, "hyp_landmarks", err) ||
+      real_outside(a->hyp_differ_tol, 0, F, "hyp_differ_tol", err) ||
+      real_outside(a->hyp_differ_share, 0, 1, "hyp_differ_share", err) ||
+      real_outside(a->hyp_min_orientation, -1, 1, "hyp_min_orientation", err) ||
+      real_outside(a->hyp_confident_orientation, -1, 1, "hyp_confident_orientation", err) ||
+      int_outside(a->hyp_descriptor_map, 0, 1, "hyp_descriptor_map", err) ||
+      real_outside(a->hyp_descriptor_orient, 0, 1e6, "hyp_descriptor_orient", err) ||
+      real_outside(a->hyp_w_map, 0, F, "hyp_w_map", err) ||
+      real_outside(a->hyp_max_map_energy, -I, I, "hyp_max_map_energy", err) ||
+      real_outside(a->hyp_flip_orient, 0, 1e6, "hyp_flip_orient", err) ||
+      real_outside(a->hyp_w_orientation, 0, F, "hyp_w_orientation", err) ||
+      int_outside(a->hyp_flip_side, 0, 2, "hyp_flip_side", err) ||
+      int_outside(a->hyp_final_kmax, 0, 10000, "hyp_final_kmax", err) ||
+      int_outside(a->hyp_reverse, 0, 1, "hyp_reverse", err) ||
+      int_outside(a->hyp_final_polish, 0, 1, "hyp_final_polish", err) ||
+      real_outside(a->hyp_recheck_window, 0, 1e6, "hyp_recheck_window", err))
+    return SS_ERR_INVALID;
+  /* (0, 1]: a share of the pairs, at least one kept */
+  if (!(a->hyp_keep > 0 && a->hyp_keep <= 1))
+    return ss_fail(err, SS_ERR_INVALID, "match: hyp_keep %g outside (0, 1]", a->hyp_keep);
   return SS_OK;
 }
 
