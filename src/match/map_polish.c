@@ -200,6 +200,20 @@ typedef struct polish_ctx {
 /* One pass: polish the map T into out (out may be T). released (NULL: none): vertices of X that, with
  * T's tears and MIRROR_MARGIN rings around both, do not pull towards their images, start between the
  * others (harmonic) and may move anywhere but near a neighbour that pulls. */
+/* How X's faces laid on their images (normals NP) face against Y's there (NY at T's images): each
+ * vertex's normals' dot product into f (NULL: not kept), and their area-weighted sum (weights a),
+ * negative when most of X faces the other way */
+static double facing_vote(int nx, const double *a, const double *NP, const double *NY, const int *T, double *f) {
+  double agree = 0;
+  for (int i = 0; i < nx; i++) {
+    const double *n = NP + 3 * (size_t)i, *m = NY + 3 * (size_t)T[i];
+    const double dot = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+    if (f) f[i] = dot;
+    agree += a[i] * dot;
+  }
+  return agree;
+}
+
 static ss_status polish_pass(polish_ctx *c, const int *T, const int *released, int *out, ss_error *err) {
   const ss_map_polish_options *o = &c->o;
   const ss_sparse *L = &c->L;
@@ -292,12 +306,7 @@ static ss_status polish_pass(polish_ctx *c, const int *T, const int *released, i
     if (r == 0) {
       /* X's faces laid on their images face as Y's there, mostly, when the two meshes are oriented
        * alike: otherwise (one faces inwards) Y's normals are turned round */
-      double agree = 0;
-      for (int i = 0; i < nx; i++) {
-        const double *n = NP + 3 * (size_t)i, *m = NY + 3 * (size_t)T[i];
-        agree += a[i] * (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]);
-      }
-      if (agree < 0)
+      if (facing_vote(nx, a, NP, NY, T, NULL) < 0)
         for (size_t i = 0; i < 3 * (size_t)c->ny; i++) NY[i] = -NY[i];
     }
     facing_nearest(c->tree, nx, P, NP, NY, T, c->kq, o->min_normal_dot, c->near);
@@ -404,13 +413,8 @@ static ss_status mirrored_regions(polish_ctx *c, const int *T, int *released, in
   /* f: X's normals laid on the images against Y's there (Y's as the first pass turned them) */
   for (int i = 0; i < nx; i++) memcpy(c->P + 3 * (size_t)i, c->Yn + 3 * (size_t)T[i], sizeof(double) * 3);
   vertex_normals(nx, c->X->nf, c->X->F, c->P, c->NP);
-  double agree = 0;
-  for (int i = 0; i < nx; i++) {
-    const double *n = c->NP + 3 * (size_t)i, *m = c->NY + 3 * (size_t)T[i];
-    f[i] = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
-    agree += c->a[i] * f[i];
-  }
-  if (agree < 0) /* (most of the map keeps the orientation: the rest is what is turned over) */
+  /* (most of the map keeps the orientation: the rest is what is turned over) */
+  if (facing_vote(nx, c->a, c->NP, c->NY, T, f) < 0)
     for (int i = 0; i < nx; i++) f[i] = -f[i];
   for (int s = 0; s < MIRROR_SMOOTHING; s++) {
     for (int i = 0; i < nx; i++) {
