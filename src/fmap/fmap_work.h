@@ -26,8 +26,9 @@ ss_status ssi_fmap_system_new_in(int k_S, int k_T, const double *evals_S, const 
                                  const ss_fmap_probes *T, const ss_fmap_weights *w, ssi_fmap_work *work,
                                  ss_fmap_system **out, ss_error *err);
 
-/* ss_fmap_system_solve with its copies in w->own and w->F (w NULL: allocated as there). The same
- * solution to the bit. */
+/* ss_fmap_system_solve with its copies in w->own and w->F (w NULL, or without room for the system:
+ * allocated as there). The same solution to the bit. One solve per work at a time: unlike the public
+ * solve, two solves that share a work must not run concurrently. */
 ss_status ssi_fmap_system_solve_in(const ss_fmap_system *sys, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
                                    double w_extra, int extra_dcomm, ssi_fmap_work *work, double *C, ss_error *err);
 
