@@ -197,9 +197,6 @@ typedef struct polish_ctx {
 #define MIRROR_MARGIN 4       /* rings of X released around such a region and around the map's tears */
 #define MIRROR_FILL_SWEEPS 300 /* Gauss-Seidel sweeps placing the released vertices between the rest */
 
-/* One pass: polish the map T into out (out may be T). released (NULL: none): vertices of X that, with
- * T's tears and MIRROR_MARGIN rings around both, do not pull towards their images, start between the
- * others (harmonic) and may move anywhere but near a neighbour that pulls. */
 /* How X's faces laid on their images (normals NP) face against Y's there (NY at T's images): each
  * vertex's normals' dot product into f (NULL: not kept), and their area-weighted sum (weights a),
  * negative when most of X faces the other way */
@@ -214,6 +211,9 @@ static double facing_vote(int nx, const double *a, const double *NP, const doubl
   return agree;
 }
 
+/* One pass: polish the map T into out (out may be T). released (NULL: none): vertices of X that, with
+ * T's tears and MIRROR_MARGIN rings around both, do not pull towards their images, start between the
+ * others (harmonic) and may move anywhere but near a neighbour that pulls. */
 static ss_status polish_pass(polish_ctx *c, const int *T, const int *released, int *out, ss_error *err) {
   const ss_map_polish_options *o = &c->o;
   const ss_sparse *L = &c->L;
