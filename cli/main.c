@@ -137,11 +137,11 @@ static int run(int argc, char **argv) {
     if (stop_pool) stop_pool();
   }
 #ifdef __GLIBC__
-  /* Blocks up to 64 MB (a k = 50 functional-map system is 50 MB) come from the heap and freed memory
-   * up to 128 MB stays there: glibc would give every such block fresh pages (mmap), whose first
-   * touch costs ~10x a write on the machines we measured (FAUST match: 2.82 -> 2.63 s CPU, system
-   * time 0.23 -> 0.10 s, peak memory 134 -> 154 MB). MALLOC_MMAP_THRESHOLD_ / MALLOC_TRIM_THRESHOLD_
-   * in the environment still win. */
+  /* Blocks up to 64 MB come from the heap and freed memory up to 128 MB stays there: glibc would give
+   * every such block fresh pages (mmap), whose first touch costs ~10x a write on the machines we
+   * measured (FAUST match: 2.82 -> 2.63 s CPU, system time 0.23 -> 0.10 s, peak memory 134 -> 154
+   * MB, measured before the library kept a match's 50 MB functional-map systems in one work itself,
+   * fmap/fmap_work.h). MALLOC_MMAP_THRESHOLD_ / MALLOC_TRIM_THRESHOLD_ in the environment still win. */
   if (!getenv("MALLOC_MMAP_THRESHOLD_")) mallopt(M_MMAP_THRESHOLD, 64 << 20);
   if (!getenv("MALLOC_TRIM_THRESHOLD_")) mallopt(M_TRIM_THRESHOLD, 128 << 20);
 #endif
