@@ -16,6 +16,7 @@ static const char USAGE[] =
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
     "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--no-recheck]\n"
+    "                     [--no-scale-fit]\n"
     "                     [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
@@ -70,6 +71,9 @@ static const char USAGE[] =
     "  --no-recheck        without --landmarks, a choice in doubt (not confident) is not rechecked (by\n"
     "                      default the map kept and the candidates within 0.05 of its energy are polished\n"
     "                      and compared again by their polished maps' distortion; a note names a change)\n"
+    "  --no-scale-fit      the hypotheses' distortion compares distances over sqrt(area) as they are (by\n"
+    "                      default up to one scale fitted between the two shapes, within 0.5..2: bodies of\n"
+    "                      different build differ by a common factor that hides a swapped limb)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -100,13 +104,13 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
   size_t n = 0;
   n += (size_t)snprintf(buf + n, size - n, "[");
   for (int h = 0; h < a->hypotheses && h < SS_MAX_HYPOTHESES && n < size; h++) {
-    const double v[8] = {a->hyp_energy[h],       a->hyp_distortion[h],      a->hyp_reversed[h],
+    const double v[9] = {a->hyp_energy[h],       a->hyp_distortion[h],      a->hyp_reversed[h],
                          a->hyp_orientation[h],  a->hyp_orientation_min[h], a->hyp_pair_energy[h],
-                         a->hyp_map_energy[h],   a->hyp_differ[h]};
-    static const char *const key[8] = {"energy",      "distortion", "reversed", "orientation", "orientation_min",
-                                       "pair_energy", "map_energy", "differ"};
+                         a->hyp_map_energy[h],   a->hyp_differ[h],          a->hyp_scale[h]};
+    static const char *const key[9] = {"energy",      "distortion", "reversed", "orientation", "orientation_min",
+                                       "pair_energy", "map_energy", "differ",   "scale"};
     n += (size_t)snprintf(buf + n, size - n, "%s{", h ? ", " : "");
-    for (int k = 0; k < 8 && n < size; k++) {
+    for (int k = 0; k < 9 && n < size; k++) {
       if (isfinite(v[k])) n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": %.17g", k ? ", " : "", key[k], v[k]);
       else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
     }
@@ -154,6 +158,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_INT("--final-zoomout", &o.autopair.hyp_final_kmax, 0, 10000, NULL),
       CLI_OPT_FLAG("--no-polish", &o.autopair.hyp_final_polish, 0),
       CLI_OPT_FLAG("--no-recheck", &no_recheck, 1),
+      CLI_OPT_FLAG("--no-scale-fit", &o.autopair.hyp_fit_scale, 0),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
@@ -309,7 +314,7 @@ int cmd_match(int argc, char **argv) {
   cli_job_output(&J, outp, NULL), cli_job_extra(&J, fmapp), cli_job_extra(&J, pairsp);
   cli_job_int(&J, "vertices_x", X->nv), cli_job_int(&J, "vertices_y", Y->nv), cli_job_int(&J, "landmarks", res.autopair.used ? res.autopair.hyp_landmarks : nl);
   cli_job_int(&J, "landmark_free", res.autopair.used);
-  char hbuf[SS_MAX_HYPOTHESES * 384];
+  char hbuf[SS_MAX_HYPOTHESES * 512]; /* 9 keys of up to ~45 characters, the flip and side keys */
   if (res.autopair.used || res.autopair.hypotheses > 1) { /* landmark-free, or hypotheses beside landmarks */
     cli_job_int(&J, "confident", res.autopair.confident);
     if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);

@@ -280,6 +280,10 @@ static void test_permuted_and_mirrored(void) {
         CHECK(isfinite(ai->hyp_map_energy[h]) && ai->hyp_map_energy[h] >= 0);
         CHECK_MSG(fabs(ai->hyp_energy[h] - sum) <= 1e-12 * (1 + fabs(sum)), "#%d: %.17g vs %.17g", h,
                   ai->hyp_energy[h], sum);
+        /* the distortion's scale (hyp_fit_scale): within its clamp, and near 1 on a shape and its
+         * own reflection (the same distances) */
+        CHECK(ai->hyp_scale[h] >= 0.5 && ai->hyp_scale[h] <= 2);
+        if (h == ai->hypothesis) CHECK_MSG(fabs(ai->hyp_scale[h] - 1) < 0.05, "scale %.4f", ai->hyp_scale[h]);
       }
       CHECK(ai->hyp_orientation[ai->hypothesis] > 0.5);
       CHECK(right > n / 2);
@@ -397,6 +401,10 @@ static void test_permuted_and_mirrored(void) {
     mo.autopair.hyp_recheck_window = NAN;
     CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
     mo.autopair.hyp_recheck_window = 0.05;
+    mo.autopair.hyp_fit_scale = 2;
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID &&
+          strstr(e.msg, "hyp_fit_scale 2 outside 0..1"));
+    mo.autopair.hyp_fit_scale = 1;
     free(map0);
     /* one hypothesis: the pairing's answer alone, as before the hypotheses */
     mo.autopair.hypotheses = 1;

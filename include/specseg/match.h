@@ -467,6 +467,11 @@ typedef struct ss_autopair_options {
    * its own; the least is kept (mapped again for its whole result; a note says so). The confidence
    * stays that of the first choice. Default 0.05; 0: not. Not with SS_REFINE_NONE (docs/tuning.md) */
   double hyp_recheck_window;
+  /* the hypothesis energy's distortion (ss_autopair_info.hyp_distortion) compares X's distances with
+   * their images' up to one scale, fitted by least squares within [0.5, 2]: 1 (default). Two bodies
+   * of different build differ over √area by a common factor that otherwise hides a swapped limb.
+   * 0: the distances over √area as they are (docs/tuning.md) */
+  int hyp_fit_scale;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 16
@@ -583,6 +588,9 @@ typedef struct ss_autopair_info {
   /* candidates polished for the recheck in doubt (hyp_recheck_window; 0: none), and the hypothesis
    * chosen before it (= hypothesis when it stood) */
   int hyp_rechecked, hyp_recheck_from;
+  /* per candidate, the scale its distortion was taken at (hyp_fit_scale; 1 without the fit, NaN
+   * where no distortion was taken) */
+  double hyp_scale[SS_MAX_HYPOTHESES];
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

@@ -10,7 +10,7 @@
 void ssi_hyp_ctx_free(ssi_hyp_ctx *c) {
   if (!c) return;
   ss_graph_free(&c->gX), ss_graph_free(&c->gY);
-  free(c->src), free(c->dX), free(c->dY);
+  free(c->src), free(c->dX), free(c->dY), free(c->dB);
   memset(c, 0, sizeof *c);
 }
 
@@ -26,8 +26,9 @@ ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_
   c->src = malloc(sizeof(int) * (size_t)nsrc);
   c->dX = malloc(sizeof(double) * (size_t)nX * nsrc);
   c->dY = malloc(sizeof(double) * (size_t)Y->nv);
+  c->dB = malloc(sizeof(double) * (size_t)nX * nsrc);
   double *near = malloc(sizeof(double) * (size_t)nX);
-  if (!c->src || !c->dX || !c->dY || !near) {
+  if (!c->src || !c->dX || !c->dY || !c->dB || !near) {
     free(near);
     st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
     goto fail;
@@ -58,18 +59,28 @@ fail:
 
 ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_error *err) {
   const int nX = c->X->nv;
-  double sum = 0;
-  long cnt = 0;
+  /* the images' distances first (b, one row per source), so that the scale is known before the sum */
+  double sab = 0, sbb = 0;
   for (int i = 0; i < c->nsrc; i++) {
     int t = map[c->src[i]];
     ss_status st = ss_graph_dijkstra(&c->gY, &t, 1, 0, c->dY, NULL, err);
     if (st) return st;
-    const double *d = c->dX + (size_t)nX * i;
+    const double *a = c->dX + (size_t)nX * i;
+    double *b = c->dB + (size_t)nX * i;
     for (int v = 0; v < nX; v++) {
-      double a = d[v] / c->sX, b = c->dY[map[v]] / c->sY;
-      if (isfinite(a) && isfinite(b)) sum += fabs(a - b), cnt++;
+      b[v] = c->dY[map[v]] / c->sY;
+      if (isfinite(a[v]) && isfinite(b[v])) sab += a[v] / c->sX * b[v], sbb += b[v] * b[v];
     }
   }
+  double s = 1;
+  if (c->fit_scale && sbb > 0) s = fmin(fmax(sab / sbb, 0.5), 2.0);
+  double sum = 0;
+  long cnt = 0;
+  for (size_t j = 0; j < (size_t)nX * c->nsrc; j++) {
+    const double a = c->dX[j] / c->sX, b = s * c->dB[j];
+    if (isfinite(a) && isfinite(b)) sum += fabs(a - b), cnt++;
+  }
+  c->scale = s;
   *out = cnt ? sum / (double)cnt : INFINITY;
   return SS_OK;
 }

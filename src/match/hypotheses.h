@@ -13,14 +13,22 @@ typedef struct ssi_hyp_ctx {
   int *src;           /* nsrc farthest-point sources on X */
   double *dX;         /* nX x nsrc edge-graph distances from them */
   double *dY;         /* scratch, nY */
+  double *dB;         /* scratch, nX x nsrc: the images' distances over √area of Y */
   double sX, sY;      /* √area of each mesh */
+  int fit_scale;      /* 1: distances compared up to one scale (ssi_hyp_distortion); 0 by ssi_hyp_ctx_new */
+  double scale;       /* the scale of the last ssi_hyp_distortion (1 without fit_scale) */
 } ssi_hyp_ctx;
 
 ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_ctx *c, ss_error *err);
 void ssi_hyp_ctx_free(ssi_hyp_ctx *c);
 
 /* Metric distortion of map (X's nv entries, vertices of Y): mean over the sources s and X's vertices
- * v of |d_X(s, v)/√area_X − d_Y(map s, map v)/√area_Y| (edge-graph distances). */
+ * v of |d_X(s, v)/√area_X − σ d_Y(map s, map v)/√area_Y| (edge-graph distances). σ = 1, or with
+ * c->fit_scale the least-squares scale of the two distance sets, clamped to [0.5, 2] (c->scale): two
+ * people of different build have limbs of about the same length and torsos of different area, so
+ * over √area their distances differ by a common factor that hides the difference between a right
+ * map and a swapped one (docs/tuning.md). The clamp keeps a map that collapses X from being scaled
+ * up to fit. */
 ss_status ssi_hyp_distortion(ssi_hyp_ctx *c, const int *map, double *out, ss_error *err);
 
 /* X's left-right self-symmetry as a vertex map (match_hypotheses.c; the flipped candidates of

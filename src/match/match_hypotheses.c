@@ -250,6 +250,7 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       int_outside(a->hyp_final_kmax, 0, 10000, "hyp_final_kmax", err) ||
       int_outside(a->hyp_reverse, 0, 1, "hyp_reverse", err) ||
       int_outside(a->hyp_final_polish, 0, 1, "hyp_final_polish", err) ||
+      int_outside(a->hyp_fit_scale, 0, 1, "hyp_fit_scale", err) ||
       real_outside(a->hyp_recheck_window, 0, 1e6, "hyp_recheck_window", err))
     return SS_ERR_INVALID;
   /* (0, 1]: a share of the pairs, at least one kept */
@@ -439,7 +440,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   if (nlg > 0) info.used = 0;
   /* the given landmarks' distance fields need the graphs now; landmark-free, the context is built
    * once the candidates are known (below) */
-  if (nlg > 0 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+  if (nlg > 0) {
+    if ((st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+    hc.fit_scale = o.autopair.hyp_fit_scale;
+  }
   double t_pair = ss_time() - t0;
   int mx = 1;
   for (int h = 0; h < nh; h++)
@@ -533,7 +537,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   }
   /* the distortion context whenever candidates are compared: Y's hypotheses or the descriptors'
    * candidate can make several even where X's search gave one */
-  if (cs.nc > 1 && !hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+  if (cs.nc > 1 && !hc.X) {
+    if ((st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
+    hc.fit_scale = o.autopair.hyp_fit_scale;
+  }
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
   if (cs.nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
@@ -545,7 +552,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   for (int c = 0; c < cs.nc; c++) {
     const int nl = cs.n[c];
     if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &fw, &r, err))) goto done;
-    double E = 0, dist = NAN, orient = NAN, pe = NAN;
+    double E = 0, dist = NAN, orient = NAN, pe = NAN, scale = NAN;
     const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
     /* the pairing hypothesis behind it (landmark-free), X's or Y's */
     const ss_segment_pairs *hp = cs.pairs_of[c];
@@ -560,12 +567,14 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     if (cs.nc > 1) {
       memcpy(maps + nX * c, r.map, sizeof(int) * nX);
       if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
+      scale = hc.scale;
       double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
                                                 &info.hyp_orientation_min[c]);
       info.hyp_reversed[c] = rev;
       E = hypothesis_energy(&o.autopair, dist, rev, map_energy, orient);
     }
     info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
+    info.hyp_scale[c] = scale;
     info.hyp_energy[c] = E;
     info.hyp_map_energy[c] = map_energy;
     /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
