@@ -16,7 +16,7 @@ static const char USAGE[] =
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
     "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--no-recheck]\n"
-    "                     [--no-scale-fit]\n"
+    "                     [--scale-fit]\n"
     "                     [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
@@ -71,9 +71,11 @@ static const char USAGE[] =
     "  --no-recheck        without --landmarks, a choice in doubt (not confident) is not rechecked (by\n"
     "                      default the map kept and the candidates within 0.05 of its energy are polished\n"
     "                      and compared again by their polished maps' distortion; a note names a change)\n"
-    "  --no-scale-fit      the hypotheses' distortion compares distances over sqrt(area) as they are (by\n"
-    "                      default up to one scale fitted between the two shapes, within 0.5..2: bodies of\n"
-    "                      different build differ by a common factor that hides a swapped limb)\n"
+    "  --scale-fit         without --landmarks or beside them: the hypotheses' distortion compares distances\n"
+    "                      up to one scale fitted per map, within 0.5..2, instead of over sqrt(area) as\n"
+    "                      they are: for bodies of different build, whose distances differ by a common\n"
+    "                      factor that can hide a swapped limb (off by default: on one body in different\n"
+    "                      poses it can prefer a map that pulls distances together)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -158,7 +160,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_INT("--final-zoomout", &o.autopair.hyp_final_kmax, 0, 10000, NULL),
       CLI_OPT_FLAG("--no-polish", &o.autopair.hyp_final_polish, 0),
       CLI_OPT_FLAG("--no-recheck", &no_recheck, 1),
-      CLI_OPT_FLAG("--no-scale-fit", &o.autopair.hyp_fit_scale, 0),
+      CLI_OPT_FLAG("--scale-fit", &o.autopair.hyp_fit_scale, 1),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};

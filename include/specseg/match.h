@@ -467,10 +467,12 @@ typedef struct ss_autopair_options {
    * its own; the least is kept (mapped again for its whole result; a note says so). The confidence
    * stays that of the first choice. Default 0.05; 0: not. Not with SS_REFINE_NONE (docs/tuning.md) */
   double hyp_recheck_window;
-  /* the hypothesis energy's distortion (ss_autopair_info.hyp_distortion) compares X's distances with
-   * their images' up to one scale, fitted by least squares within [0.5, 2]: 1 (default). Two bodies
-   * of different build differ over √area by a common factor that otherwise hides a swapped limb.
-   * 0: the distances over √area as they are (docs/tuning.md) */
+  /* 1: the hypothesis energy's distortion (ss_autopair_info.hyp_distortion) compares X's distances
+   * with their images' up to one scale, fitted per map by least squares within [0.5, 2]. Two bodies
+   * of different build differ over √area by a common factor that can hide a swapped limb (FAUST_r).
+   * 0 (default): the distances over √area as they are. Off by default: the fit also rewards a map
+   * that pulls distances together, and on one shape in different poses (TOSCA_r) it made a right
+   * map lose, confidently (docs/tuning.md) */
   int hyp_fit_scale;
 } ss_autopair_options;
 

@@ -61,7 +61,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_reverse = 1;
   o->hyp_final_polish = 1;
   o->hyp_recheck_window = 0.05;
-  o->hyp_fit_scale = 1;
+  o->hyp_fit_scale = 0;
 }
 
 static double cpu_now(void) {
