@@ -44,7 +44,7 @@ int main(void) {
     const double k = sqrt(1 + extras[t]);
     ssi_hyp_ctx c;
     CHECK(ssi_hyp_ctx_new(&X, &Y, 8, &c, &e) == SS_OK);
-    CHECK(c.fit_scale == 0 && c.nsrc == 8);
+    CHECK(c.fit_scale == 0 && c.nsrc == 8 && c.scale == 1);
     CHECK_NEAR(c.sY / c.sX, k, 1e-12);
     double d0 = NAN, d1 = NAN;
     /* without the fit: the distances over √area as they are */

@@ -18,7 +18,7 @@ ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_
   memset(c, 0, sizeof *c);
   const int nX = X->nv;
   if (nsrc > nX) nsrc = nX;
-  c->X = X, c->Y = Y, c->nsrc = nsrc;
+  c->X = X, c->Y = Y, c->nsrc = nsrc, c->scale = 1;
   c->sX = sqrt(ss_mesh_area(X)), c->sY = sqrt(ss_mesh_area(Y));
   if (!(c->sX > 0) || !(c->sY > 0)) return ss_fail(err, SS_ERR_INVALID, "match: a mesh of zero area");
   ss_status st;
