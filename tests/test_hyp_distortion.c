@@ -43,7 +43,7 @@ int main(void) {
     grid_and_square(&X, w, h, extras[t], &Y);
     const double k = sqrt(1 + extras[t]);
     ssi_hyp_ctx c;
-    CHECK(ssi_hyp_ctx_new(&X, &Y, 8, &c, &e) == SS_OK);
+    CHECK(ssi_hyp_ctx_new(&X, &Y, 8, 0, &c, &e) == SS_OK);
     CHECK(c.fit_scale == 0 && c.nsrc == 8 && c.scale == 1);
     CHECK_NEAR(c.sY / c.sX, k, 1e-12);
     double d0 = NAN, d1 = NAN;
@@ -66,8 +66,7 @@ int main(void) {
     ss_mesh Y = {0};
     grid_and_square(&X, w, h, 1, &Y);
     ssi_hyp_ctx c;
-    CHECK(ssi_hyp_ctx_new(&X, &Y, 8, &c, &e) == SS_OK);
-    c.fit_scale = 1;
+    CHECK(ssi_hyp_ctx_new(&X, &Y, 8, 1, &c, &e) == SS_OK && c.fit_scale == 1);
     int *one = calloc(X.nv, sizeof(int));
     double d = NAN;
     CHECK(ssi_hyp_distortion(&c, one, &d, &e) == SS_OK);

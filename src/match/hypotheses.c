@@ -14,11 +14,12 @@ void ssi_hyp_ctx_free(ssi_hyp_ctx *c) {
   memset(c, 0, sizeof *c);
 }
 
-ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_ctx *c, ss_error *err) {
+ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, int fit_scale, ssi_hyp_ctx *c,
+                          ss_error *err) {
   memset(c, 0, sizeof *c);
   const int nX = X->nv;
   if (nsrc > nX) nsrc = nX;
-  c->X = X, c->Y = Y, c->nsrc = nsrc, c->scale = 1;
+  c->X = X, c->Y = Y, c->nsrc = nsrc, c->fit_scale = fit_scale, c->scale = 1;
   c->sX = sqrt(ss_mesh_area(X)), c->sY = sqrt(ss_mesh_area(Y));
   if (!(c->sX > 0) || !(c->sY > 0)) return ss_fail(err, SS_ERR_INVALID, "match: a mesh of zero area");
   ss_status st;

@@ -15,11 +15,12 @@ typedef struct ssi_hyp_ctx {
   double *dY;         /* scratch, nY */
   double *dB;         /* scratch, nX x nsrc: the images' distances over √area of Y */
   double sX, sY;      /* √area of each mesh */
-  int fit_scale;      /* 1: distances compared up to one scale (ssi_hyp_distortion); 0 by ssi_hyp_ctx_new */
+  int fit_scale;      /* 1: distances compared up to one scale (ssi_hyp_distortion) */
   double scale;       /* the scale of the last ssi_hyp_distortion (1 without fit_scale) */
 } ssi_hyp_ctx;
 
-ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, ssi_hyp_ctx *c, ss_error *err);
+ss_status ssi_hyp_ctx_new(const ss_mesh *X, const ss_mesh *Y, int nsrc, int fit_scale, ssi_hyp_ctx *c,
+                          ss_error *err);
 void ssi_hyp_ctx_free(ssi_hyp_ctx *c);
 
 /* Metric distortion of map (X's nv entries, vertices of Y): mean over the sources s and X's vertices

@@ -118,7 +118,7 @@ ss_status ssi_symmetry_map(const ss_shape_prep *X, const ss_match_options *o, do
   ssi_hyp_ctx hs = {0};
   ss_status st = mirror.V && T ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   for (size_t i = 0; !st && i < 3 * nX; i++) mirror.V[i] = i % 3 == 0 ? -X->mesh->V[i] : X->mesh->V[i];
-  if (!st) st = ssi_hyp_ctx_new(X->mesh, X->mesh, 16, &hs, err);
+  if (!st) st = ssi_hyp_ctx_new(X->mesh, X->mesh, 16, 0, &hs, err);
   double best = -INFINITY;
   for (int i = 0; !st && i < 2; i++) {
     double dist = 0, moved = 0;
@@ -440,10 +440,7 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   if (nlg > 0) info.used = 0;
   /* the given landmarks' distance fields need the graphs now; landmark-free, the context is built
    * once the candidates are known (below) */
-  if (nlg > 0) {
-    if ((st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
-    hc.fit_scale = o.autopair.hyp_fit_scale;
-  }
+  if (nlg > 0 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, o.autopair.hyp_fit_scale, &hc, err))) goto done;
   double t_pair = ss_time() - t0;
   int mx = 1;
   for (int h = 0; h < nh; h++)
@@ -537,10 +534,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   }
   /* the distortion context whenever candidates are compared: Y's hypotheses or the descriptors'
    * candidate can make several even where X's search gave one */
-  if (cs.nc > 1 && !hc.X) {
-    if ((st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, &hc, err))) goto done;
-    hc.fit_scale = o.autopair.hyp_fit_scale;
-  }
+  if (cs.nc > 1 && !hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, o.autopair.hyp_fit_scale, &hc, err)))
+    goto done;
   /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
   if (cs.nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
