@@ -539,7 +539,8 @@ def _indices(a, n, what, hi):
     return a
 
 
-Match = namedtuple("Match", "map C pairs_x pairs_y centers_x centers_y notes confident")
+Match = namedtuple("Match", "map C pairs_x pairs_y centers_x centers_y notes confident hypothesis margin hypotheses",
+                   defaults=(None, None, ()))
 Match.__doc__ = """The result of `match`.
 
 Attributes
@@ -558,13 +559,26 @@ notes : str
     What the caller should know (e.g. a landmark-free pairing that is not confident); "" if nothing.
 confident : bool or None
     Landmark-free: whether the automatic pairing was confident; None with landmarks.
+hypothesis : int or None
+    Where several maps were made (landmark-free, or hypotheses beside landmarks): the index of the
+    one kept in `hypotheses`; None otherwise.
+margin : float or None
+    Its hypothesis energy's margin over the next differing candidate (``hypothesis_margin`` of
+    ``specseg match --json``); None where one map was made.
+hypotheses : tuple of dict
+    Each candidate map's numbers, as ``specseg match --json``: energy (the sum the choice minimises),
+    distortion, reversed, orientation, orientation_min, pair_energy, map_energy, differ, scale (NaN
+    where the CLI writes null), "from" ("X", or "Y" for Y's pairing hypotheses read back), and
+    flip_of / flip_by for a flipped candidate. Empty when one map was made.
 """
 
 _PROBES = {"std": 0, "asa": 1, "diff": 2}
 
 
 def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None,
-          segment_profile=None, descriptors=None, wks=True, orient=None):
+          segment_profile=None, descriptors=None, wks=True, orient=None, zoomout_step=None, zoomout_samples=None,
+          descr_k=None, hypotheses=None, one_way=False, flip_by=None, final_zoomout=None, polish=True, recheck=True,
+          scale_fit=False):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
 
@@ -609,17 +623,46 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
     wks : bool, optional
         False: no WKS among the probes (the descriptors replace it; needs `descriptors`), as
         ``--no-wks``. Default True.
+    zoomout_step : int, optional
+        ZoomOut's size increment, 1..10000 (``--zoomout-step``; library default 5).
+    zoomout_samples : int, optional
+        ZoomOut's iterations on this many samples of X, 0..10**9 (``--zoomout-samples``; library
+        default 1000; 0: on every vertex).
+    descr_k : int, optional
+        Eigenpairs the descriptors are computed from, >= 3 (``--descr-k``; library default 100; raised
+        to k when below it, as the CLI does).
+
+    The hypotheses (landmark-free; beside landmarks where the library maps them too), as the CLI's
+    flags of the same names:
+
+    hypotheses : int, optional
+        Pairing hypotheses mapped from each direction, 1..16 (``--hypotheses``; default 4).
+    one_way : bool, optional
+        True: X's own pairing hypotheses only, not also Y's read the other way (``--one-way``).
+    flip_by : {"x", "y", "both"}, optional
+        Whose left-right symmetry turns a mirrored hypothesis round (``--flip-by``; default "both").
+    final_zoomout : int, optional
+        The map kept refined further by ZoomOut up to this size, 0..10000 (``--final-zoomout``;
+        default 150; 0: not).
+    polish : bool, optional
+        False: the map kept is not fitted to the surfaces (``--no-polish``). Default True.
+    recheck : bool, optional
+        False: a choice in doubt is not rechecked on polished maps (``--no-recheck``). Default True.
+    scale_fit : bool, optional
+        True: the hypotheses' distortion compares distances up to one scale per map, for two bodies
+        of different build (``--scale-fit``; docs/tuning.md). Default False.
 
     Returns
     -------
     Match
-        map, C, pairs_x, pairs_y, centers_x, centers_y (see `Match`).
+        map, C, pairs_x, pairs_y, centers_x, centers_y, notes, confident, and the hypotheses behind
+        the choice (see `Match`).
 
     Raises
     ------
     ValueError
-        Unknown probes / segment_profile, landmarks out of range or of different lengths, k or
-        zoomout outside the int32 range, wrong shapes or face indices out of range.
+        Unknown probes / segment_profile / flip_by, landmarks out of range or of different lengths,
+        an integer option outside its range, wrong shapes or face indices out of range.
     SpecsegError
         The library refused the options (e.g. k < 3, zoomout < k) or a mesh (e.g. one its sanitizer
         would change), or a stage failed.
@@ -679,6 +722,8 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         if not (0 <= w <= 1e6):
             raise ValueError(f"orient must be a weight in [0, 1e6], not {orient!r}")
         o.fmap.w_orient = w
+    _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
+                        polish, recheck, scale_fit)
     if not wks and descriptors is None:
         raise ValueError("wks=False needs descriptors: they replace the WKS")
     o.fmap.no_wks = 0 if wks else 1
@@ -716,9 +761,68 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         return Match(map=cp(r.map, r.nX, np.int32), C=Cm, pairs_x=cp(r.pairs.sx, r.pairs.n, np.int32),
                      pairs_y=cp(r.pairs.sy, r.pairs.n, np.int32), centers_x=cp(r.centerX, r.pairs.n, np.int32),
                      centers_y=cp(r.centerY, r.pairs.n, np.int32), notes=r.notes.decode("utf-8", "replace"),
-                     confident=None if not r.autopair.used else bool(r.autopair.confident))
+                     confident=None if not r.autopair.used else bool(r.autopair.confident),
+                     hypothesis=int(r.autopair.hypothesis) if r.autopair.hypotheses > 1 else None,
+                     margin=float(r.autopair.hyp_margin) if r.autopair.hypotheses > 1 else None,
+                     hypotheses=_hypotheses_info(r.autopair))
     finally:
         lib.ss_match_result_free(C.byref(r))
+
+
+def _int_in(v, lo, hi, name):
+    v = _as_int32(v, name)
+    if not lo <= v <= hi:
+        raise ValueError("%s must be in %d..%d (got %d)" % (name, lo, hi, v))
+    return v
+
+
+def _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
+                        polish, recheck, scale_fit):
+    """match()'s refinement and hypothesis keywords into the options o, with the CLI's ranges."""
+    if zoomout_step is not None:
+        o.fmap.zoomout_step = _int_in(zoomout_step, 1, 10000, "zoomout_step")
+    if zoomout_samples is not None:
+        o.fmap.zoomout_samples = _int_in(zoomout_samples, 0, 10 ** 9, "zoomout_samples")
+    if descr_k is not None:
+        o.fmap.descr_k = _int_in(descr_k, 3, 10000, "descr_k")
+    if o.fmap.descr_k < o.fmap.k:  # a larger k takes the descriptors along (as specseg match)
+        o.fmap.descr_k = o.fmap.k
+    if hypotheses is not None:
+        o.autopair.hypotheses = _int_in(hypotheses, 1, _clib.MAX_HYPOTHESES, "hypotheses")
+    if final_zoomout is not None:
+        o.autopair.hyp_final_kmax = _int_in(final_zoomout, 0, 10000, "final_zoomout")
+    sides = {"x": 0, "y": 1, "both": 2}
+    if flip_by is not None:
+        if not isinstance(flip_by, str) or flip_by not in sides:
+            raise ValueError("flip_by must be x, y or both (got %r)" % (flip_by,))
+        o.autopair.hyp_flip_side = sides[flip_by]
+    if one_way:
+        o.autopair.hyp_reverse = 0
+    if not polish:
+        o.autopair.hyp_final_polish = 0
+    if not recheck:
+        o.autopair.hyp_recheck_window = 0
+    if scale_fit:
+        o.autopair.hyp_fit_scale = 1
+
+
+_HYP_KEYS = ("energy", "distortion", "reversed", "orientation", "orientation_min", "pair_energy", "map_energy",
+             "differ", "scale")
+
+
+def _hypotheses_info(a):
+    """The hypotheses' numbers of an ss_autopair_info as a tuple of dicts (the keys of `specseg match
+    --json`'s "hypotheses"; NaN where the CLI writes null); () when one map was made."""
+    if a.hypotheses <= 1:
+        return ()
+    out = []
+    for h in range(min(a.hypotheses, _clib.MAX_HYPOTHESES)):
+        d = {key: float(getattr(a, "hyp_" + key)[h]) for key in _HYP_KEYS}
+        d["from"] = "Y" if a.hyp_from_y[h] else "X"
+        if a.hyp_flip_of[h] >= 0:
+            d["flip_of"], d["flip_by"] = int(a.hyp_flip_of[h]), "Y" if a.hyp_flip_by_y[h] else "X"
+        out.append(d)
+    return tuple(out)
 
 
 def _shape_pair(VX, FX, VY, FY, map, what):

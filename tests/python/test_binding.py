@@ -4,6 +4,8 @@ usage: test_binding.py SPECSEG_BIN MESH WORKDIR [--no-match]
 Runs `specseg eigs / geodesic / segment / error / match` and the binding's eigs / geodesic / segment /
 error / match on MESH and compares; also laplacian invariants, rendering and error reporting.
 Prints "N passed, N failed" like the C tests and exits 1 on any failure."""
+import json
+import math
 import os
 import subprocess
 import sys
@@ -168,6 +170,21 @@ else:
     check(np.array_equal(specseg.match(S2, S2, landmarks=lm, k=20).map, r.map), "Shape.save / load: the same map")
     cli("match", path("s.sss"), path("s.sss"), "--landmarks", path("lm.txt"), "--k", 20, "-o", path("mp.txt"))
     check(np.array_equal(np.loadtxt(path("mp.txt"), dtype=np.int64), mc), "specseg match on the saved Shape: the CLI's map")
+    # landmark-free with the hypothesis options (cheap ones): the CLI's map and its --json numbers
+    flags = ["--hypotheses", 2, "--one-way", "--final-zoomout", 0, "--no-polish", "--no-recheck", "--flip-by", "x",
+             "--scale-fit", "--zoomout-step", 10]
+    out = cli("match", path("s.sss"), path("s.sss"), *flags, "--json", "-o", path("mh.txt"))
+    jh = json.loads(out)["results"][0]
+    rh = specseg.match(S, S, hypotheses=2, one_way=True, final_zoomout=0, polish=False, recheck=False, flip_by="x",
+                       scale_fit=True, zoomout_step=10)
+    check(np.array_equal(np.loadtxt(path("mh.txt"), dtype=np.int64), rh.map), "match with hypothesis options: the CLI's map")
+    check(rh.confident == bool(jh["confident"]) and rh.hypothesis == jh["hypothesis"] and
+          rh.margin == jh["hypothesis_margin"], "match: confident / hypothesis / margin as --json")
+    check(len(rh.hypotheses) == len(jh["hypotheses"]) >= 2, "match: %d hypotheses" % len(rh.hypotheses))
+    for a, b in zip(rh.hypotheses, jh["hypotheses"]):
+        check(all((b[key] is None and math.isnan(a[key])) or a[key] == b[key] for key in b if key not in ("from",)),
+              "match: a hypothesis's numbers as --json: %r / %r" % (a, b))
+    check(any(h["scale"] != 1.0 for h in rh.hypotheses), "match: scale_fit fits a scale")
     cli("prepare", MESH, "-o", path("c.sss"))
     S3 = specseg.Shape.load(path("c.sss"))
     # (the CLI runs OpenBLAS on one thread: the last bits of the eigenpairs may differ from here)

@@ -195,6 +195,15 @@ raises(ValueError, lambda: specseg.match(V, F, V, F, [0, 1], landmarks_y=[0, BIG
 raises(ValueError, lambda: specseg.match(V, F, V, F, [0, 1], landmarks_y=[0]), "match: landmark counts differ")
 raises(ValueError, lambda: specseg.match(V, F, V, F, [0], k=BIG + 20), "match: k 2**32 + 20", "k")
 raises(ValueError, lambda: specseg.match(V, F, V, F, [0], zoomout=BIG), "match: zoomout 2**32", "zoomout")
+raises(ValueError, lambda: specseg.match(V, F, V, F, hypotheses=0), "match: hypotheses 0", "hypotheses")
+raises(ValueError, lambda: specseg.match(V, F, V, F, hypotheses=17), "match: hypotheses 17", "hypotheses")
+raises(ValueError, lambda: specseg.match(V, F, V, F, final_zoomout=-1), "match: final_zoomout -1", "final_zoomout")
+raises(ValueError, lambda: specseg.match(V, F, V, F, zoomout_step=0), "match: zoomout_step 0", "zoomout_step")
+raises(ValueError, lambda: specseg.match(V, F, V, F, zoomout_samples=BIG), "match: zoomout_samples 2**32",
+       "zoomout_samples")
+raises(ValueError, lambda: specseg.match(V, F, V, F, descr_k=2), "match: descr_k 2", "descr_k")
+raises(ValueError, lambda: specseg.match(V, F, V, F, flip_by="z"), "match: flip_by z", "flip_by")
+raises(ValueError, lambda: specseg.match(V, F, V, F, flip_by=["x"]), "match: flip_by a list", "flip_by")
 raises(ValueError, lambda: specseg.write_mesh(os.devnull + ".off", V, F, rgb=np.full((n, 3), 256)),
        "write_mesh: colour 256", "rgb")
 if specseg.render_library_path:
