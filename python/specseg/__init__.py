@@ -769,28 +769,21 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         lib.ss_match_result_free(C.byref(r))
 
 
-def _int_in(v, lo, hi, name):
-    v = _as_int32(v, name)
-    if not lo <= v <= hi:
-        raise ValueError("%s must be in %d..%d (got %d)" % (name, lo, hi, v))
-    return v
-
-
 def _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
                         polish, recheck, scale_fit):
     """match()'s refinement and hypothesis keywords into the options o, with the CLI's ranges."""
     if zoomout_step is not None:
-        o.fmap.zoomout_step = _int_in(zoomout_step, 1, 10000, "zoomout_step")
+        o.fmap.zoomout_step = _as_int32(zoomout_step, "zoomout_step", 1, 10000)
     if zoomout_samples is not None:
-        o.fmap.zoomout_samples = _int_in(zoomout_samples, 0, 10 ** 9, "zoomout_samples")
+        o.fmap.zoomout_samples = _as_int32(zoomout_samples, "zoomout_samples", 0, 10 ** 9)
     if descr_k is not None:
-        o.fmap.descr_k = _int_in(descr_k, 3, 10000, "descr_k")
+        o.fmap.descr_k = _as_int32(descr_k, "descr_k", 3, 10000)
     if o.fmap.descr_k < o.fmap.k:  # a larger k takes the descriptors along (as specseg match)
         o.fmap.descr_k = o.fmap.k
     if hypotheses is not None:
-        o.autopair.hypotheses = _int_in(hypotheses, 1, _clib.MAX_HYPOTHESES, "hypotheses")
+        o.autopair.hypotheses = _as_int32(hypotheses, "hypotheses", 1, _clib.MAX_HYPOTHESES)
     if final_zoomout is not None:
-        o.autopair.hyp_final_kmax = _int_in(final_zoomout, 0, 10000, "final_zoomout")
+        o.autopair.hyp_final_kmax = _as_int32(final_zoomout, "final_zoomout", 0, 10000)
     sides = {"x": 0, "y": 1, "both": 2}
     if flip_by is not None:
         if not isinstance(flip_by, str) or flip_by not in sides:
