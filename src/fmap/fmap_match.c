@@ -37,8 +37,10 @@ ss_status ss_fmap_pair_weights(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
   return SS_OK;
 }
 
-ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
-                               const double *Ck, int *map, double *C, ss_error *err) {
+/* ss_fmap_match_finish with the pair's ZoomOut plan when given (NULL: one of its own) */
+static ss_status match_finish_planned(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
+                                      const double *Ck, const ssi_zoomout_plan *given, int *map, double *C,
+                                      ss_error *err) {
   ss_fmap_match_options o;
   ss_status st0 = ssi_fmap_options_resolve(opts, &o, err);
   if (st0) return st0;
@@ -49,6 +51,8 @@ ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
   if (st0) return st0;
   if (o.zoomout_kmax > k) {
     if (!X->M) return ss_fail(err, SS_ERR_INVALID, "match: ZoomOut needs the masses of X");
+    if (given)
+      return ssi_zoomout_plan_run(given, Y->evecs, X->evecs, X->M, k, Ck, o.zoomout_kmax, o.zoomout_step, map, C, err);
     ssi_zoomout_plan plan;
     st0 = ssi_zoomout_plan_new(Y->mesh, Y->M, Y->evecs, X->mesh, X->M, o.zoomout_samples, o.zoomout_kmax, &plan, err);
     if (!st0) st0 = ssi_zoomout_plan_run(&plan, Y->evecs, X->evecs, X->M, k, Ck, o.zoomout_kmax, o.zoomout_step, map, C, err);
@@ -60,15 +64,21 @@ ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, c
   return st;
 }
 
+ss_status ss_fmap_match_finish(const ss_fmap_shape *X, const ss_fmap_shape *Y, const ss_fmap_match_options *opts,
+                               const double *Ck, int *map, double *C, ss_error *err) {
+  return match_finish_planned(X, Y, opts, Ck, NULL, map, C, err);
+}
+
 ss_status ss_fmap_match(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
                         int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
                         const ss_fmap_match_options *opts, int *map, double *C, ss_error *err) {
-  return ssi_fmap_match_in(X, Y, nl, lmX, lmY, nextra, extraX, extraY, extra_filter, opts, NULL, map, C, err);
+  return ssi_fmap_match_in(X, Y, nl, lmX, lmY, nextra, extraX, extraY, extra_filter, opts, NULL, NULL, map, C, err);
 }
 
 ss_status ssi_fmap_match_in(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
                             int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
-                            const ss_fmap_match_options *opts, ssi_fmap_work *work, int *map, double *C, ss_error *err) {
+                            const ss_fmap_match_options *opts, ssi_fmap_work *work, const ssi_zoomout_plan *plan,
+                            int *map, double *C, ss_error *err) {
   ss_fmap_match_options o;
   ss_status st = ssi_fmap_options_resolve(opts, &o, err);
   if (st) return st;
@@ -111,7 +121,7 @@ ss_status ssi_fmap_match_in(const ss_fmap_shape *X, const ss_fmap_shape *Y, int 
   if ((st = ssi_fmap_system_solve_in(sys, nextra > 0 ? &xY : NULL, nextra > 0 ? &xX : NULL, o.w_extra, o.extra_dcomm,
                                      work, Ck, err)))
     goto done;
-  st = ss_fmap_match_finish(&sX, &sY, &o, Ck, map, C, err);
+  st = match_finish_planned(&sX, &sY, &o, Ck, plan, map, C, err);
 done:
   ss_fmap_system_free(sys);
   ss_fmap_probes_free(&bX), ss_fmap_probes_free(&bY), ss_fmap_probes_free(&xX), ss_fmap_probes_free(&xY);

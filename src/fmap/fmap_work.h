@@ -9,6 +9,7 @@
 #ifndef SS_FMAP_WORK_INTERNAL_H
 #define SS_FMAP_WORK_INTERNAL_H
 
+#include "fmap/fmap_options.h"
 #include "specseg/fmap.h"
 
 typedef struct ssi_fmap_work {
@@ -32,9 +33,12 @@ ss_status ssi_fmap_system_new_in(int k_S, int k_T, const double *evals_S, const 
 ss_status ssi_fmap_system_solve_in(const ss_fmap_system *sys, const ss_fmap_probes *S_extra, const ss_fmap_probes *T_extra,
                                    double w_extra, int extra_dcomm, ssi_fmap_work *work, double *C, ss_error *err);
 
-/* ss_fmap_match with its systems in work (NULL: as ss_fmap_match). */
+/* ss_fmap_match with its systems in work (NULL: as ss_fmap_match) and, when ZoomOut runs, the pair's
+ * plan (NULL: one of its own; else made by ssi_zoomout_plan_new from Y to X with opts' zoomout_samples
+ * and zoomout_kmax, which gives the same map to the bit). */
 ss_status ssi_fmap_match_in(const ss_fmap_shape *X, const ss_fmap_shape *Y, int nl, const int *lmX, const int *lmY,
                             int nextra, const double *extraX, const double *extraY, ss_probe_filter extra_filter,
-                            const ss_fmap_match_options *opts, ssi_fmap_work *work, int *map, double *C, ss_error *err);
+                            const ss_fmap_match_options *opts, ssi_fmap_work *work, const ssi_zoomout_plan *plan,
+                            int *map, double *C, ss_error *err);
 
 #endif

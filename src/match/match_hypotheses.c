@@ -53,21 +53,22 @@ static ss_fmap_match_options fmap_options_within(const ss_fmap_match_options *ba
   return fo;
 }
 
-/* a prepared shape as ss_fmap_match takes it (no descriptors of the caller's, no probe cache) */
+/* a prepared shape as ss_fmap_match takes it (no descriptors of the caller's), with its probe cache
+ * (an entry serves only where its options are those asked; the same bits either way) */
 static ss_fmap_shape fmap_shape_of(const ss_shape_prep *p) {
-  const ss_fmap_shape s = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, NULL, 0};
+  const ss_fmap_shape s = {p->mesh, p->M, p->evals, p->evecs, p->kev, NULL, 0, p->probe_cache, p->nprobe_cache};
   return s;
 }
 
 /* The descriptors' own landmarks (ss_autopair_options.hyp_descriptor_map): X's round(keep · m) (at
  * least 3) centres farthest on average from its others and their images under the functional map of
- * the WKS and the orientation term alone (no landmark, no segment; ZoomOut as the match's), in lx,
- * ly (SX->m room); *nl their count. A pairing-free map: where the segmentations differ too much for
- * any pairing hypothesis to be right (a quadruped curled up), its protrusions still land near their
- * partners. */
+ * the WKS and the orientation term alone (no landmark, no segment; ZoomOut as the match's, with the
+ * plan zp of X -> Y when not NULL), in lx, ly (SX->m room); *nl their count. A pairing-free map:
+ * where the segmentations differ too much for any pairing hypothesis to be right (a quadruped curled
+ * up), its protrusions still land near their partners. */
 static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *SX,
-                                      const ss_match_options *o, ssi_fmap_work *fw, int *lx, int *ly, int *nl,
-                                      ss_error *err) {
+                                      const ss_match_options *o, ssi_fmap_work *fw, const ssi_zoomout_plan *zp,
+                                      int *lx, int *ly, int *nl, ss_error *err) {
   const int m = SX->m, kmin = X->kev < Y->kev ? X->kev : Y->kev;
   const ss_fmap_match_options fo = fmap_options_within(&o->fmap, kmin, o->fmap.k, o->autopair.hyp_descriptor_orient);
   int *T = malloc(sizeof(int) * (size_t)X->mesh->nv), *kept = malloc(sizeof(int) * (size_t)m);
@@ -76,7 +77,9 @@ static ss_status descriptor_landmarks(const ss_shape_prep *X, const ss_shape_pre
     return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
   }
   const ss_fmap_shape sX = fmap_shape_of(X), sY = fmap_shape_of(Y);
-  ss_status st = ssi_fmap_match_in(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, fw, T, NULL, err);
+  /* the match's plan serves where this ZoomOut is the match's (not with fewer eigenpairs than it) */
+  const ssi_zoomout_plan *plan = zp && zp->n_S > 0 && fo.zoomout_kmax == ssi_match_zoomout_size(o) ? zp : NULL;
+  ss_status st = ssi_fmap_match_in(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &fo, fw, plan, T, NULL, err);
   if (!st) {
     int q = 0;
     ssi_kept_centres(SX, o->autopair.hyp_keep, kept);
@@ -420,7 +423,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   ssi_hyp_ctx hc = {0};
   ss_match_result r;
   memset(&r, 0, sizeof r);
-  ssi_zoomout_plan plan = {0};
+  ssi_zoomout_plan plan = {0}; /* X -> Y's, once for every map of that direction (it depends on the shapes alone) */
+  int planned = 0;
   ssi_fmap_work fw = {0}; /* the functional-map systems' buffers, for every candidate */
   cand_set cs = {0};
   int *maps = NULL;
@@ -481,7 +485,10 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   int desc_c = -1;
   if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && cs.nc < SS_MAX_HYPOTHESES) {
     int nd = 0;
-    if ((st = descriptor_landmarks(X, Y, SX, &o, &fw, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err))) goto done;
+    if ((st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
+    planned = 1;
+    if ((st = descriptor_landmarks(X, Y, SX, &o, &fw, &plan, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err)))
+      goto done;
     if (nd >= 3) desc_c = cs.nc, cand_push(&cs, nd, NULL, 1, NULL);
   }
   /* the other direction's (hyp_reverse): Y's pairing hypotheses read from X's side, then Y's
@@ -499,7 +506,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
     }
     if (o.autopair.hyp_descriptor_map && cs.nc < SS_MAX_HYPOTHESES) {
       int nd = 0;
-      if ((st = descriptor_landmarks(Y, X, SY, &o, &fw, cand_y(&cs, cs.nc), cand_x(&cs, cs.nc), &nd, err))) goto done;
+      if ((st = descriptor_landmarks(Y, X, SY, &o, &fw, NULL, cand_y(&cs, cs.nc), cand_x(&cs, cs.nc), &nd, err)))
+        goto done;
       if (nd >= 3 && !repeats_free(&cs, nd)) info.hyp_from_y[cs.nc] = 1, cand_push(&cs, nd, NULL, 1, NULL);
     }
   }
@@ -536,8 +544,8 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
    * candidate can make several even where X's search gave one */
   if (cs.nc > 1 && !hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, o.autopair.hyp_fit_scale, &hc, err)))
     goto done;
-  /* one ZoomOut plan for every candidate (it depends on the shapes alone) */
-  if (cs.nc > 1 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
+  /* one ZoomOut plan for every candidate */
+  if (cs.nc > 1 && !planned && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
   for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1; /* (flip_by_y: 0 by memset) */
   int flips_looked = 0;
