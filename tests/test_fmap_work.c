@@ -1,8 +1,11 @@
 /* The functional-map solver's shared buffers (fmap/fmap_work.h): systems assembled and solved in one
  * work give the very bits the public ss_fmap_system_new / ss_fmap_system_solve give, whatever the
  * work held before (a larger system's leftovers, a system of the same size, none), and a work too
- * small for a system leaves its solve to allocate. */
+ * small for a system leaves its solve to allocate. A whole match in a work with a ZoomOut plan made
+ * beforehand (ssi_fmap_match_in) gives the bits of ss_fmap_match, and again with the same plan. */
 #include "specseg/fmap.h"
+#include "specseg/match.h"
+#include "specseg/synth.h"
 #include "fmap/fmap_work.h"
 #include "fmap_random.h"
 #include "testlib.h"
@@ -51,7 +54,50 @@ static int solve_both(const pair *q, ssi_fmap_work *work, double *C0, double *C1
 
 static int same_bits(const double *a, const double *b, int n) { return !memcmp(a, b, sizeof(double) * (size_t)n); }
 
+/* two poses of the synthetic humanoid, WKS and the orientation term alone, ZoomOut 20 -> 60 on a
+ * quarter of X's vertices: ss_fmap_match (its own plan) against ssi_fmap_match_in with one plan made
+ * once (the match's descriptor candidates share it so) */
+static void test_planned_match(void) {
+  ss_error e = {{0}};
+  ss_mesh X = {0}, Y = {0};
+  ss_shape_prep pX = {0}, pY = {0};
+  const int kev = 60;
+  if (ss_synth_humanoid(0, &X, &e) || ss_synth_humanoid(5, &Y, &e) || ss_shape_prep_compute_spectral(&X, kev, &pX, &e) ||
+      ss_shape_prep_compute_spectral(&Y, kev, &pY, &e)) {
+    CHECK_MSG(0, "%s", e.msg);
+    return;
+  }
+  ss_fmap_match_options o;
+  ss_fmap_match_default_options(&o);
+  o.k = 20, o.zoomout_kmax = kev, o.zoomout_step = 5, o.zoomout_samples = X.nv / 4, o.w_orient = 0.001;
+  const ss_fmap_shape sX = {&X, pX.M, pX.evals, pX.evecs, kev, NULL, 0, NULL, 0},
+                      sY = {&Y, pY.M, pY.evals, pY.evecs, kev, NULL, 0, NULL, 0};
+  const int n = X.nv, kk = kev * kev;
+  int *m0 = malloc(sizeof(int) * n), *m1 = malloc(sizeof(int) * n);
+  double *C0 = malloc(sizeof(double) * kk), *C1 = malloc(sizeof(double) * kk);
+  CHECK(ss_fmap_match(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &o, m0, C0, &e) == SS_OK);
+  ssi_zoomout_plan plan;
+  CHECK(ssi_zoomout_plan_new(&Y, pY.M, pY.evecs, &X, pX.M, o.zoomout_samples, o.zoomout_kmax, &plan, &e) == SS_OK);
+  CHECK(plan.n_S == Y.nv && plan.sub_T); /* sampled, so the plan is what is shared */
+  ssi_fmap_work work = {0};
+  for (int round = 0; round < 2; round++) { /* the plan is read, never changed */
+    memset(m1, 0xff, sizeof(int) * n);
+    CHECK(ssi_fmap_match_in(&sX, &sY, 0, NULL, NULL, 0, NULL, NULL, SS_PROBE_RAW, &o, &work, &plan, m1, C1, &e) == SS_OK);
+    CHECK_MSG(!memcmp(m0, m1, sizeof(int) * n) && same_bits(C0, C1, kk), "round %d: the planned match differs", round);
+  }
+  int fixed = 0; /* and it is a map worth comparing: the poses share their vertex order */
+  for (int i = 0; i < n; i++) fixed += m0[i] == i;
+  printf("planned match: %d of %d vertices on themselves\n", fixed, n);
+  CHECK(fixed > n / 10);
+  ssi_zoomout_plan_free(&plan);
+  ssi_fmap_work_free(&work);
+  free(m0), free(m1), free(C0), free(C1);
+  ss_shape_prep_free(&pX), ss_shape_prep_free(&pY);
+  ss_mesh_free(&X), ss_mesh_free(&Y);
+}
+
 int main(void) {
+  test_planned_match();
   /* sizes in the order one work sees them: first, smaller (a larger one's leftovers), larger (the
    * work grows), the same again (its own leftovers) */
   const int ks[] = {10, 6, 12, 12};
