@@ -14,6 +14,7 @@
  * given (one for all iterations) instead of re-seeded, which was a quarter of the cost. Any partition
  * keeps the search exact; compact ones make it fast. */
 #include "specseg/fmap.h"
+#include "util/asan_region.h"
 
 #include <cblas.h>
 #include <limits.h>
@@ -24,7 +25,8 @@
 #ifndef NN_CLUSTER_FACTOR
 #define NN_CLUSTER_FACTOR 1.5
 #endif
-static double d2row(int d, const double *a, const double *b) {
+/* Σ (a_j − b_j)², its ranges checked by the caller (scan_cluster checks the query once, each row it reads) */
+SSI_RANGE_CHECKED static inline double d2sum(int d, const double *a, const double *b) {
   double s = 0;
   /* omp simd: lets the compiler reassociate the sum into vector lanes (no -ffast-math needed) */
 #pragma omp simd reduction(+ : s)
@@ -33,6 +35,11 @@ static double d2row(int d, const double *a, const double *b) {
     s += t * t;
   }
   return s;
+}
+
+SSI_RANGE_CHECKED static double d2row(int d, const double *a, const double *b) {
+  ssi_checked_doubles(a, d), ssi_checked_doubles(b, d);
+  return d2sum(d, a, b);
 }
 
 static int default_clusters(int n) { return (int)(NN_CLUSTER_FACTOR * sqrt((double)n)); }
@@ -50,6 +57,21 @@ static int block_rows(int nc) {
 /* Farthest-point seeds (better spread than random seeds or Lloyd-refined ones: measured faster
  * searches on FAUST at k = 50..100); every point then joins its nearest seed (one dgemm). Any
  * partition keeps the search exact; compact clusters only make it faster. P: row-major copy of X. */
+/* mind[x] = min(mind[x], ‖P_x − sp‖²) for the n rows of P; returns the row farthest from every seed so
+ * far (the first of equals). Serial: a parallel loop per seed meant ~120 barriers per call, each
+ * costing a time slice whenever the machine is shared (ZoomOut took up to 70 s instead of 3). */
+SSI_RANGE_CHECKED static int nearest_seed_update(int n, int d, const double *sp, const double *P, double *mind) {
+  ssi_checked_doubles(sp, d), ssi_checked_doubles(P, (size_t)n * d), ssi_checked_doubles(mind, n);
+  int far = 0;
+  double fd = -1;
+  for (int x = 0; x < n; x++) {
+    double e = d2sum(d, sp, P + (size_t)x * d);
+    if (e < mind[x]) mind[x] = e;
+    if (mind[x] > fd) { fd = mind[x]; far = x; }
+  }
+  return far;
+}
+
 static int fps_partition(int n, int d, int nc, const double *P, const double *X, int ldx, int *asg) {
   const int rb = block_rows(nc) < n ? block_rows(nc) : n; /* point rows per block of the seed table */
   double *Sd = malloc(sizeof(double) * (size_t)nc * d), *DS = malloc(sizeof(double) * (size_t)rb * nc);
@@ -67,16 +89,7 @@ static int fps_partition(int n, int d, int nc, const double *P, const double *X,
       Sd[c + (size_t)nc * j] = sp[j];
       sn[c] += sp[j] * sp[j];
     }
-    /* serial: a parallel loop per seed meant ~120 barriers per call, each costing a time slice
-     * whenever the machine is shared (ZoomOut took up to 70 s instead of 3) */
-    int far = 0;
-    double fd = -1;
-    for (int x = 0; x < n; x++) {
-      double e = d2row(d, sp, P + (size_t)x * d);
-      if (e < mind[x]) mind[x] = e;
-      if (mind[x] > fd) { fd = mind[x]; far = x; }
-    }
-    cur = far; /* duplicates (fd = 0) only leave some clusters empty */
+    cur = nearest_seed_update(n, d, sp, P, mind); /* duplicates (distance 0) only leave some clusters empty */
   }
   for (int b0 = 0; b0 < n; b0 += rb) {
     const int m = n - b0 < rb ? n - b0 : rb;
@@ -138,7 +151,8 @@ static void index_free(nn_index *t) {
   free(t->U); free(t->Y); free(t->H);
 }
 
-static double dot(int d, const double *a, const double *b) {
+SSI_RANGE_CHECKED static double dot(int d, const double *a, const double *b) {
+  ssi_checked_doubles(a, d), ssi_checked_doubles(b, d);
   double s = 0;
 #pragma omp simd reduction(+ : s)
   for (int j = 0; j < d; j++) s += a[j] * b[j];
@@ -148,9 +162,14 @@ static double dot(int d, const double *a, const double *b) {
 /* Centroid, radius and frame of cluster c; W: scratch of maxcnt x d, nrm: of maxcnt. The frame's
  * pivots are chosen on squared norms updated by −p² (a choice only: the pivot's own residual is then
  * taken exactly); coordinates and off-frame residuals are computed from scratch, one fused pass each. */
-static void cluster_setup(nn_index *t, int ndb, int c, double *W, double *nrm) {
+SSI_RANGE_CHECKED static void cluster_setup(nn_index *t, int ndb, int c, double *W, double *nrm) {
+  ssi_checked_object(t), ssi_checked_ints(t->start + c, 2), ssi_checked_doubles(t->R + c, 1);
   const int d = t->d, s0 = t->start[c], cnt = t->start[c + 1] - s0;
   double *cc = t->cen + (size_t)c * d, *U = t->U + (size_t)c * NN_FRAME * d, R2 = 0;
+  ssi_checked_doubles(cc, d), ssi_checked_doubles(U, (size_t)NN_FRAME * d);
+  ssi_checked_doubles(t->Pc + (size_t)s0 * d, (size_t)cnt * d), ssi_checked_doubles(W, (size_t)cnt * d);
+  ssi_checked_doubles(nrm, cnt), ssi_checked_doubles(t->H + s0, cnt);
+  for (int a = 0; a < NN_FRAME; a++) ssi_checked_doubles(t->Y + (size_t)a * ndb + s0, cnt);
   for (int j = 0; j < d; j++) cc[j] = 0;
   for (int s = 0; s < cnt; s++) {
     const double *b = t->Pc + (size_t)(s0 + s) * d;
@@ -234,6 +253,18 @@ static void cluster_setup(nn_index *t, int ndb, int c, double *W, double *nrm) {
   }
 }
 
+/* Pc's row slot[b] = point b of db (column-major, leading dimension lddb): a row-major copy, 16 points
+ * at a time (the 16 destination rows stay in cache across the columns) */
+SSI_RANGE_CHECKED static void rows_by_slot(int ndb, int d, const double *db, int lddb, const int *slot, double *Pc) {
+  ssi_checked_doubles(db, (size_t)lddb * (d - 1) + ndb), ssi_checked_ints(slot, ndb);
+  ssi_checked_doubles(Pc, (size_t)ndb * d);
+  for (int b0 = 0; b0 < ndb; b0 += 16) {
+    const int b1 = b0 + 16 < ndb ? b0 + 16 : ndb;
+    for (int j = 0; j < d; j++)
+      for (int b = b0; b < b1; b++) Pc[(size_t)slot[b] * d + j] = db[b + (size_t)lddb * j];
+  }
+}
+
 static int index_build(int ndb, int d, const double *db, int lddb, int nc, const int *asg, nn_index *t) {
   memset(t, 0, sizeof *t);
   t->nc = nc;
@@ -265,12 +296,7 @@ static int index_build(int ndb, int d, const double *db, int lddb, int nc, const
     t->slot[b] = s;
   }
   free(fill);
-  /* row-major copy, 16 points at a time (the 16 destination rows stay in cache across the columns) */
-  for (int b0 = 0; b0 < ndb; b0 += 16) {
-    const int b1 = b0 + 16 < ndb ? b0 + 16 : ndb;
-    for (int j = 0; j < d; j++)
-      for (int b = b0; b < b1; b++) t->Pc[(size_t)t->slot[b] * d + j] = db[b + (size_t)lddb * j];
-  }
+  rows_by_slot(ndb, d, db, lddb, t->slot, t->Pc);
   int fail = 0;
 #pragma omp parallel
   {
@@ -299,10 +325,17 @@ typedef struct nn_scratch {
 /* Scan cluster c for query qr: the exact ‖q − c‖ and frame coordinates in one pass, then the frame
  * bound for every member, then exact distances for the members it cannot exclude. *best, *bi: the
  * running minimum (ties: lower index). NaN bounds never exclude. */
-static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, double *best, int *bi) {
+SSI_RANGE_CHECKED static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, double *best,
+                                            int *bi) {
+  ssi_checked_object(t), ssi_checked_object(w), ssi_checked_doubles(best, 1), ssi_checked_ints(bi, 1);
+  ssi_checked_ints(t->start + c, 2);
   const int d = t->d, s0 = t->start[c], cnt = t->start[c + 1] - s0;
   if (cnt == 0) return;
   const double *qr = w->qr, *cc = t->cen + (size_t)c * d, *U = t->U + (size_t)c * NN_FRAME * d;
+  ssi_checked_doubles(qr, d), ssi_checked_doubles(cc, d), ssi_checked_doubles(U, (size_t)NN_FRAME * d);
+  ssi_checked_doubles(t->R + c, 1), ssi_checked_doubles(t->H + s0, cnt), ssi_checked_doubles(w->L2, cnt);
+  ssi_checked_ints(t->orig + s0, cnt);
+  for (int a = 0; a < NN_FRAME; a++) ssi_checked_doubles(t->Y + (size_t)a * ndb + s0, cnt);
   double s2 = 0, z[NN_FRAME];
   {
     double z0 = 0, z1 = 0, z2 = 0, z3 = 0;
@@ -339,7 +372,9 @@ static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, doubl
   }
   for (int s = 0; s < cnt; s++) {
     if (L2[s] > lim2) continue; /* NaN: never excluded */
-    double e = d2row(d, qr, t->Pc + (size_t)(s0 + s) * d);
+    const double *row = t->Pc + (size_t)(s0 + s) * d; /* (only the rows the bound keeps are read) */
+    ssi_checked_doubles(row, d);
+    double e = d2sum(d, qr, row);
     int o = t->orig[s0 + s];
     if (e < *best || (e == *best && o < *bi)) {
       *best = e;
@@ -349,6 +384,32 @@ static void scan_cluster(const nn_index *t, int ndb, int c, nn_scratch *w, doubl
       lim2 = lim * lim;
     }
   }
+}
+
+/* One query's lower bounds lo2 on its squared distance to each cluster (Di: the query-centre dgemm
+ * column, qi its norm², cn the centres', tq their rounding); returns the cluster of the least bound */
+SSI_RANGE_CHECKED static int query_bounds(int nc, const double *Di, double qi, const double *cn, double tq,
+                                          double *lo2) {
+  ssi_checked_doubles(Di, nc), ssi_checked_doubles(cn, nc), ssi_checked_doubles(lo2, nc);
+  for (int c = 0; c < nc; c++) lo2[c] = (qi - 2.0 * Di[c] + cn[c]) - tq * (qi + cn[c]);
+  int c0 = 0;
+  for (int c = 1; c < nc; c++)
+    if (lo2[c] < lo2[c0]) c0 = c;
+  return c0;
+}
+
+/* The clusters other than c0 that the bound cannot exclude (‖q − c‖ > rb + R, tested on squares),
+ * in list; returns how many */
+SSI_RANGE_CHECKED static int clusters_to_open(int nc, double rb, const double *R, const double *lo2, int c0,
+                                              int *list) {
+  ssi_checked_doubles(R, nc), ssi_checked_doubles(lo2, nc), ssi_checked_ints(list, nc);
+  int n = 0;
+  for (int c = 0; c < nc; c++) {
+    double thr = (rb + R[c]) * (1 + 1e-9);
+    list[n] = c;
+    n += !(lo2[c] > thr * thr) && c != c0;
+  }
+  return n;
 }
 
 /* The search: query-centre squared distances by one dgemm (rounding absorbed into a lower bound)
@@ -386,13 +447,8 @@ static int search_block(const nn_index *t, int ndb, int nq, const double *q, int
 #pragma omp for schedule(dynamic, 32) nowait /* the region's end is the barrier */
       for (int i = 0; i < nq; i++) {
         if (!ok) continue;
-        const double *Di = DQ + (size_t)nc * i;
-        double qi = qn[i], *lo2 = w.lo2;
         for (int j = 0; j < d; j++) w.qr[j] = q[i + (size_t)ldq * j];
-        for (int c = 0; c < nc; c++) lo2[c] = (qi - 2.0 * Di[c] + cn[c]) - tq * (qi + cn[c]);
-        int c0 = 0;
-        for (int c = 1; c < nc; c++)
-          if (lo2[c] < lo2[c0]) c0 = c;
+        const int c0 = query_bounds(nc, DQ + (size_t)nc * i, qn[i], cn, tq, w.lo2);
         double best = INFINITY;
         int bi = -1;
         if (guess) {
@@ -401,14 +457,8 @@ static int search_block(const nn_index *t, int ndb, int nq, const double *q, int
           if (!(best < INFINITY)) { best = INFINITY; bi = -1; } /* as unguided: no infinite or NaN match */
         }
         scan_cluster(t, ndb, c0, &w, &best, &bi);
-        /* every other cluster the bound cannot exclude: ‖q − c‖ > rb + R, tested on squares */
-        double rb = sqrt(best);
-        int n = 0;
-        for (int c = 0; c < nc; c++) {
-          double thr = (rb + t->R[c]) * (1 + 1e-9);
-          w.list[n] = c;
-          n += !(lo2[c] > thr * thr) && c != c0;
-        }
+        const double *lo2 = w.lo2;
+        const int n = clusters_to_open(nc, sqrt(best), t->R, lo2, c0, w.list);
         for (int k = 0; k < n; k++) {
           int c = w.list[k];
           double thr = (sqrt(best) + t->R[c]) * (1 + 1e-9);
