@@ -402,10 +402,12 @@ static ss_status recheck_polished(const ss_shape_prep *X, const ss_shape_prep *Y
 
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
  * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
- * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only). */
-static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
-                                  const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
-                                  const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+ * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only); the shapes
+ * carry their probe caches (match_hypotheses). */
+static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_prep *Y,
+                                         const ss_centre_signature *sigX, const ss_centre_signature *sigY, int nlg,
+                                         const int *lgX, const int *lgY, const ss_match_options *opts_in,
+                                         ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
   ss_match_options o;
@@ -719,6 +721,34 @@ done:
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
   for (int h = 0; h < nrh; h++) ss_segment_pairs_free(&rhyp[h]);
   free(cs.lx), free(cs.ly), free(segs), free(gdX), free(gdY), free(maps);
+  return st;
+}
+
+/* match_hypotheses_cached on shapes that carry the probe caches of the match's options: made here,
+ * once, for a shape without them (ss_shape_prep_compute's), instead of in each candidate's maps
+ * (ssi_match_core makes them per call); the same entries, so the same maps to the bit */
+static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y, const ss_centre_signature *sigX,
+                                  const ss_centre_signature *sigY, int nlg, const int *lgX, const int *lgY,
+                                  const ss_match_options *opts_in, ss_match_result *out, ss_error *err) {
+  if (!out || !X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs) /* its messages */
+    return match_hypotheses_cached(X, Y, sigX, sigY, nlg, lgX, lgY, opts_in, out, err);
+  ss_match_options o;
+  if (opts_in) o = *opts_in;
+  else ss_match_default_options(&o);
+  ss_fmap_probe_cache *cx = NULL, *cy = NULL;
+  int nx = 0, ny = 0;
+  ss_status st = ssi_match_probe_caches_both(X, Y, &o, &cx, &nx, &cy, &ny, err);
+  if (st) {
+    memset(out, 0, sizeof *out);
+    return st;
+  }
+  ss_shape_prep Xc = *X, Yc = *Y; /* shallow: the shapes' own arrays, read only */
+  if (cx) Xc.probe_cache = cx, Xc.nprobe_cache = nx;
+  if (cy) Yc.probe_cache = cy, Yc.nprobe_cache = ny;
+  st = match_hypotheses_cached(&Xc, &Yc, sigX, sigY, nlg, lgX, lgY, opts_in, out, err);
+  for (int i = 0; i < nx; i++) ss_fmap_probe_cache_free(&cx[i]);
+  for (int i = 0; i < ny; i++) ss_fmap_probe_cache_free(&cy[i]);
+  free(cx), free(cy);
   return st;
 }
 
