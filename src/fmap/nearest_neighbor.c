@@ -54,9 +54,6 @@ static int block_rows(int nc) {
   return r < 1024 ? 1024 : r > (size_t)INT_MAX ? INT_MAX : (int)r;
 }
 
-/* Farthest-point seeds (better spread than random seeds or Lloyd-refined ones: measured faster
- * searches on FAUST at k = 50..100); every point then joins its nearest seed (one dgemm). Any
- * partition keeps the search exact; compact clusters only make it faster. P: row-major copy of X. */
 /* mind[x] = min(mind[x], ‖P_x − sp‖²) for the n rows of P; returns the row farthest from every seed so
  * far (the first of equals). Serial: a parallel loop per seed meant ~120 barriers per call, each
  * costing a time slice whenever the machine is shared (ZoomOut took up to 70 s instead of 3). */
@@ -72,6 +69,9 @@ SSI_RANGE_CHECKED static int nearest_seed_update(int n, int d, const double *sp,
   return far;
 }
 
+/* Farthest-point seeds (better spread than random seeds or Lloyd-refined ones: measured faster
+ * searches on FAUST at k = 50..100); every point then joins its nearest seed (one dgemm). Any
+ * partition keeps the search exact; compact clusters only make it faster. P: row-major copy of X. */
 static int fps_partition(int n, int d, int nc, const double *P, const double *X, int ldx, int *asg) {
   const int rb = block_rows(nc) < n ? block_rows(nc) : n; /* point rows per block of the seed table */
   double *Sd = malloc(sizeof(double) * (size_t)nc * d), *DS = malloc(sizeof(double) * (size_t)rb * nc);
