@@ -426,7 +426,6 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
   ss_match_result r;
   memset(&r, 0, sizeof r);
   ssi_zoomout_plan plan = {0}; /* X -> Y's, once for every map of that direction (it depends on the shapes alone) */
-  int planned = 0;
   ssi_fmap_work fw = {0}; /* the functional-map systems' buffers, for every candidate */
   cand_set cs = {0};
   int *maps = NULL;
@@ -488,7 +487,6 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
   if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && cs.nc < SS_MAX_HYPOTHESES) {
     int nd = 0;
     if ((st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
-    planned = 1;
     if ((st = descriptor_landmarks(X, Y, SX, &o, &fw, &plan, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err)))
       goto done;
     if (nd >= 3) desc_c = cs.nc, cand_push(&cs, nd, NULL, 1, NULL);
@@ -546,8 +544,8 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
    * candidate can make several even where X's search gave one */
   if (cs.nc > 1 && !hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, o.autopair.hyp_fit_scale, &hc, err)))
     goto done;
-  /* one ZoomOut plan for every candidate */
-  if (cs.nc > 1 && !planned && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
+  /* one ZoomOut plan for every candidate (unless made above; an empty one, no ZoomOut, costs nothing) */
+  if (cs.nc > 1 && plan.n_S == 0 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
   for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1; /* (flip_by_y: 0 by memset) */
   int flips_looked = 0;
