@@ -733,6 +733,11 @@ static ss_status match_hypotheses(const ss_shape_prep *X, const ss_shape_prep *Y
   ss_match_options o;
   if (opts_in) o = *opts_in;
   else ss_match_default_options(&o);
+  /* options out of range are refused before the caches' work */
+  if (hyp_options_check(&o.autopair, err)) {
+    memset(out, 0, sizeof *out);
+    return SS_ERR_INVALID;
+  }
   ss_fmap_probe_cache *cx = NULL, *cy = NULL;
   int nx = 0, ny = 0;
   ss_status st = ssi_match_probe_caches_both(X, Y, &o, &cx, &nx, &cy, &ny, err);
