@@ -284,10 +284,91 @@ static int add_node(flat *fl, const struct aiScene *sc, const struct aiNode *nd,
   return 0;
 }
 
+/* a plain decimal number, the whole token: [+-] digits [. digits] [e [+-] digits], a digit somewhere
+ * before the exponent */
+static int stl_number(const char *t, size_t n) {
+  size_t i = 0, digits = 0;
+  if (i < n && (t[i] == '+' || t[i] == '-')) i++;
+  for (; i < n && t[i] >= '0' && t[i] <= '9'; i++) digits++;
+  if (i < n && t[i] == '.')
+    for (i++; i < n && t[i] >= '0' && t[i] <= '9'; i++) digits++;
+  if (!digits) return 0;
+  if (i < n && (t[i] == 'e' || t[i] == 'E')) {
+    size_t e = 0;
+    if (++i < n && (t[i] == '+' || t[i] == '-')) i++;
+    for (; i < n && t[i] >= '0' && t[i] <= '9'; i++) e++;
+    if (!e) return 0;
+  }
+  return i == n;
+}
+
+/* An ASCII STL's "normal" and "vertex" are each followed by three plain numbers, checked here before
+ * assimp reads the file: its reader throws out of a number it cannot parse and leaks the meshes it
+ * has made (LeakSanitizer, fuzz_mesh). Binary STL (84 + 50 n bytes) is not text and is left to it. */
+static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, ss_error *err) {
+  if (len >= 84) {
+    const unsigned char *u = (const unsigned char *)buf + 80;
+    uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
+    if (84 + 50 * nf == len) return SS_OK;
+  }
+  long line = 1;
+  size_t i = 0;
+  int want = 0; /* numbers still expected after "normal" / "vertex" */
+  const char *what = "";
+  while (i < len) {
+    if (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n' || buf[i] == '\0') {
+      line += buf[i++] == '\n';
+      continue;
+    }
+    size_t j = i;
+    while (j < len && buf[j] != ' ' && buf[j] != '\t' && buf[j] != '\r' && buf[j] != '\n' && buf[j] != '\0') j++;
+    if (want > 0) {
+      if (!stl_number(buf + i, j - i))
+        return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: a %s coordinate is not a number ('%.*s')", name, line, what,
+                       (int)(j - i < 40 ? j - i : 40), buf + i);
+      want--;
+    } else if ((j - i == 6 && !strncmp(buf + i, "normal", 6)) || (j - i == 6 && !strncmp(buf + i, "vertex", 6))) {
+      want = 3, what = buf[i] == 'n' ? "normal" : "vertex";
+    } else if ((j - i == 5 && !strncmp(buf + i, "solid", 5)) || (j - i == 8 && !strncmp(buf + i, "endsolid", 8))) {
+      while (j < len && buf[j] != '\n') j++; /* its name, any words */
+    }
+    i = j;
+  }
+  if (want > 0) return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: the file ends inside a %s", name, line, what);
+  return SS_OK;
+}
+
+/* stl_ascii_check on a file's contents (a file that cannot be read is left to assimp's message) */
+static ss_status stl_file_check(const char *path, const char *name, ss_error *err) {
+  FILE *f = fopen(path, "rb");
+  if (!f) return SS_OK;
+  char *b = NULL;
+  size_t n = 0, cap = 0;
+  ss_status st = SS_OK;
+  for (;;) {
+    if (n == cap) {
+      char *nb = cap > SIZE_MAX / 2 - 65536 ? NULL : realloc(b, cap = cap * 2 + 65536);
+      if (!nb) { st = ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", name); break; }
+      b = nb;
+    }
+    size_t r = fread(b + n, 1, cap - n, f);
+    n += r;
+    if (r == 0) break;
+  }
+  fclose(f);
+  if (!st) st = stl_ascii_check(name, b, n, err);
+  free(b);
+  return st;
+}
+
 ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, size_t len, const char *hint, ss_mesh *m,
                           ss_error *err) {
   memset(m, 0, sizeof *m);
   if (!name) name = path ? path : "<memory>";
+  if (hint && !strcmp(hint, "stl")) {
+    ss_status cs = path ? stl_file_check(path, name, err) : stl_ascii_check(name, buf, len, err);
+    if (cs) return cs;
+  }
   /* polygons triangulated; no other processing (JoinIdenticalVertices is not exact: see the top) */
   const unsigned flags = aiProcess_Triangulate;
   pthread_mutex_lock(&assimp_lock);
