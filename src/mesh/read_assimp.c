@@ -327,6 +327,9 @@ static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, 
         return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: a %s coordinate is not a number ('%.*s')", name, line, what,
                        (int)(j - i < 40 ? j - i : 40), buf + i);
       want--;
+    } else if (j - i > 6 && !strncmp(buf + i, "normal", 6)) { /* assimp takes any word it begins as "normal" */
+      return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: '%.*s' where a facet's 'normal' was expected", name, line,
+                     (int)(j - i < 40 ? j - i : 40), buf + i);
     } else if ((j - i == 6 && !strncmp(buf + i, "normal", 6)) || (j - i == 6 && !strncmp(buf + i, "vertex", 6))) {
       want = 3, what = buf[i] == 'n' ? "normal" : "vertex";
     } else if ((j - i == 5 && !strncmp(buf + i, "solid", 5)) || (j - i == 8 && !strncmp(buf + i, "endsolid", 8))) {
