@@ -302,19 +302,33 @@ static int stl_number(const char *t, size_t n) {
   return i == n;
 }
 
-/* An ASCII STL's "normal" and "vertex" are each followed by three plain numbers, checked here before
- * assimp reads the file: its reader throws out of a number it cannot parse and leaks the meshes it
- * has made (LeakSanitizer, fuzz_mesh). Binary STL (84 + 50 n bytes) is not text and is left to it. */
+/* A solid's counts must be whole: assimp's ASCII STL reader throws when its vertices do not make
+ * whole triangles or its facets lack normals, and leaks the meshes it made (LeakSanitizer) */
+static ss_status stl_solid_check(const char *name, long line, long nv, long nn, ss_error *err) {
+  if (nv % 3 != 0)
+    return ss_fail(err, SS_ERR_PARSE, "%s: STL solid ending by line %ld: %ld vertices, not whole triangles", name, line, nv);
+  if (nn != nv)
+    return ss_fail(err, SS_ERR_PARSE, "%s: STL solid ending by line %ld: %ld facets with a normal for %ld vertices", name,
+                   line, nn / 3, nv);
+  return SS_OK;
+}
+
+/* An ASCII STL's "normal" and "vertex" are each followed by three plain numbers, and each solid's
+ * counts are whole (stl_solid_check), checked here before assimp reads the file: its reader throws
+ * out of a number it cannot parse, or out of such counts, and leaks the meshes it has made
+ * (LeakSanitizer, fuzz_mesh). The counts are assimp's: a facet's fourth vertex is ignored, a normal
+ * stands for its facet's three. Binary STL (84 + 50 n bytes) is not text and is left to assimp. */
 static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, ss_error *err) {
   if (len >= 84) {
     const unsigned char *u = (const unsigned char *)buf + 80;
     uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
     if (84 + 50 * nf == len) return SS_OK;
   }
-  long line = 1;
+  long line = 1, nv = 0, nn = 0, fv = 0;
   size_t i = 0;
   int want = 0; /* numbers still expected after "normal" / "vertex" */
   const char *what = "";
+  ss_status st;
   while (i < len) {
     if (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n' || buf[i] == '\0') {
       line += buf[i++] == '\n';
@@ -322,23 +336,32 @@ static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, 
     }
     size_t j = i;
     while (j < len && buf[j] != ' ' && buf[j] != '\t' && buf[j] != '\r' && buf[j] != '\n' && buf[j] != '\0') j++;
+    const size_t n = j - i;
     if (want > 0) {
-      if (!stl_number(buf + i, j - i))
+      if (!stl_number(buf + i, n))
         return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: a %s coordinate is not a number ('%.*s')", name, line, what,
-                       (int)(j - i < 40 ? j - i : 40), buf + i);
+                       (int)(n < 40 ? n : 40), buf + i);
       want--;
-    } else if (j - i > 6 && !strncmp(buf + i, "normal", 6)) { /* assimp takes any word it begins as "normal" */
+    } else if (n > 6 && !strncmp(buf + i, "normal", 6)) { /* assimp takes any word it begins as "normal" */
       return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: '%.*s' where a facet's 'normal' was expected", name, line,
-                     (int)(j - i < 40 ? j - i : 40), buf + i);
-    } else if ((j - i == 6 && !strncmp(buf + i, "normal", 6)) || (j - i == 6 && !strncmp(buf + i, "vertex", 6))) {
-      want = 3, what = buf[i] == 'n' ? "normal" : "vertex";
-    } else if ((j - i == 5 && !strncmp(buf + i, "solid", 5)) || (j - i == 8 && !strncmp(buf + i, "endsolid", 8))) {
+                     (int)(n < 40 ? n : 40), buf + i);
+    } else if (n == 6 && !strncmp(buf + i, "normal", 6)) {
+      want = 3, what = "normal", nn += 3;
+    } else if (n == 6 && !strncmp(buf + i, "vertex", 6)) {
+      if (fv < 3) want = 3, what = "vertex", nv++, fv++;
+    } else if (n == 5 && !strncmp(buf + i, "facet", 5)) {
+      fv = 0;
+    } else if ((n == 5 && !strncmp(buf + i, "solid", 5)) || (n == 8 && !strncmp(buf + i, "endsolid", 8))) {
+      if (buf[i] == 's') {
+        if ((st = stl_solid_check(name, line, nv, nn, err))) return st;
+        nv = nn = fv = 0;
+      }
       while (j < len && buf[j] != '\n') j++; /* its name, any words */
     }
     i = j;
   }
   if (want > 0) return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: the file ends inside a %s", name, line, what);
-  return SS_OK;
+  return stl_solid_check(name, line, nv, nn, err);
 }
 
 /* stl_ascii_check on a file's contents (a file that cannot be read is left to assimp's message) */
