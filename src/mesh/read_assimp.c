@@ -329,8 +329,8 @@ static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, 
   int want = 0; /* numbers still expected after "normal" / "vertex" */
   const char *what = "";
   ss_status st;
-  while (i < len) {
-    if (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n' || buf[i] == '\0') {
+  while (i < len && buf[i] != '\0') { /* assimp reads the text up to its first NUL */
+    if (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n') {
       line += buf[i++] == '\n';
       continue;
     }
