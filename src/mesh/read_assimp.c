@@ -148,14 +148,18 @@ int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap) {
   return known;
 }
 
+/* binary STL: 80-byte header, uint32 count (little-endian), 50 bytes per facet, nothing else; returns
+ * that count when the length fits it exactly, else -1 */
+static int64_t stl_binary_facets(const char *buf, size_t len) {
+  if (len < 84) return -1;
+  const unsigned char *u = (const unsigned char *)buf + 80;
+  uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
+  return 84 + 50 * nf == len ? (int64_t)nf : -1;
+}
+
 const char *ssi_mesh_assimp_sniff(const char *buf, size_t len) {
   if (len >= 12 && !memcmp(buf, "glTF", 4)) return "glb";
-  /* binary STL: 80-byte header, uint32 count (little-endian), 50 bytes per facet, nothing else */
-  if (len >= 84) {
-    const unsigned char *u = (const unsigned char *)buf + 80;
-    uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
-    if (nf > 0 && 84 + 50 * nf == len) return "stl";
-  }
+  if (stl_binary_facets(buf, len) > 0) return "stl";
   size_t i = 0;
   while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n')) i++;
   if (len - i >= 5 && !strncmp(buf + i, "solid", 5)) {
@@ -319,11 +323,7 @@ static ss_status stl_solid_check(const char *name, long line, long nv, long nn, 
  * (LeakSanitizer, fuzz_mesh). The counts are assimp's: a facet's fourth vertex is ignored, a normal
  * stands for its facet's three. Binary STL (84 + 50 n bytes) is not text and is left to assimp. */
 static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, ss_error *err) {
-  if (len >= 84) {
-    const unsigned char *u = (const unsigned char *)buf + 80;
-    uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
-    if (84 + 50 * nf == len) return SS_OK;
-  }
+  if (stl_binary_facets(buf, len) >= 0) return SS_OK;
   long line = 1, nv = 0, nn = 0, fv = 0;
   size_t i = 0;
   int want = 0; /* numbers still expected after "normal" / "vertex" */
