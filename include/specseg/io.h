@@ -11,21 +11,25 @@ extern "C" {
 
 /* Reads a triangle mesh from a file, the format chosen by extension (case-insensitive; content
  * sniffing when the extension says nothing).
- * OFF, OBJ and PLY are read by our own readers: polygons are fan-triangulated; OBJ negative indices
- * are relative. OFF: optional [ST][C][N]OFF header, '#' comments, one vertex / one polygon a line, extra
- * values (colours, normals) ignored. PLY: ascii / binary LE / binary BE, x y z of any numeric type,
- * faces from the list `vertex_indices` (or `vertex_index`), everything else skipped. NaN/Inf coordinate
- * literals are read as such (ss_mesh_check reports them).
+ * OFF, OBJ, PLY and STL are read by our own readers: polygons are fan-triangulated; OBJ negative
+ * indices are relative. OFF: optional [ST][C][N]OFF header, '#' comments, one vertex / one polygon a
+ * line, extra values (colours, normals) ignored. PLY: ascii / binary LE / binary BE, x y z of any
+ * numeric type, faces from the list `vertex_indices` (or `vertex_index`), everything else skipped.
+ * STL: binary (exactly 84 + 50 n bytes for the n facets its header declares; float32 corners) or
+ * ascii ("solid", facets of three "vertex" lines, "endsolid"; keywords in either case; several solids
+ * allowed; facet normals checked as numbers and ignored). NaN/Inf coordinate literals are read as such
+ * (ss_mesh_check reports them).
  * Other formats go through the Open Asset Import Library (Debian's libassimp-dev, when the build found
- * it): STL (ascii and binary), glTF 2.0 (.gltf with embedded or external buffers, .glb), FBX, COLLADA
- * (.dae), 3DS and every other extension assimp supports. The scene is flattened: the meshes of every
- * node, in depth-first order, with the node's accumulated transform applied to their vertices (a mesh
- * instanced twice appears twice); polygons are triangulated, points and lines dropped; then vertices
- * with exactly equal coordinates are welded (O(n log n), by a sort; each kept vertex is the first of
- * its group in the order the scene lists them, for STL facet by facet), which joins STL's per-facet
- * vertex soup and the vertices other formats split at normal creases or texture seams into one
- * connected mesh. Coordinates are assimp's float32 values. Imports through assimp are serialised by a
- * process-wide lock (its error message is one global string); they are safe to call from any thread.
+ * it): glTF 2.0 (.gltf with embedded or external buffers, .glb), FBX, COLLADA (.dae), 3DS and every
+ * other extension assimp supports. The scene is flattened: the meshes of every node, in depth-first
+ * order, with the node's accumulated transform applied to their vertices (a mesh instanced twice
+ * appears twice); polygons are triangulated, points and lines dropped; coordinates are assimp's
+ * float32 values. Imports through assimp are serialised by a process-wide lock (its error message is
+ * one global string); they are safe to call from any thread.
+ * An STL's and a scene's vertices with exactly equal coordinates are then welded (O(n log n), by a
+ * sort; each kept vertex is the first of its group in file order, for STL facet by facet), which joins
+ * an STL's per-facet vertex soup, and the vertices other formats split at normal creases or texture
+ * seams, into one connected mesh.
  *
  * Inputs:
  *   path     the file
@@ -41,8 +45,8 @@ SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
  *
  * Inputs:
  *   path     a file name (NULL allowed)
- * Returns: 1 for OFF, OBJ or PLY (our readers); 2 for a format read through assimp (only when the
- *   library was built with it); 0 otherwise.
+ * Returns: 1 for OFF, OBJ, PLY or STL (our readers); 2 for a format read through assimp (only when
+ *   the library was built with it); 0 otherwise.
  */
 SS_API int ss_mesh_extension_supported(const char *path);
 /* Reads an OFF file (the OFF reader of ss_read_mesh, whatever the extension).
@@ -74,8 +78,8 @@ SS_API ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
  */
 SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
 /* ss_read_mesh from len bytes in memory (e.g. a program's standard input). The format always comes
- * from content sniffing: a "ply" first line, an OFF header or counts, OBJ keywords; with assimp also
- * STL (ascii or binary), glTF JSON and GLB.
+ * from content sniffing: STL (ascii or binary), a "ply" first line, an OFF header or counts, OBJ
+ * keywords; with assimp also glTF JSON and GLB.
  *
  * Inputs:
  *   buf, len the bytes (not modified or kept; buf may be NULL when len is 0)

@@ -64,11 +64,11 @@ def read_mesh(path):
     """Read a triangle mesh: OFF, OBJ, PLY, STL, glTF 2.0 or another format assimp reads.
 
     The format is chosen by the extension (case-insensitive), else by the content. Polygons are
-    fan-triangulated; PLY may be ASCII or binary. STL (ASCII or binary), glTF (.gltf, .glb), FBX,
-    COLLADA, 3DS, ... are read through the Open Asset Import Library when the C library was built
-    with libassimp-dev: all meshes of the scene merged with their node transforms applied, vertices
-    with exactly equal coordinates welded (in order of first occurrence), so an STL's per-facet vertex
-    soup becomes one connected mesh; coordinates are float32 values.
+    fan-triangulated; PLY and STL may be ASCII or binary. glTF (.gltf, .glb), FBX, COLLADA, 3DS, ...
+    are read through the Open Asset Import Library when the C library was built with
+    libassimp-dev: all meshes of the scene merged with their node transforms applied; coordinates
+    are float32 values. An STL's and a scene's vertices with exactly equal coordinates are welded
+    (in order of first occurrence), so an STL's per-facet vertex soup becomes one connected mesh.
 
     Parameters
     ----------
@@ -86,7 +86,7 @@ def read_mesh(path):
     ------
     SpecsegError
         The file cannot be read ("i/o error") or is malformed ("parse error": the message gives
-        the file and line or byte offset); an STL / glTF / ... file with a library built without
+        the file and line or byte offset); a glTF / FBX / ... file with a library built without
         assimp ("unsupported", the message names libassimp-dev).
     """
     m, e = _clib.ss_mesh(), _err()

@@ -15,6 +15,13 @@
 ss_status io_parse_off(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_obj(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+/* STL, ASCII or binary (read_stl.c); the facets' corners welded by exact coordinates. */
+ss_status io_parse_stl(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+/* Is this STL by content? Binary: the length is exactly 84 + 50 n for the n > 0 facets its header
+ * declares; ASCII: the word "solid" first, then "facet" within the first 4 KiB. */
+int io_stl_sniff(const char *buf, size_t len);
+/* The binary STL's facet count when the length is exactly 84 + 50 n, else -1. */
+int64_t io_stl_binary_facets(const char *buf, size_t len);
 /* The same with the vertices' colours (red / green / blue, also diffuse_red.. or r g b): *rgb gets 3 nv
  * malloc'd bytes, or NULL when the file has none (rgb itself may be NULL: not wanted). */
 ss_status io_parse_ply_rgb(const char *path, const char *buf, size_t len, ss_mesh *m, unsigned char **rgb,
@@ -25,15 +32,15 @@ typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t le
 ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err);
 
 /* ---- formats read through assimp (read_assimp.c) ----
- * Does the extension of path belong to a format read through assimp (STL, glTF, FBX, ...; never OFF,
- * OBJ or PLY)? Then 1, and the lower-case extension in hint (cap bytes) when hint is not NULL. Without
+ * Does the extension of path belong to a format read through assimp (glTF, FBX, ...; never OFF, OBJ,
+ * PLY or STL)? Then 1, and the lower-case extension in hint (cap bytes) when hint is not NULL. Without
  * assimp in the build, the common formats' extensions still answer 1 (ssi_read_assimp then refuses). */
 int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap);
-/* The assimp format of loaded bytes by content: "stl" (binary: the size matches the facet count;
- * ascii: "solid" then "facet"), "glb" (the glTF magic), "gltf" (JSON with an "asset" key), else NULL. */
+/* The assimp format of loaded bytes by content: "glb" (the glTF magic), "gltf" (JSON with an "asset"
+ * key), else NULL. */
 const char *ssi_mesh_assimp_sniff(const char *buf, size_t len);
 /* Read a scene through assimp, by path (path not NULL: a regular file) or from len bytes in buf with
- * the format hint ("stl", "glb", ...); name for messages. All node meshes merged with their transforms,
+ * the format hint ("glb", "gltf", ...); name for messages. All node meshes merged with their transforms,
  * triangles only, vertices welded exactly (ssi_mesh_weld). Without assimp: SS_ERR_UNSUPPORTED naming
  * libassimp-dev. */
 ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, size_t len, const char *hint, ss_mesh *m,

@@ -1,13 +1,12 @@
-/* Meshes in the formats we do not parse ourselves (STL, glTF 2.0, FBX, COLLADA, 3DS, ...), read through
+/* Meshes in the formats we do not parse ourselves (glTF 2.0, FBX, COLLADA, 3DS, ...), read through
  * the C API of the Open Asset Import Library (Debian's libassimp-dev) when the build found it
  * (SS_HAVE_ASSIMP), else refused with a message naming the package.
  *
  * The scene is flattened: every node's meshes, with the node's accumulated transform applied to their
  * vertices (the scene as it is drawn; a mesh instanced by several nodes appears once per instance),
  * in depth-first node order; only triangles are kept (polygons are triangulated by assimp, points and
- * lines dropped). Vertices are then welded by exact coordinates: STL stores three vertices per facet,
- * and the other formats split vertices at normal creases and texture seams, which would cut the surface
- * apart. assimp's own JoinIdenticalVertices compares normals and texture coordinates too, so it cannot
+ * lines dropped). Vertices are then welded by exact coordinates: the formats split vertices at normal
+ * creases and texture seams, which would cut the surface apart. assimp's own JoinIdenticalVertices compares normals and texture coordinates too, so it cannot
  * do this; ssi_mesh_weld does it by sorting. */
 #include <stdint.h>
 #include <stdio.h>
@@ -20,8 +19,8 @@
 /* ---- which files go to assimp -------------------------------------------------------------------- */
 
 /* Formats we always route to assimp (and name in the message when it is missing); with assimp, any
- * extension it reports as supported also goes to it (OFF, OBJ and PLY stay with our own readers). */
-static const char *const KNOWN[] = {"stl", "gltf", "glb", "fbx", "dae", "3ds", "blend", "x3d", "3mf", "x", "lwo",
+ * extension it reports as supported also goes to it (OFF, OBJ, PLY and STL stay with our own readers). */
+static const char *const KNOWN[] = {"gltf", "glb", "fbx", "dae", "3ds", "blend", "x3d", "3mf", "x", "lwo",
                                     "ase", "ms3d", "ifc", "ac", "dxf", "md2", "md3", "md5mesh", "smd", "ogex", "b3d",
                                     "cob", "q3o", "q3s", "irr", "irrmesh", "lws", "nff", "raw", "ter", "xgl", "zgl", NULL};
 
@@ -51,7 +50,7 @@ static pthread_mutex_t assimp_lock = PTHREAD_MUTEX_INITIALIZER;
 int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap) {
   char ext[16];
   if (!path || !lower_ext(path, ext, sizeof ext)) return 0;
-  if (!strcmp(ext, "off") || !strcmp(ext, "obj") || !strcmp(ext, "ply")) return 0;
+  if (!strcmp(ext, "off") || !strcmp(ext, "obj") || !strcmp(ext, "ply") || !strcmp(ext, "stl")) return 0;
   int known = 0;
   for (const char *const *k = KNOWN; *k && !known; k++) known = !strcmp(*k, ext);
 #ifdef SS_HAVE_ASSIMP
@@ -67,25 +66,10 @@ int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap) {
   return known;
 }
 
-/* binary STL: 80-byte header, uint32 count (little-endian), 50 bytes per facet, nothing else; returns
- * that count when the length fits it exactly, else -1 */
-static int64_t stl_binary_facets(const char *buf, size_t len) {
-  if (len < 84) return -1;
-  const unsigned char *u = (const unsigned char *)buf + 80;
-  uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
-  return 84 + 50 * nf == len ? (int64_t)nf : -1;
-}
-
 const char *ssi_mesh_assimp_sniff(const char *buf, size_t len) {
   if (len >= 12 && !memcmp(buf, "glTF", 4)) return "glb";
-  if (stl_binary_facets(buf, len) > 0) return "stl";
   size_t i = 0;
   while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n')) i++;
-  if (len - i >= 5 && !strncmp(buf + i, "solid", 5)) {
-    size_t lim = len < i + 4096 ? len : i + 4096;
-    for (size_t j = i + 5; j + 5 <= lim; j++)
-      if (!memcmp(buf + j, "facet", 5)) return "stl";
-  }
   if (i < len && buf[i] == '{') {
     size_t lim = len < i + 65536 ? len : i + 65536;
     for (size_t j = i; j + 7 <= lim; j++)
@@ -111,7 +95,7 @@ ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, s
   char up[16];
   return ss_fail(err, SS_ERR_UNSUPPORTED,
                  "%s: reading %s files needs the Open Asset Import Library: install libassimp-dev and rebuild specseg "
-                 "(this build reads OFF, OBJ and PLY only)",
+                 "(this build reads OFF, OBJ, PLY and STL only)",
                  name ? name : "<memory>", format_name(hint, up, sizeof up));
 }
 
@@ -207,113 +191,10 @@ static int add_node(flat *fl, const struct aiScene *sc, const struct aiNode *nd,
   return 0;
 }
 
-/* a plain decimal number, the whole token: [+-] digits [. digits] [e [+-] digits], a digit somewhere
- * before the exponent */
-static int stl_number(const char *t, size_t n) {
-  size_t i = 0, digits = 0;
-  if (i < n && (t[i] == '+' || t[i] == '-')) i++;
-  for (; i < n && t[i] >= '0' && t[i] <= '9'; i++) digits++;
-  if (i < n && t[i] == '.')
-    for (i++; i < n && t[i] >= '0' && t[i] <= '9'; i++) digits++;
-  if (!digits) return 0;
-  if (i < n && (t[i] == 'e' || t[i] == 'E')) {
-    size_t e = 0;
-    if (++i < n && (t[i] == '+' || t[i] == '-')) i++;
-    for (; i < n && t[i] >= '0' && t[i] <= '9'; i++) e++;
-    if (!e) return 0;
-  }
-  return i == n;
-}
-
-/* A solid's counts must be whole: assimp's ASCII STL reader throws when its vertices do not make
- * whole triangles or its facets lack normals, and leaks the meshes it made (LeakSanitizer) */
-static ss_status stl_solid_check(const char *name, long line, long nv, long nn, ss_error *err) {
-  if (nv % 3 != 0)
-    return ss_fail(err, SS_ERR_PARSE, "%s: STL solid ending by line %ld: %ld vertices, not whole triangles", name, line, nv);
-  if (nn != nv)
-    return ss_fail(err, SS_ERR_PARSE, "%s: STL solid ending by line %ld: %ld facets with a normal for %ld vertices", name,
-                   line, nn / 3, nv);
-  return SS_OK;
-}
-
-/* An ASCII STL's "normal" and "vertex" are each followed by three plain numbers, and each solid's
- * counts are whole (stl_solid_check), checked here before assimp reads the file: its reader throws
- * out of a number it cannot parse, or out of such counts, and leaks the meshes it has made
- * (LeakSanitizer, fuzz_mesh). The counts are assimp's: a facet's fourth vertex is ignored, a normal
- * stands for its facet's three. Binary STL (84 + 50 n bytes) is not text and is left to assimp. */
-static ss_status stl_ascii_check(const char *name, const char *buf, size_t len, ss_error *err) {
-  if (stl_binary_facets(buf, len) >= 0) return SS_OK;
-  long line = 1, nv = 0, nn = 0, fv = 0;
-  size_t i = 0;
-  int want = 0; /* numbers still expected after "normal" / "vertex" */
-  const char *what = "";
-  ss_status st;
-  while (i < len && buf[i] != '\0') { /* assimp reads the text up to its first NUL */
-    if (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n') {
-      line += buf[i++] == '\n';
-      continue;
-    }
-    size_t j = i;
-    while (j < len && buf[j] != ' ' && buf[j] != '\t' && buf[j] != '\r' && buf[j] != '\n' && buf[j] != '\0') j++;
-    const size_t n = j - i;
-    if (want > 0) {
-      if (!stl_number(buf + i, n))
-        return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: a %s coordinate is not a number ('%.*s')", name, line, what,
-                       (int)(n < 40 ? n : 40), buf + i);
-      want--;
-    } else if (n > 6 && !strncmp(buf + i, "normal", 6)) { /* assimp takes any word it begins as "normal" */
-      return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: '%.*s' where a facet's 'normal' was expected", name, line,
-                     (int)(n < 40 ? n : 40), buf + i);
-    } else if (n == 6 && !strncmp(buf + i, "normal", 6)) {
-      want = 3, what = "normal", nn += 3;
-    } else if (n == 6 && !strncmp(buf + i, "vertex", 6)) {
-      if (fv < 3) want = 3, what = "vertex", nv++, fv++;
-    } else if (n == 5 && !strncmp(buf + i, "facet", 5)) {
-      fv = 0;
-    } else if ((n == 5 && !strncmp(buf + i, "solid", 5)) || (n == 8 && !strncmp(buf + i, "endsolid", 8))) {
-      if (buf[i] == 's') {
-        if ((st = stl_solid_check(name, line, nv, nn, err))) return st;
-        nv = nn = fv = 0;
-      }
-      while (j < len && buf[j] != '\n') j++; /* its name, any words */
-    }
-    i = j;
-  }
-  if (want > 0) return ss_fail(err, SS_ERR_PARSE, "%s: STL line %ld: the file ends inside a %s", name, line, what);
-  return stl_solid_check(name, line, nv, nn, err);
-}
-
-/* stl_ascii_check on a file's contents (a file that cannot be read is left to assimp's message) */
-static ss_status stl_file_check(const char *path, const char *name, ss_error *err) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return SS_OK;
-  char *b = NULL;
-  size_t n = 0, cap = 0;
-  ss_status st = SS_OK;
-  for (;;) {
-    if (n == cap) {
-      char *nb = cap > SIZE_MAX / 2 - 65536 ? NULL : realloc(b, cap = cap * 2 + 65536);
-      if (!nb) { st = ss_fail(err, SS_ERR_NOMEM, "%s: out of memory", name); break; }
-      b = nb;
-    }
-    size_t r = fread(b + n, 1, cap - n, f);
-    n += r;
-    if (r == 0) break;
-  }
-  fclose(f);
-  if (!st) st = stl_ascii_check(name, b, n, err);
-  free(b);
-  return st;
-}
-
 ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, size_t len, const char *hint, ss_mesh *m,
                           ss_error *err) {
   memset(m, 0, sizeof *m);
   if (!name) name = path ? path : "<memory>";
-  if (hint && !strcmp(hint, "stl")) {
-    ss_status cs = path ? stl_file_check(path, name, err) : stl_ascii_check(name, buf, len, err);
-    if (cs) return cs;
-  }
   /* polygons triangulated; no other processing (JoinIdenticalVertices is not exact: see the top) */
   const unsigned flags = aiProcess_Triangulate;
   pthread_mutex_lock(&assimp_lock);

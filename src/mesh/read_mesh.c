@@ -70,7 +70,9 @@ static ss_status parse_any(const char *path, const char *name, const char *buf, 
   int kind = path && ext_is(path, "off")   ? 'o'
              : path && ext_is(path, "obj") ? 'j'
              : path && ext_is(path, "ply") ? 'p'
+             : path && ext_is(path, "stl") ? 's'
              : path && ssi_mesh_assimp_ext(path, hint, sizeof hint) ? 'a'
+             : io_stl_sniff(buf, len)      ? 's' /* first: a binary STL's header may hold any text */
                                            : sniff(buf, len);
   const char *sniffed = kind ? NULL : ssi_mesh_assimp_sniff(buf, len);
   if (sniffed) snprintf(hint, sizeof hint, "%s", sniffed), kind = 'a';
@@ -78,6 +80,7 @@ static ss_status parse_any(const char *path, const char *name, const char *buf, 
     case 'o': return io_parse_off(name, buf, len, m, err);
     case 'j': return io_parse_obj(name, buf, len, m, err);
     case 'p': return io_parse_ply_rgb(name, buf, len, m, rgb, err);
+    case 's': return io_parse_stl(name, buf, len, m, err);
     case 'a': return ssi_read_assimp(NULL, name, buf, len, hint, m, err);
     default:
       return len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", name)
@@ -143,7 +146,7 @@ ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_er
 
 int ss_mesh_extension_supported(const char *path) {
   if (!path) return 0;
-  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply")) return 1;
+  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply") || ext_is(path, "stl")) return 1;
 #ifdef SS_HAVE_ASSIMP
   if (ssi_mesh_assimp_ext(path, NULL, 0)) return 2;
 #endif
