@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# libFuzzer harnesses of tests/fuzz (issue 13, item 8): every reader (OFF, OBJ, PLY, content
+# libFuzzer harnesses of tests/fuzz (issue 13, item 8): every reader (OFF, OBJ, PLY, STL, content
 # sniffing, text vectors, landmarks), read -> check -> geodesics / eigenpairs on small meshes, and the
 # prepared-shape reader on mutated payloads whose checksum the harness recomputes (shape).
 #   scripts/fuzz.sh SECONDS [--save] [HARNESS...]
@@ -16,7 +16,7 @@ secs=${1:?usage: scripts/fuzz.sh SECONDS [--save] [HARNESS...]}
 shift
 save=0
 if [ "${1:-}" = --save ]; then save=1; shift; fi
-all=(off obj ply mesh vectors landmarks geometry shape)
+all=(off obj ply stl mesh vectors landmarks geometry shape)
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=("${all[@]}")
 command -v clang > /dev/null || { echo "fuzz: clang not found (apt-get install clang)" >&2; exit 77; }
