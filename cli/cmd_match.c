@@ -16,7 +16,7 @@ static const char USAGE[] =
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
     "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--no-recheck]\n"
-    "                     [--scale-fit]\n"
+    "                     [--scale-fit] [--skip-tol T]\n"
     "                     [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
@@ -76,6 +76,10 @@ static const char USAGE[] =
     "                      they are: for bodies of different build, whose distances differ by a common\n"
     "                      factor that can hide a swapped limb (off by default: on one body in different\n"
     "                      poses it can prefer a map that pulls distances together)\n"
+    "  --skip-tol T        without --landmarks: a candidate whose landmarks an earlier candidate's map\n"
+    "                      already sends within T sqrt(area) of their partners is not mapped, 0..10^6\n"
+    "                      (default 0: every one is; 0.05: about 0.8x the time, its own energy lost, so\n"
+    "                      the choice and the confidence may change; --json: skipped_by)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -117,6 +121,8 @@ static const char *hypotheses_json(const ss_autopair_info *a, char *buf, size_t 
       else n += (size_t)snprintf(buf + n, size - n, "%s\"%s\": null", k ? ", " : "", key[k]);
     }
     if (n < size && a->hyp_from_y[h]) n += (size_t)snprintf(buf + n, size - n, ", \"from\": \"Y\"");
+    if (n < size && a->hyp_skipped_by[h] >= 0)
+      n += (size_t)snprintf(buf + n, size - n, ", \"skipped_by\": %d", a->hyp_skipped_by[h]);
     if (n < size && a->hyp_flip_of[h] >= 0)
       n += (size_t)snprintf(buf + n, size - n, ", \"flip_of\": %d, \"flip_by\": \"%s\"", a->hyp_flip_of[h],
                             a->hyp_flip_by_y[h] ? "Y" : "X");
@@ -161,6 +167,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_FLAG("--no-polish", &o.autopair.hyp_final_polish, 0),
       CLI_OPT_FLAG("--no-recheck", &no_recheck, 1),
       CLI_OPT_FLAG("--scale-fit", &o.autopair.hyp_fit_scale, 1),
+      CLI_OPT_DOUBLE("--skip-tol", &o.autopair.hyp_skip_tol, 0, 1e6, 0, "--skip-tol needs a value between 0 and 1e6, not '%s'"),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
@@ -306,8 +313,13 @@ int cmd_match(int argc, char **argv) {
     else if (a->hyp_flip_of[h] >= 0)
       snprintf(what, sizeof what, " (the flip of #%d by %s's symmetry)", a->hyp_flip_of[h], a->hyp_flip_by_y[h] ? "Y" : "X");
     else if (a->hyp_from_y[h]) snprintf(what, sizeof what, " (from Y's side)");
-    fprintf(report, "hypotheses: %d mapped, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments reversed, "
-            "map energy %.4g, orientation %.3f; margin %.3g)%s\n", a->hypotheses, h, what, a->hyp_energy[h],
+    int skipped = 0;
+    for (int c = 0; c < a->hypotheses && c < SS_MAX_HYPOTHESES; c++) skipped += a->hyp_skipped_by[c] >= 0;
+    char skip[64] = ""; /* candidates whose landmarks an earlier map already kept (hyp_skip_tol) */
+    if (skipped) snprintf(skip, sizeof skip, " (%d more skipped)", skipped);
+    fprintf(report, "hypotheses: %d mapped%s, #%d%s kept (energy %.4g: distortion %.4g, %.0f%% of the segments "
+            "reversed, map energy %.4g, orientation %.3f; margin %.3g)%s\n", a->hypotheses - skipped, skip, h, what,
+            a->hyp_energy[h],
             a->hyp_distortion[h], 100 * a->hyp_reversed[h], a->hyp_map_energy[h], a->hyp_orientation[h], a->hyp_margin,
             a->confident ? ", confident" : ", NOT confident");
   }

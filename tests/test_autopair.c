@@ -225,6 +225,10 @@ static void test_permuted_and_mirrored(void) {
     mo.fmap.zoomout_kmax = kev; /* the eigenpairs prepared */
     const double dflt_w_reversed = mo.autopair.hyp_w_reversed;
     CHECK(mo.autopair.hyp_min_orientation == 0 && mo.autopair.hyp_confident_orientation == 0.45);
+    /* every candidate mapped, so that each has its numbers (the skip rule: below) */
+    CHECK(mo.autopair.hyp_skip_tol == 0);
+    ss_autopair_info all;
+    memset(&all, 0, sizeof all);
     ss_match_result res;
     double me0 = NAN; /* the default match's kept map: its own energy, whether confident, which */
     int conf0 = 0, kept0 = -1, *map0 = NULL;
@@ -287,11 +291,40 @@ static void test_permuted_and_mirrored(void) {
       CHECK(ai->hyp_orientation[ai->hypothesis] > 0.5);
       CHECK(right > n / 2);
       me0 = ai->hyp_map_energy[ai->hypothesis], conf0 = ai->confident, kept0 = ai->hypothesis;
+      all = *ai;
       CHECK(ai->hyp_final_polished == 1);
       map0 = malloc(sizeof(int) * (size_t)n);
       if (map0) memcpy(map0, res.map, sizeof(int) * (size_t)n);
     }
     ss_match_result_free(&res);
+    /* the skip rule (hyp_skip_tol 0.05; off by default): a candidate whose landmarks an earlier map already keeps
+     * is not mapped. The candidates before the flips are the same ones in the same order, and each
+     * one mapped has the numbers it had with every candidate mapped; each one skipped names an
+     * earlier one that was mapped, has no numbers and is not kept. On this shape and its reflection
+     * the candidates' maps coincide, so some are skipped. */
+    if (all.hypotheses > 1) {
+      mo.autopair.hyp_skip_tol = 0.05;
+      CHECK_MSG(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK, "%s", e.msg);
+      const ss_autopair_info *ai = &res.autopair;
+      int skipped = 0, same = 1;
+      for (int h = 0; h < ai->hypotheses && h < all.hypotheses; h++) {
+        if (ai->hyp_flip_of[h] >= 0 || all.hyp_flip_of[h] >= 0) break;
+        const int by = ai->hyp_skipped_by[h];
+        if (by >= 0) {
+          skipped++;
+          CHECK_MSG(by < h && ai->hyp_skipped_by[by] == -1 && h != ai->hypothesis && isnan(ai->hyp_energy[h]) &&
+                        isnan(ai->hyp_distortion[h]) && isnan(ai->hyp_differ[h]),
+                    "#%d skipped by #%d", h, by);
+        } else
+          same &= ai->hyp_energy[h] == all.hyp_energy[h] && ai->hyp_distortion[h] == all.hyp_distortion[h];
+      }
+      printf("reflection, the skip rule: %d of %d candidates mapped (%d without it), #%d kept (#%d without it)\n",
+             ai->hypotheses - skipped, ai->hypotheses, all.hypotheses, ai->hypothesis, all.hypothesis);
+      CHECK(same && skipped > 0);
+      CHECK(res.map && ai->hyp_orientation[ai->hypothesis] > 0.5);
+      ss_match_result_free(&res);
+      mo.autopair.hyp_skip_tol = 0;
+    }
     /* the orientation rule: without the reversed-segment term the mirror map (an isometry of the
      * symmetric shape) may have the least energy; a candidate below hyp_min_orientation never wins
      * over one above it, and among those above it the least energy wins */

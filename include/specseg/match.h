@@ -474,6 +474,14 @@ typedef struct ss_autopair_options {
    * that pulls distances together, and on one shape in different poses (TOSCA_r) it made a right
    * map lose, confidently (docs/tuning.md) */
   int hyp_fit_scale;
+  /* landmark-free, a candidate is not mapped when the map of an earlier one (mapped, not itself
+   * skipped) already sends each of its landmarks within hyp_skip_tol (Euclidean / √area of Y) of the
+   * landmark's partner: its map would be that one's, or one near it, at the full cost of a map
+   * (ss_autopair_info.hyp_skipped_by). 0 (default): every candidate is mapped. 0.05 costs about 0.8x
+   * the CPU of a FAUST_r or TOSCA_r match; off by default because a candidate skipped loses its own
+   * energy, which may differ from the earlier map's by more than the margin between distinct maps,
+   * and the choice and the confidence may go with it (docs/tuning.md) */
+  double hyp_skip_tol;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 16
@@ -593,6 +601,10 @@ typedef struct ss_autopair_info {
   /* per candidate, the scale its distortion was taken at (hyp_fit_scale; 1 without the fit, NaN
    * where no distortion was taken) */
   double hyp_scale[SS_MAX_HYPOTHESES];
+  /* per candidate, the earlier candidate whose map already kept its landmarks, so that it was not
+   * mapped (hyp_skip_tol; its hyp_* numbers are then NaN, and it is neither chosen nor counted in the
+   * margin), -1 for the candidates mapped */
+  int hyp_skipped_by[SS_MAX_HYPOTHESES];
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

@@ -578,7 +578,7 @@ _PROBES = {"std": 0, "asa": 1, "diff": 2}
 def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None,
           segment_profile=None, descriptors=None, wks=True, orient=None, zoomout_step=None, zoomout_samples=None,
           descr_k=None, hypotheses=None, one_way=False, flip_by=None, final_zoomout=None, polish=True, recheck=True,
-          scale_fit=False):
+          scale_fit=False, skip_tol=None):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
 
@@ -651,6 +651,11 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
     scale_fit : bool, optional
         True: the hypotheses' distortion compares distances up to one scale per map, for two bodies
         of different build (``--scale-fit``; docs/tuning.md). Default False.
+    skip_tol : float, optional
+        Without landmarks, a candidate whose landmarks an earlier candidate's map already sends
+        within this many sqrt(area) of their partners is not mapped (``--skip-tol``; 0..1e6, default
+        0: every one is). 0.05 takes about 0.8x the time; the candidate's own energy is lost, so the
+        choice and the confidence may change (docs/tuning.md).
 
     Returns
     -------
@@ -723,7 +728,7 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
             raise ValueError(f"orient must be a weight in [0, 1e6], not {orient!r}")
         o.fmap.w_orient = w
     _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
-                        polish, recheck, scale_fit)
+                        polish, recheck, scale_fit, skip_tol)
     if not wks and descriptors is None:
         raise ValueError("wks=False needs descriptors: they replace the WKS")
     o.fmap.no_wks = 0 if wks else 1
@@ -770,7 +775,7 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
 
 
 def _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
-                        polish, recheck, scale_fit):
+                        polish, recheck, scale_fit, skip_tol):
     """match()'s refinement and hypothesis keywords into the options o, with the CLI's ranges."""
     if zoomout_step is not None:
         o.fmap.zoomout_step = _as_int32(zoomout_step, "zoomout_step", 1, 10000)
@@ -797,6 +802,11 @@ def _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, o
         o.autopair.hyp_recheck_window = 0
     if scale_fit:
         o.autopair.hyp_fit_scale = 1
+    if skip_tol is not None:
+        t = _as_float(skip_tol, "skip_tol")
+        if not 0 <= t <= 1e6:
+            raise ValueError("skip_tol must be in [0, 1e6], not %r" % (skip_tol,))
+        o.autopair.hyp_skip_tol = t
 
 
 _HYP_KEYS = ("energy", "distortion", "reversed", "orientation", "orientation_min", "pair_energy", "map_energy",
@@ -814,6 +824,8 @@ def _hypotheses_info(a):
         d["from"] = "Y" if a.hyp_from_y[h] else "X"
         if a.hyp_flip_of[h] >= 0:
             d["flip_of"], d["flip_by"] = int(a.hyp_flip_of[h]), "Y" if a.hyp_flip_by_y[h] else "X"
+        if a.hyp_skipped_by[h] >= 0:
+            d["skipped_by"] = int(a.hyp_skipped_by[h])
         out.append(d)
     return tuple(out)
 

@@ -62,6 +62,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_final_polish = 1;
   o->hyp_recheck_window = 0.05;
   o->hyp_fit_scale = 0;
+  o->hyp_skip_tol = 0;
 }
 
 static double cpu_now(void) {
@@ -193,7 +194,7 @@ static ss_status pair_auto(const ss_centre_signature *X, const ss_centre_signatu
   memset(out, 0, sizeof *out);
   if (info) {
     memset(info, 0, sizeof *info);
-    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = -1;
+    for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = info->hyp_skipped_by[c] = -1;
   }
   ss_autopair_options o;
   if (o_in) o = *o_in;

@@ -254,7 +254,8 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       int_outside(a->hyp_reverse, 0, 1, "hyp_reverse", err) ||
       int_outside(a->hyp_final_polish, 0, 1, "hyp_final_polish", err) ||
       int_outside(a->hyp_fit_scale, 0, 1, "hyp_fit_scale", err) ||
-      real_outside(a->hyp_recheck_window, 0, 1e6, "hyp_recheck_window", err))
+      real_outside(a->hyp_recheck_window, 0, 1e6, "hyp_recheck_window", err) ||
+      real_outside(a->hyp_skip_tol, 0, 1e6, "hyp_skip_tol", err))
     return SS_ERR_INVALID;
   /* (0, 1]: a share of the pairs, at least one kept */
   if (!(a->hyp_keep > 0 && a->hyp_keep <= 1))
@@ -270,7 +271,7 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
 static int flips_wanted(const ss_autopair_info *info, const int *oriented, int nc, int kept, double confident) {
   if (info->hyp_orientation[kept] < confident) return 1;
   for (int c = 0; c < nc; c++)
-    if (!oriented[c] && info->hyp_energy[c] < info->hyp_energy[kept]) return 1;
+    if (!oriented[c] && info->hyp_skipped_by[c] < 0 && info->hyp_energy[c] < info->hyp_energy[kept]) return 1;
   return 0;
 }
 
@@ -291,7 +292,7 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
   const size_t nX = (size_t)X->mesh->nv;
   const ss_shape_prep *Z = by_y ? Y : X; /* the shape whose own symmetry turns the maps round */
   int any = 0;
-  for (int c = 0; c < nc0; c++) any |= flip_of[c] < 0 && !oriented[c];
+  for (int c = 0; c < nc0; c++) any |= flip_of[c] < 0 && !oriented[c] && info->hyp_skipped_by[c] < 0;
   if (!any) return SS_OK;
   int *S = malloc(sizeof(int) * (size_t)Z->mesh->nv), *kept = malloc(sizeof(int) * (size_t)m);
   ss_status st = S && kept ? SS_OK : ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
@@ -305,7 +306,8 @@ static ss_status add_flipped(const ss_shape_prep *X, const ss_shape_prep *Y, int
   }
   for (int i = 0; !st && i < nc0 && cs->nc < cap; i++) {
     const int c = order[i];
-    if (flip_of[c] >= 0 || oriented[c]) continue; /* (a flip is not flipped back) */
+    /* (a flip is not flipped back; a candidate not mapped has no map of its own) */
+    if (flip_of[c] >= 0 || oriented[c] || info->hyp_skipped_by[c] >= 0) continue;
     int *cx = cand_x(cs, cs->nc), *cy = cand_y(cs, cs->nc), q = 0;
     for (int a = 0; a < m; a++)
       if (kept[a]) /* x -> T(S_X(x)), or x -> S_Y(T(x)) */
@@ -398,6 +400,42 @@ static ss_status recheck_polished(const ss_shape_prep *X, const ss_shape_prep *Y
   }
   free(pm);
   return st;
+}
+
+/* The earlier candidate (mapped, not itself skipped) whose map sends every landmark of candidate c
+ * within tol (Euclidean, Y's units) of its partner, -1 when none does (ss_autopair_options
+ * .hyp_skip_tol; tol 0: none). Such a candidate's map would be that one's or near it: on the FAUST_r
+ * and TOSCA_r tuning splits about a quarter of the candidates, and the choice no worse
+ * (docs/tuning.md). */
+static int kept_by_earlier(const ss_mesh *Y, const cand_set *cs, int c, const int *maps, size_t nX,
+                           const int *skipped_by, double tol) {
+  if (!(tol > 0) || cs->n[c] < 1) return -1;
+  const int *lx = cand_x(cs, c), *ly = cand_y(cs, c);
+  for (int e = 0; e < c; e++) {
+    if (skipped_by[e] >= 0) continue;
+    const int *map = maps + nX * (size_t)e;
+    int all = 1;
+    for (int i = 0; i < cs->n[c] && all; i++) {
+      const double *p = Y->V + 3 * (size_t)map[lx[i]], *q = Y->V + 3 * (size_t)ly[i];
+      const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+      all = dx * dx + dy * dy + dz * dz <= tol * tol;
+    }
+    if (all) return e;
+  }
+  return -1;
+}
+
+/* Candidate c not mapped, as its map would be candidate by's: that map stands in for it where every
+ * candidate's map is read (the flips' and the differences' bookkeeping), its numbers are NaN, and it
+ * is neither chosen nor compared (not eligible). */
+static void skip_candidate(ss_autopair_info *info, int c, int by, int *maps, size_t nX, int *eligible, int *oriented,
+                           int *lm_off) {
+  info->hyp_skipped_by[c] = by;
+  memcpy(maps + nX * (size_t)c, maps + nX * (size_t)by, sizeof(int) * nX);
+  info->hyp_pair_energy[c] = info->hyp_distortion[c] = info->hyp_orientation[c] = NAN;
+  info->hyp_scale[c] = info->hyp_energy[c] = info->hyp_map_energy[c] = NAN;
+  info->hyp_reversed[c] = info->hyp_orientation_min[c] = info->hyp_differ[c] = NAN;
+  eligible[c] = 0, oriented[c] = oriented[by], lm_off[c] = 0;
 }
 
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
@@ -547,51 +585,59 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
   /* one ZoomOut plan for every candidate (unless made above; an empty one, no ZoomOut, costs nothing) */
   if (cs.nc > 1 && plan.n_S == 0 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
   const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
-  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = -1; /* (flip_by_y: 0 by memset) */
+  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = info.hyp_skipped_by[c] = -1; /* (flip_by_y: 0) */
   int flips_looked = 0;
   /* the flips' room: the 8 candidates in all that a match had before hyp_reverse, all of it with it */
   const int flip_cap = o.autopair.hyp_reverse ? SS_MAX_HYPOTHESES : 8;
   char flip_skipped[sizeof(ss_error) + 96] = "";
   for (int c = 0; c < cs.nc; c++) {
     const int nl = cs.n[c];
-    if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &fw, &r, err))) goto done;
-    double E = 0, dist = NAN, orient = NAN, pe = NAN, scale = NAN;
-    const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
-    /* the pairing hypothesis behind it (landmark-free), X's or Y's */
-    const ss_segment_pairs *hp = cs.pairs_of[c];
-    if (hp) {
-      pe = 0;
-      for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
+    const int by = nlg == 0 && cs.nc > 1 ? kept_by_earlier(Y->mesh, &cs, c, maps, nX, info.hyp_skipped_by,
+                                                           o.autopair.hyp_skip_tol * hc.sY)
+                                         : -1;
+    if (by >= 0) /* not mapped: its map would be #by's */
+      skip_candidate(&info, c, by, maps, nX, eligible, oriented, lm_off);
+    else {
+      if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &fw, &r, err))) goto done;
+      double E = 0, dist = NAN, orient = NAN, pe = NAN, scale = NAN;
+      const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
+      /* the pairing hypothesis behind it (landmark-free), X's or Y's */
+      const ss_segment_pairs *hp = cs.pairs_of[c];
+      if (hp) {
+        pe = 0;
+        for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
+      }
+      orient = ssi_map_orientation(SX, SY, r.map);
+      /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
+       * whole mirror has the lower distortion and even the lower reversed-segment share; docs/tuning.md) */
+      oriented[c] = !(orient < o.autopair.hyp_min_orientation);
+      if (cs.nc > 1) {
+        memcpy(maps + nX * c, r.map, sizeof(int) * nX);
+        if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
+        scale = hc.scale;
+        double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
+                                                  &info.hyp_orientation_min[c]);
+        info.hyp_reversed[c] = rev;
+        E = hypothesis_energy(&o.autopair, dist, rev, map_energy, orient);
+      }
+      info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
+      info.hyp_scale[c] = scale;
+      info.hyp_energy[c] = E;
+      info.hyp_map_energy[c] = map_energy;
+      /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
+       * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
+      int off = 0;
+      for (int i = 0; i < nlg; i++)
+        off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
+      eligible[c] = !cs.lm_free[c] || off <= nlg / 4, lm_off[c] = off;
+      const int hk = info.hypothesis;
+      if (c == 0 || (eligible[c] && (oriented[c] > oriented[hk] || (oriented[c] == oriented[hk] && E < best)))) {
+        if (c > 0) ss_match_result_free(out);
+        *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
+      } else
+        ss_match_result_free(&r);
+      memset(&r, 0, sizeof r);
     }
-    orient = ssi_map_orientation(SX, SY, r.map);
-    /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
-     * whole mirror has the lower distortion and even the lower reversed-segment share; docs/tuning.md) */
-    oriented[c] = !(orient < o.autopair.hyp_min_orientation);
-    if (cs.nc > 1) {
-      memcpy(maps + nX * c, r.map, sizeof(int) * nX);
-      if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
-      scale = hc.scale;
-      double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
-                                                &info.hyp_orientation_min[c]);
-      info.hyp_reversed[c] = rev;
-      E = hypothesis_energy(&o.autopair, dist, rev, map_energy, orient);
-    }
-    info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
-    info.hyp_scale[c] = scale;
-    info.hyp_energy[c] = E;
-    info.hyp_map_energy[c] = map_energy;
-    /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
-     * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
-    int off = 0;
-    for (int i = 0; i < nlg; i++)
-      off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
-    eligible[c] = !cs.lm_free[c] || off <= nlg / 4, lm_off[c] = off;
-    if (c == 0 || (eligible[c] && (oriented[c] > oriented[info.hypothesis] || (oriented[c] == oriented[info.hypothesis] && E < best)))) {
-      if (c > 0) ss_match_result_free(out);
-      *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
-    } else
-      ss_match_result_free(&r);
-    memset(&r, 0, sizeof r);
     /* once the first candidates are mapped: the flipped ones, when the map kept is not clearly
      * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs)
      * or a mirror image beats it */
@@ -626,6 +672,7 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
    * map and a right landmark-free map agree at almost equal energy, and that tie is no doubt
    * (FAUST_r tuning pairs with gt:5: 83 of 97 flagged by it alone; docs/tuning.md) */
   for (int c = 0; c < nc && nc > 1; c++) {
+    if (info.hyp_skipped_by[c] >= 0) continue; /* (NaN: not mapped) */
     info.hyp_differ[c] = map_differ_share(Y->mesh, o.autopair.hyp_differ_tol * hc.sY, (int)nX, maps + nX * c,
                                           maps + nX * info.hypothesis);
     if (c != info.hypothesis && eligible[c] && oriented[c] == best_oriented &&
