@@ -12,36 +12,7 @@
 #include "specseg/synth.h"
 #include "testlib.h"
 
-static char tmpdir[512];
-
-static const char *tmp(const char *name) {
-  static char buf[4][1024];
-  static int k = 0;
-  k = (k + 1) % 4;
-  snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-  return buf[k];
-}
-
-static void write_file(const char *path, const void *data, size_t n) {
-  FILE *f = fopen(path, "wb");
-  if (!f) { perror(path); exit(2); }
-  fwrite(data, 1, n, f);
-  fclose(f);
-}
-static void write_text(const char *path, const char *s) { write_file(path, s, strlen(s)); }
-
-static char *read_all(const char *path, size_t *n) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long sz = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = malloc((size_t)sz + 1);
-  *n = fread(b, 1, (size_t)sz, f);
-  b[*n] = 0;
-  fclose(f);
-  return b;
-}
+static void write_text(const char *path, const char *s) { tl_write_file(path, s, strlen(s)); }
 
 static int same_mesh(const ss_mesh *a, const ss_mesh *b) {
   if (a->nv != b->nv || a->nf != b->nf) return 0;
@@ -72,7 +43,7 @@ static void test_round_trips(void) {
     for (int col = 0; col < 2; col++) {
       char name[64];
       snprintf(name, sizeof name, "%s%s", col ? "c_" : "", cases[c].name);
-      const char *p = tmp(name);
+      const char *p = tl_tmp(name);
       ss_error err = {{0}};
       ss_status st = cases[c].kind == -1 ? ss_write_off(p, &m, col ? rgb : NULL, &err)
                      : cases[c].kind == -2 ? ss_write_mesh(p, &m, col ? rgb : NULL, &err)
@@ -89,7 +60,7 @@ static void test_round_trips(void) {
       ss_mesh_free(&r);
       /* colours are where the header says */
       size_t n;
-      char *txt = read_all(p, &n);
+      char *txt = tl_read_file(p, &n);
       if (!txt) { CHECK(0); continue; }
       if (col) {
         int ok = 1;
@@ -127,9 +98,9 @@ static void test_round_trips(void) {
   /* writer rejects an invalid mesh and an unknown extension */
   ss_error err;
   m.F[4] = m.nv;
-  CHECK(ss_write_off(tmp("bad.off"), &m, NULL, &err) == SS_ERR_INVALID);
+  CHECK(ss_write_off(tl_tmp("bad.off"), &m, NULL, &err) == SS_ERR_INVALID);
   m.F[4] = 0;
-  CHECK(ss_write_mesh(tmp("x.stl"), &m, NULL, &err) == SS_ERR_UNSUPPORTED);
+  CHECK(ss_write_mesh(tl_tmp("x.stl"), &m, NULL, &err) == SS_ERR_UNSUPPORTED);
   CHECK(ss_write_off("/nonexistent-dir/x.off", &m, NULL, &err) == SS_ERR_IO);
   free(rgb);
   ss_mesh_free(&m);
@@ -140,7 +111,7 @@ static int tri_is(const ss_mesh *m, int f, int a, int b, int c) {
 }
 
 static void test_obj(void) {
-  const char *p = tmp("t.obj");
+  const char *p = tl_tmp("t.obj");
   write_text(p,
              "# comment\r\nmtllib x.mtl\no thing\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0  0.5 0.5 0.5\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
              "g group\nusemtl m\ns off\n"
@@ -165,14 +136,14 @@ static void test_obj(void) {
   CHECK(ss_read_obj(p, &m, &err) == SS_OK && m.nf == 1);
   ss_mesh_free(&m);
   /* a .txt extension is sniffed */
-  const char *q = tmp("obj_as.txt");
+  const char *q = tl_tmp("obj_as.txt");
   write_text(q, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   CHECK(ss_read_mesh(q, &m, &err) == SS_OK && m.nv == 3 && m.nf == 1);
   ss_mesh_free(&m);
 }
 
 static void test_off_variants(void) {
-  const char *p = tmp("v.off");
+  const char *p = tl_tmp("v.off");
   ss_mesh m;
   ss_error err = {{0}};
   /* header with counts on the same line, comments, CRLF, colours on vertex and face lines, a quad */
@@ -217,7 +188,7 @@ static int quad_ok(const ss_mesh *m) {
 }
 
 static void test_ply_variants(void) {
-  const char *p = tmp("v.ply");
+  const char *p = tl_tmp("v.ply");
   ss_mesh m;
   ss_error err = {{0}};
   /* ascii: float coords, extra scalar and list properties, extra elements before and after, uchar
@@ -265,14 +236,14 @@ static void test_ply_variants(void) {
       }
       put(&B, 1, 1);
       put(&B, 2, 1);
-      write_file(p, B.b, B.n);
+      tl_write_file(p, B.b, B.n);
       CHECK_MSG(ss_read_ply(p, &m, &err) == SS_OK && quad_ok(&m), "binary big=%d double=%d: %s", big, dbl, err.msg);
       ss_mesh_free(&m);
       /* every strict prefix of the body fails cleanly (no crash, no success) */
       size_t hdr = (size_t)(strstr((char *)B.b, "end_header\n") - (char *)B.b) + 11;
       int all_fail = 1;
       for (size_t cut = hdr; cut < B.n - 2; cut++) { /* the 2-byte 'tail' element is optional data */
-        write_file(p, B.b, cut);
+        tl_write_file(p, B.b, cut);
         ss_status st = ss_read_ply(p, &m, &err);
         if (st == SS_OK || !strstr(err.msg, ": byte ")) all_fail = 0;
         ss_mesh_free(&m);
@@ -284,10 +255,10 @@ static void test_ply_variants(void) {
 static void test_errors(void) {
   ss_mesh m;
   ss_error err = {{0}};
-  CHECK(ss_read_mesh(tmpdir, &m, &err) == SS_ERR_IO && strstr(err.msg, "is a directory"));
-  CHECK(ss_read_mesh(tmp("missing.off"), &m, &err) == SS_ERR_IO && strstr(err.msg, "missing.off"));
+  CHECK(ss_read_mesh(tl_tmpdir, &m, &err) == SS_ERR_IO && strstr(err.msg, "is a directory"));
+  CHECK(ss_read_mesh(tl_tmp("missing.off"), &m, &err) == SS_ERR_IO && strstr(err.msg, "missing.off"));
   CHECK(m.nv == 0 && m.V == NULL);
-  const char *p = tmp("bad.off");
+  const char *p = tl_tmp("bad.off");
   write_text(p, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n");
   char want[1100];
   snprintf(want, sizeof want, "%s:6: ", p);
@@ -330,35 +301,35 @@ static void test_vectors(void) {
   int *ri = NULL, ni = -1;
   double *rd = NULL;
   int nd = -1;
-  CHECK(ss_write_ints(tmp("i.txt"), iv, 6, &err) == SS_OK);
-  CHECK(ss_read_ints(tmp("i.txt"), &ri, &ni, &err) == SS_OK && ni == 6 && !memcmp(ri, iv, sizeof iv));
+  CHECK(ss_write_ints(tl_tmp("i.txt"), iv, 6, &err) == SS_OK);
+  CHECK(ss_read_ints(tl_tmp("i.txt"), &ri, &ni, &err) == SS_OK && ni == 6 && !memcmp(ri, iv, sizeof iv));
   free(ri);
-  CHECK(ss_write_doubles(tmp("d.txt"), dv, 8, &err) == SS_OK);
-  CHECK(ss_read_doubles(tmp("d.txt"), &rd, &nd, &err) == SS_OK && nd == 8 && !memcmp(rd, dv, sizeof dv));
+  CHECK(ss_write_doubles(tl_tmp("d.txt"), dv, 8, &err) == SS_OK);
+  CHECK(ss_read_doubles(tl_tmp("d.txt"), &rd, &nd, &err) == SS_OK && nd == 8 && !memcmp(rd, dv, sizeof dv));
   free(rd);
   /* NaN round trips as NaN */
   double nanv = NAN;
-  CHECK(ss_write_doubles(tmp("n.txt"), &nanv, 1, &err) == SS_OK);
-  CHECK(ss_read_doubles(tmp("n.txt"), &rd, &nd, &err) == SS_OK && nd == 1 && isnan(rd[0]));
+  CHECK(ss_write_doubles(tl_tmp("n.txt"), &nanv, 1, &err) == SS_OK);
+  CHECK(ss_read_doubles(tl_tmp("n.txt"), &rd, &nd, &err) == SS_OK && nd == 1 && isnan(rd[0]));
   free(rd);
   /* comments, blank lines, CRLF, empty file */
-  write_text(tmp("c.txt"), "# header\r\n\r\n  3 # three\r\n-4\r\n\n");
-  CHECK(ss_read_ints(tmp("c.txt"), &ri, &ni, &err) == SS_OK && ni == 2 && ri[0] == 3 && ri[1] == -4);
+  write_text(tl_tmp("c.txt"), "# header\r\n\r\n  3 # three\r\n-4\r\n\n");
+  CHECK(ss_read_ints(tl_tmp("c.txt"), &ri, &ni, &err) == SS_OK && ni == 2 && ri[0] == 3 && ri[1] == -4);
   free(ri);
-  write_text(tmp("e.txt"), "");
-  CHECK(ss_read_doubles(tmp("e.txt"), &rd, &nd, &err) == SS_OK && nd == 0);
+  write_text(tl_tmp("e.txt"), "");
+  CHECK(ss_read_doubles(tl_tmp("e.txt"), &rd, &nd, &err) == SS_OK && nd == 0);
   free(rd);
   /* errors: two values a line, non-numbers, out-of-range ints, fractional ints, missing file */
-  write_text(tmp("b1.txt"), "1\n2 3\n");
-  CHECK(ss_read_ints(tmp("b1.txt"), &ri, &ni, &err) == SS_ERR_PARSE && strstr(err.msg, "b1.txt:2:") && ri == NULL);
-  write_text(tmp("b2.txt"), "1\nx\n");
-  CHECK(ss_read_doubles(tmp("b2.txt"), &rd, &nd, &err) == SS_ERR_PARSE && strstr(err.msg, "b2.txt:2:"));
-  write_text(tmp("b3.txt"), "2147483648\n");
-  CHECK(ss_read_ints(tmp("b3.txt"), &ri, &ni, &err) == SS_ERR_PARSE && strstr(err.msg, "b3.txt:1:"));
-  write_text(tmp("b4.txt"), "1.5\n");
-  CHECK(ss_read_ints(tmp("b4.txt"), &ri, &ni, &err) == SS_ERR_PARSE);
-  CHECK(ss_read_ints(tmp("none.txt"), &ri, &ni, &err) == SS_ERR_IO);
-  CHECK(ss_read_ints(tmpdir, &ri, &ni, &err) == SS_ERR_IO);
+  write_text(tl_tmp("b1.txt"), "1\n2 3\n");
+  CHECK(ss_read_ints(tl_tmp("b1.txt"), &ri, &ni, &err) == SS_ERR_PARSE && strstr(err.msg, "b1.txt:2:") && ri == NULL);
+  write_text(tl_tmp("b2.txt"), "1\nx\n");
+  CHECK(ss_read_doubles(tl_tmp("b2.txt"), &rd, &nd, &err) == SS_ERR_PARSE && strstr(err.msg, "b2.txt:2:"));
+  write_text(tl_tmp("b3.txt"), "2147483648\n");
+  CHECK(ss_read_ints(tl_tmp("b3.txt"), &ri, &ni, &err) == SS_ERR_PARSE && strstr(err.msg, "b3.txt:1:"));
+  write_text(tl_tmp("b4.txt"), "1.5\n");
+  CHECK(ss_read_ints(tl_tmp("b4.txt"), &ri, &ni, &err) == SS_ERR_PARSE);
+  CHECK(ss_read_ints(tl_tmp("none.txt"), &ri, &ni, &err) == SS_ERR_IO);
+  CHECK(ss_read_ints(tl_tmpdir, &ri, &ni, &err) == SS_ERR_IO);
 }
 
 /* The in-memory readers give what the path readers give on the same bytes, sniff the mesh format
@@ -367,14 +338,14 @@ static void test_memory(void) {
   ss_error err = {{0}};
   ss_mesh m, r, q;
   test_mesh(&m);
-  const char *p[4] = {tmp("mem.off"), tmp("mem.ply"), tmp("mema.ply"), tmp("membe.ply")};
+  const char *p[4] = {tl_tmp("mem.off"), tl_tmp("mem.ply"), tl_tmp("mema.ply"), tl_tmp("membe.ply")};
   CHECK(ss_write_off(p[0], &m, NULL, &err) == SS_OK);
   CHECK(ss_write_ply(p[1], &m, NULL, SS_PLY_BINARY_LE, &err) == SS_OK);
   CHECK(ss_write_ply(p[2], &m, NULL, SS_PLY_ASCII, &err) == SS_OK);
   CHECK(ss_write_ply(p[3], &m, NULL, SS_PLY_BINARY_BE, &err) == SS_OK);
   for (int k = 0; k < 4; k++) {
     size_t n;
-    char *b = read_all(p[k], &n);
+    char *b = tl_read_file(p[k], &n);
     CHECK(b != NULL);
     if (!b) continue;
     char *exact = malloc(n + 1); /* exactly n bytes readable, no trailing NUL */
@@ -448,7 +419,7 @@ static void test_faust(void) {
   CHECK_MSG(ss_read_mesh(path, &m, &err) == SS_OK, "%s", err.msg);
   CHECK(m.nv == 6890 && m.nf == 13776);
   /* through every writer and back */
-  const char *p[3] = {tmp("f.off"), tmp("f.ply"), tmp("fa.ply")};
+  const char *p[3] = {tl_tmp("f.off"), tl_tmp("f.ply"), tl_tmp("fa.ply")};
   CHECK(ss_write_mesh(p[0], &m, NULL, &err) == SS_OK);
   CHECK(ss_write_mesh(p[1], &m, NULL, &err) == SS_OK);
   CHECK(ss_write_ply(p[2], &m, NULL, SS_PLY_ASCII, &err) == SS_OK);
@@ -469,14 +440,14 @@ static void test_colors(void) {
   ss_error err;
   const ss_ply_format fmts[] = {SS_PLY_ASCII, SS_PLY_BINARY_LE, SS_PLY_BINARY_BE};
   for (int k = 0; k < 3; k++) {
-    const char *p = tmp("c.ply");
+    const char *p = tl_tmp("c.ply");
     CHECK(ss_write_ply(p, &m, rgb, fmts[k], &err) == SS_OK);
     CHECK(ss_read_mesh_colors(p, &r, &got, &err) == SS_OK);
     CHECK(got && same_mesh(&m, &r) && !memcmp(got, rgb, 3 * (size_t)m.nv));
     free(got);
     ss_mesh_free(&r);
     size_t n = 0;
-    char *b = read_all(p, &n);
+    char *b = tl_read_file(p, &n);
     CHECK(ss_read_mesh_colors_memory(b, n, "mem", &r, &got, &err) == SS_OK);
     CHECK(got && !memcmp(got, rgb, 3 * (size_t)m.nv));
     free(got);
@@ -486,19 +457,19 @@ static void test_colors(void) {
     ss_mesh_free(&r);
   }
   /* no colours: NULL; OFF (even COFF) gives NULL */
-  CHECK(ss_write_ply(tmp("n.ply"), &m, NULL, SS_PLY_ASCII, &err) == SS_OK);
+  CHECK(ss_write_ply(tl_tmp("n.ply"), &m, NULL, SS_PLY_ASCII, &err) == SS_OK);
   got = (unsigned char *)1;
-  CHECK(ss_read_mesh_colors(tmp("n.ply"), &r, &got, &err) == SS_OK && got == NULL);
+  CHECK(ss_read_mesh_colors(tl_tmp("n.ply"), &r, &got, &err) == SS_OK && got == NULL);
   ss_mesh_free(&r);
-  CHECK(ss_write_off(tmp("c.off"), &m, rgb, &err) == SS_OK);
-  CHECK(ss_read_mesh_colors(tmp("c.off"), &r, &got, &err) == SS_OK && got == NULL);
+  CHECK(ss_write_off(tl_tmp("c.off"), &m, rgb, &err) == SS_OK);
+  CHECK(ss_read_mesh_colors(tl_tmp("c.off"), &r, &got, &err) == SS_OK && got == NULL);
   ss_mesh_free(&r);
   /* float channels and the diffuse_ names; only two channels: no colours */
-  write_text(tmp("f.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+  write_text(tl_tmp("f.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                            "property float z\nproperty float diffuse_red\nproperty float diffuse_green\n"
                            "property float diffuse_blue\nelement face 1\nproperty list uchar int vertex_indices\n"
                            "end_header\n0 0 0 1 0 0.5\n1 0 0 0 1 2\n0 1 0 0.2 0.4 -1\n3 0 1 2\n");
-  CHECK(ss_read_mesh_colors(tmp("f.ply"), &r, &got, &err) == SS_OK && got);
+  CHECK(ss_read_mesh_colors(tl_tmp("f.ply"), &r, &got, &err) == SS_OK && got);
   if (got) {
     const unsigned char want[9] = {255, 0, 128, 0, 255, 255, 51, 102, 0};
     CHECK_MSG(!memcmp(got, want, 9), "%d %d %d  %d %d %d  %d %d %d", got[0], got[1], got[2], got[3], got[4], got[5],
@@ -506,12 +477,12 @@ static void test_colors(void) {
   }
   free(got);
   ss_mesh_free(&r);
-  write_text(tmp("g.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+  write_text(tl_tmp("g.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                            "property float z\nproperty uchar red\nproperty uchar green\n"
                            "element face 1\nproperty list uchar int vertex_indices\n"
                            "end_header\n0 0 0 1 0\n1 0 0 0 1\n0 1 0 2 4\n3 0 1 2\n");
   got = (unsigned char *)1;
-  CHECK(ss_read_mesh_colors(tmp("g.ply"), &r, &got, &err) == SS_OK && got == NULL && r.nv == 3);
+  CHECK(ss_read_mesh_colors(tl_tmp("g.ply"), &r, &got, &err) == SS_OK && got == NULL && r.nv == 3);
   ss_mesh_free(&r);
   free(rgb);
   ss_mesh_free(&m);
@@ -529,26 +500,26 @@ static void test_obj_out_and_labels(void) {
     rgb[3 * i] = (unsigned char)i, rgb[3 * i + 1] = 255, rgb[3 * i + 2] = 0;
     lab[i] = i % 7 - 1;
   }
-  CHECK(ss_write_mesh(tmp("o.obj"), &m, NULL, &err) == SS_OK);
-  CHECK(ss_read_mesh(tmp("o.obj"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  CHECK(ss_write_mesh(tl_tmp("o.obj"), &m, NULL, &err) == SS_OK);
+  CHECK(ss_read_mesh(tl_tmp("o.obj"), &r, &err) == SS_OK && same_mesh(&m, &r));
   ss_mesh_free(&r);
-  CHECK(ss_write_mesh(tmp("oc.OBJ"), &m, rgb, &err) == SS_OK);
-  CHECK(ss_read_mesh(tmp("oc.OBJ"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  CHECK(ss_write_mesh(tl_tmp("oc.OBJ"), &m, rgb, &err) == SS_OK);
+  CHECK(ss_read_mesh(tl_tmp("oc.OBJ"), &r, &err) == SS_OK && same_mesh(&m, &r));
   ss_mesh_free(&r);
   size_t n = 0;
-  char *txt = read_all(tmp("oc.OBJ"), &n);
+  char *txt = tl_read_file(tl_tmp("oc.OBJ"), &n);
   CHECK(txt && strstr(txt, " 0 1 0\n") && strstr(txt, "\nf 1 "));
   free(txt);
   const ss_ply_format fmts[] = {SS_PLY_ASCII, SS_PLY_BINARY_LE, SS_PLY_BINARY_BE};
   for (int k = 0; k < 3; k++)
     for (int with_rgb = 0; with_rgb < 2; with_rgb++) {
-      CHECK(ss_write_ply_labels(tmp("l.ply"), &m, with_rgb ? rgb : NULL, lab, fmts[k], &err) == SS_OK);
+      CHECK(ss_write_ply_labels(tl_tmp("l.ply"), &m, with_rgb ? rgb : NULL, lab, fmts[k], &err) == SS_OK);
       unsigned char *got = NULL;
-      CHECK(ss_read_mesh_colors(tmp("l.ply"), &r, &got, &err) == SS_OK && same_mesh(&m, &r));
+      CHECK(ss_read_mesh_colors(tl_tmp("l.ply"), &r, &got, &err) == SS_OK && same_mesh(&m, &r));
       CHECK(with_rgb ? got && !memcmp(got, rgb, 3 * (size_t)m.nv) : got == NULL);
       free(got);
       ss_mesh_free(&r);
-      txt = read_all(tmp("l.ply"), &n);
+      txt = tl_read_file(tl_tmp("l.ply"), &n);
       CHECK(txt && strstr(txt, "property int label\nelement face"));
       if (txt && k == 0) { /* ascii: the last value of vertex 2's line is its label, 1 */
         char *body = strstr(txt, "end_header\n") + 11;
@@ -559,12 +530,12 @@ static void test_obj_out_and_labels(void) {
       }
       free(txt);
     }
-  CHECK(ss_write_mesh_labels(tmp("ml.ply"), &m, rgb, lab, &err) == SS_OK);
-  txt = read_all(tmp("ml.ply"), &n);
+  CHECK(ss_write_mesh_labels(tl_tmp("ml.ply"), &m, rgb, lab, &err) == SS_OK);
+  txt = tl_read_file(tl_tmp("ml.ply"), &n);
   CHECK(txt && strstr(txt, "binary_little_endian") && strstr(txt, "property int label"));
   free(txt);
-  CHECK(ss_write_mesh_labels(tmp("ml.off"), &m, rgb, lab, &err) == SS_OK); /* labels dropped */
-  CHECK(ss_read_mesh(tmp("ml.off"), &r, &err) == SS_OK && same_mesh(&m, &r));
+  CHECK(ss_write_mesh_labels(tl_tmp("ml.off"), &m, rgb, lab, &err) == SS_OK); /* labels dropped */
+  CHECK(ss_read_mesh(tl_tmp("ml.off"), &r, &err) == SS_OK && same_mesh(&m, &r));
   ss_mesh_free(&r);
   free(rgb);
   free(lab);
@@ -572,8 +543,7 @@ static void test_obj_out_and_labels(void) {
 }
 
 int main(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/ss_test_io_XXXXXX");
-  if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 2; }
+  if (!tl_tmpdir_make("/tmp/ss_test_io_XXXXXX")) { perror("mkdtemp"); return 2; }
   test_round_trips();
   test_obj();
   test_off_variants();
@@ -585,13 +555,13 @@ int main(void) {
   test_obj_out_and_labels();
   test_faust();
   /* clean up the scratch folder */
-  DIR *d = opendir(tmpdir);
+  DIR *d = opendir(tl_tmpdir);
   if (d) {
     struct dirent *de;
     while ((de = readdir(d)))
-      if (de->d_name[0] != '.') unlink(tmp(de->d_name));
+      if (de->d_name[0] != '.') unlink(tl_tmp(de->d_name));
     closedir(d);
   }
-  rmdir(tmpdir);
+  rmdir(tl_tmpdir);
   TEST_MAIN_END();
 }

@@ -10,22 +10,6 @@
 #include "specseg/mesh.h"
 #include "testlib.h"
 
-static char tmpdir[512];
-
-static const char *tmp(const char *name) {
-  static char buf[4][1024];
-  static int k = 0;
-  k = (k + 1) % 4;
-  snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-  return buf[k];
-}
-
-static void write_file(const char *path, const void *data, size_t n) {
-  FILE *f = fopen(path, "wb");
-  if (!f) { perror(path); exit(2); }
-  fwrite(data, 1, n, f);
-  fclose(f);
-}
 
 static void check_closed(const ss_mesh *r, const char *what) {
   ss_mesh_report rep;
@@ -68,10 +52,10 @@ static void test_gltf(void) {
                    "\"min\":[0,0,0],\"max\":[1,1,1]},{\"bufferView\":1,\"componentType\":5123,\"count\":12,"
                    "\"type\":\"SCALAR\"}]}\n",
                    b64);
-  write_file(tmp("tet.gltf"), json, (size_t)n);
+  tl_write_file(tl_tmp("tet.gltf"), json, (size_t)n);
   ss_error e;
   ss_mesh r = {0};
-  ss_status st = ss_read_mesh(tmp("tet.gltf"), &r, &e);
+  ss_status st = ss_read_mesh(tl_tmp("tet.gltf"), &r, &e);
   CHECK_MSG(st == SS_OK, "tet.gltf: %s", e.msg);
   if (!st) {
     CHECK_MSG(r.nv == 4 && r.nf == 4, "%d v %d f", r.nv, r.nf);
@@ -101,8 +85,8 @@ static void test_gltf(void) {
   memcpy(glb + o, j2, (size_t)jn), o += (size_t)jn;
   memcpy(glb + o, cb, 8), o += 8;
   memcpy(glb + o, buf, 72), o += 72;
-  write_file(tmp("tet.glb"), glb, o);
-  st = ss_read_mesh(tmp("tet.glb"), &r, &e);
+  tl_write_file(tl_tmp("tet.glb"), glb, o);
+  st = ss_read_mesh(tl_tmp("tet.glb"), &r, &e);
   CHECK_MSG(st == SS_OK && r.nv == 4 && r.nf == 4, "tet.glb: %s", st ? e.msg : "counts");
   if (!st) CHECK(r.V[0] == 10 && r.V[11] == 1);
   ss_mesh_free(&r);
@@ -110,18 +94,17 @@ static void test_gltf(void) {
   CHECK_MSG(st == SS_OK && r.nv == 4, "glb from memory: %s", st ? e.msg : "counts");
   ss_mesh_free(&r);
   /* a scene without meshes */
-  write_file(tmp("empty.gltf"), "{\"asset\":{\"version\":\"2.0\"}}", 27);
-  CHECK(ss_read_mesh(tmp("empty.gltf"), &r, &e) != SS_OK && strstr(e.msg, "empty.gltf") && !r.V);
+  tl_write_file(tl_tmp("empty.gltf"), "{\"asset\":{\"version\":\"2.0\"}}", 27);
+  CHECK(ss_read_mesh(tl_tmp("empty.gltf"), &r, &e) != SS_OK && strstr(e.msg, "empty.gltf") && !r.V);
 }
 
 int main(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/ss_test_assimp_XXXXXX");
-  if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 2; }
+  if (!tl_tmpdir_make("/tmp/ss_test_assimp_XXXXXX")) { perror("mkdtemp"); return 2; }
   /* which build is this? */
   ss_mesh r = {0};
   ss_error e;
-  write_file(tmp("probe.gltf"), "{\"asset\":{\"version\":\"2.0\"}}", 27);
-  ss_status st = ss_read_mesh(tmp("probe.gltf"), &r, &e);
+  tl_write_file(tl_tmp("probe.gltf"), "{\"asset\":{\"version\":\"2.0\"}}", 27);
+  ss_status st = ss_read_mesh(tl_tmp("probe.gltf"), &r, &e);
   ss_mesh_free(&r);
   CHECK(ss_mesh_extension_supported("a/b.OFF") == 1 && ss_mesh_extension_supported("x.ply") == 1 &&
         ss_mesh_extension_supported("x.obj") == 1 && ss_mesh_extension_supported("x.stl") == 1 &&
@@ -134,8 +117,6 @@ int main(void) {
   } else {
     test_gltf();
   }
-  char cmd[600];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-  if (system(cmd)) fprintf(stderr, "could not remove %s\n", tmpdir);
+  tl_tmpdir_remove();
   TEST_MAIN_END();
 }

@@ -13,35 +13,6 @@
 #include "specseg/synth.h"
 #include "testlib.h"
 
-static char tmpdir[512];
-
-static const char *tmp(const char *name) {
-  static char buf[4][1024];
-  static int k = 0;
-  k = (k + 1) % 4;
-  snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-  return buf[k];
-}
-
-static void write_file(const char *path, const void *data, size_t n) {
-  FILE *f = fopen(path, "wb");
-  if (!f) { perror(path); exit(2); }
-  fwrite(data, 1, n, f);
-  fclose(f);
-}
-
-static char *read_all(const char *path, size_t *n) {
-  *n = 0;
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long sz = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *b = malloc((size_t)sz + 1);
-  *n = fread(b, 1, (size_t)sz, f);
-  fclose(f);
-  return b;
-}
 
 /* STL of m: every face's three corners as float32 (ascii with %.17g of the same floats, which reads
  * back as those values exactly, so both encodings hold identical coordinates). */
@@ -133,7 +104,7 @@ static void test_stl(void) {
   const ss_mesh *ms[2] = {&ico, &cube};
   for (int s = 0; s < 2; s++)
     for (int bin = 0; bin < 2; bin++) {
-      const char *p = tmp(bin ? "m_bin.STL" : "m_ascii.stl"); /* extension case-insensitive */
+      const char *p = tl_tmp(bin ? "m_bin.STL" : "m_ascii.stl"); /* extension case-insensitive */
       write_stl(p, ms[s], bin);
       ss_status st = ss_read_mesh(p, &r, &e);
       CHECK_MSG(st == SS_OK, "%s: %s", p, e.msg);
@@ -144,7 +115,7 @@ static void test_stl(void) {
       check_closed(&r, p);
       /* the same bytes from memory: the format comes from the content */
       size_t n;
-      char *b = read_all(p, &n);
+      char *b = tl_read_file(p, &n);
       ss_mesh r2 = {0};
       st = ss_read_mesh_memory(b, n, "<bytes>", &r2, &e);
       CHECK_MSG(st == SS_OK, "memory: %s", e.msg);
@@ -154,7 +125,7 @@ static void test_stl(void) {
       ss_mesh_free(&r2);
       ss_mesh_free(&r);
     }
-  CHECK(ss_read_mesh(tmp("missing.stl"), &r, &e) == SS_ERR_IO && strstr(e.msg, "cannot open"));
+  CHECK(ss_read_mesh(tl_tmp("missing.stl"), &r, &e) == SS_ERR_IO && strstr(e.msg, "cannot open"));
   ss_mesh_free(&ico), ss_mesh_free(&cube);
 }
 
@@ -212,10 +183,10 @@ static void test_stl_errors(void) {
   };
   for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
     const char *t = cases[k].text;
-    write_file(tmp("bad.stl"), t, strlen(t));
+    tl_write_file(tl_tmp("bad.stl"), t, strlen(t));
     ss_mesh r = {0};
     ss_error e = {{0}};
-    ss_status st = ss_read_mesh(tmp("bad.stl"), &r, &e);
+    ss_status st = ss_read_mesh(tl_tmp("bad.stl"), &r, &e);
     const char *want = cases[k].want;
     CHECK_MSG(st == SS_ERR_PARSE && strstr(e.msg, "bad.stl") && strstr(e.msg, want) && r.nv == 0 && !r.V,
               "case %zu: %s (want '%s')", k, e.msg, want);
@@ -223,37 +194,34 @@ static void test_stl_errors(void) {
   }
   /* a NUL ends no text: it is part of the token (assimp stopped reading there) */
   static const char nul[] = "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\0 vertex 1 0 0\n";
-  write_file(tmp("nul.stl"), nul, sizeof nul - 1);
+  tl_write_file(tl_tmp("nul.stl"), nul, sizeof nul - 1);
   ss_mesh r = {0};
   ss_error e;
-  CHECK_MSG(ss_read_mesh(tmp("nul.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "nul.stl:4: a vertex coordinate is not a number"),
+  CHECK_MSG(ss_read_mesh(tl_tmp("nul.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "nul.stl:4: a vertex coordinate is not a number"),
             "%s", e.msg);
   /* binary: the length must be 84 + 50 n for the declared n */
   char junk[100] = {0};
   junk[80] = 9; /* 9 facets declared, none there */
-  write_file(tmp("short.stl"), junk, sizeof junk);
-  CHECK(ss_read_mesh(tmp("short.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "short.stl") &&
+  tl_write_file(tl_tmp("short.stl"), junk, sizeof junk);
+  CHECK(ss_read_mesh(tl_tmp("short.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "short.stl") &&
         strstr(e.msg, "declares 9 facets, which take 534 bytes; the file has 100"));
   junk[80] = 0;
-  write_file(tmp("zero.stl"), junk, 84);
-  CHECK_MSG(ss_read_mesh(tmp("zero.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "binary STL without facets"), "%s", e.msg);
-  write_file(tmp("tiny.stl"), "abc", 3);
-  CHECK(ss_read_mesh(tmp("tiny.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "shorter than a binary STL's 84-byte"));
-  write_file(tmp("empty.stl"), "", 0);
-  CHECK(ss_read_mesh(tmp("empty.stl"), &r, &e) == SS_ERR_PARSE);
+  tl_write_file(tl_tmp("zero.stl"), junk, 84);
+  CHECK_MSG(ss_read_mesh(tl_tmp("zero.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "binary STL without facets"), "%s", e.msg);
+  tl_write_file(tl_tmp("tiny.stl"), "abc", 3);
+  CHECK(ss_read_mesh(tl_tmp("tiny.stl"), &r, &e) == SS_ERR_PARSE && strstr(e.msg, "shorter than a binary STL's 84-byte"));
+  tl_write_file(tl_tmp("empty.stl"), "", 0);
+  CHECK(ss_read_mesh(tl_tmp("empty.stl"), &r, &e) == SS_ERR_PARSE);
 }
 
 int main(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/ss_test_stl_XXXXXX");
-  if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 2; }
+  if (!tl_tmpdir_make("/tmp/ss_test_stl_XXXXXX")) { perror("mkdtemp"); return 2; }
   test_weld();
   CHECK(ss_mesh_extension_supported("m.stl") == 1 && ss_mesh_extension_supported("M.STL") == 1 &&
         ss_mesh_extension_supported("stl") == 0 && ss_mesh_extension_supported("d.stl/x") == 0);
   test_stl();
   test_stl_variants();
   test_stl_errors();
-  char cmd[600];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-  if (system(cmd)) fprintf(stderr, "could not remove %s\n", tmpdir);
+  tl_tmpdir_remove();
   TEST_MAIN_END();
 }

@@ -42,6 +42,53 @@ static inline const char *tl_data_dir(void) {
   return d;
 }
 
+/* A test's scratch folder: tl_tmpdir_make("/tmp/ss_test_NAME_XXXXXX") once (0 when it cannot be
+ * made), tl_tmp(name) a path in it (four rotating buffers: up to four in use at once),
+ * tl_tmpdir_remove() at the end. */
+static char tl_tmpdir[512];
+
+static inline int tl_tmpdir_make(const char *tmpl) {
+  snprintf(tl_tmpdir, sizeof tl_tmpdir, "%s", tmpl);
+  return mkdtemp(tl_tmpdir) != NULL;
+}
+
+static inline const char *tl_tmp(const char *name) {
+  static char buf[4][1024];
+  static int k = 0;
+  k = (k + 1) % 4;
+  snprintf(buf[k], sizeof buf[k], "%s/%s", tl_tmpdir, name);
+  return buf[k];
+}
+
+static inline void tl_tmpdir_remove(void) {
+  char cmd[600];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tl_tmpdir);
+  if (system(cmd)) fprintf(stderr, "could not remove %s\n", tl_tmpdir);
+}
+
+/* The whole file at path in a malloc'd buffer with a NUL after its *n bytes; NULL (and *n 0) when it
+ * cannot be read */
+static inline char *tl_read_file(const char *path, size_t *n) {
+  *n = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return NULL;
+  fseek(f, 0, SEEK_END);
+  long sz = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *b = sz >= 0 ? malloc((size_t)sz + 1) : NULL;
+  if (b) b[*n = fread(b, 1, (size_t)sz, f)] = 0;
+  fclose(f);
+  return b;
+}
+
+/* n bytes of data as the whole file at path (exits the test on failure to open it) */
+static inline void tl_write_file(const char *path, const void *data, size_t n) {
+  FILE *f = fopen(path, "wb");
+  if (!f) { perror(path); exit(2); }
+  fwrite(data, 1, n, f);
+  fclose(f);
+}
+
 /* For each of nv vertices V (nv x 3), the vertex nearest to its mirror image in the plane x = 0 (brute
  * force: small test meshes); returns the largest of those distances. */
 static inline double tl_mirror_map(const double *V, int nv, int *sym) {
