@@ -32,4 +32,20 @@ static inline void fuzz_check_mesh(ss_status st, const ss_mesh *m, const ss_erro
   for (size_t i = 0; i < 3 * (size_t)m->nf; i++) FUZZ_ASSERT(m->F[i] >= 0 && m->F[i] < m->nv);
 }
 
+/* A parser over loaded bytes (mesh/io_internal.h's io_parse_*) on the fuzzer's data as the readers
+ * hand it over (a private copy with a trailing NUL), its result checked as above under the name. */
+static inline void fuzz_parser(ss_status (*parse)(const char *, const char *, size_t, ss_mesh *, ss_error *),
+                               const char *name, const uint8_t *data, size_t size) {
+  char *buf = malloc(size + 1);
+  if (!buf) return;
+  memcpy(buf, data, size);
+  buf[size] = '\0';
+  ss_mesh m = {0};
+  ss_error e = {{0}};
+  ss_status st = parse(name, buf, size, &m, &e);
+  fuzz_check_mesh(st, &m, &e, name);
+  ss_mesh_free(&m);
+  free(buf);
+}
+
 #endif

@@ -5,15 +5,6 @@
 #include "mesh/io_internal.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-  char *buf = malloc(size + 1);
-  if (!buf) return 0;
-  memcpy(buf, data, size);
-  buf[size] = '\0';
-  ss_mesh m = {0};
-  ss_error e = {{0}};
-  ss_status st = io_parse_ply("fuzz.ply", buf, size, &m, &e);
-  fuzz_check_mesh(st, &m, &e, "fuzz.ply");
-  ss_mesh_free(&m);
-  free(buf);
+  fuzz_parser(io_parse_ply, "fuzz.ply", data, size);
   return 0;
 }
