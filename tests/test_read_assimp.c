@@ -10,16 +10,6 @@
 #include "specseg/mesh.h"
 #include "testlib.h"
 
-
-static void check_closed(const ss_mesh *r, const char *what) {
-  ss_mesh_report rep;
-  ss_error e;
-  CHECK(ss_mesh_check(r, &rep, &e) == SS_OK);
-  CHECK_MSG(rep.components == 1 && rep.boundary_edges == 0 && rep.manifold && rep.oriented && rep.euler_characteristic == 2,
-            "%s: components %d, boundary edges %d, manifold %d, oriented %d, chi %d", what, rep.components,
-            rep.boundary_edges, rep.manifold, rep.oriented, rep.euler_characteristic);
-}
-
 static const char B64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
 static void base64(const unsigned char *in, size_t n, char *out) {
@@ -62,7 +52,7 @@ static void test_gltf(void) {
     int same = r.nv == 4;
     for (int i = 0; same && i < 12; i++) same = r.V[i] == P[i] + (i % 3 == 0 ? 10 : 0) && r.F[i] == I[i];
     CHECK_MSG(same, "the node's translation applied, vertices and faces in the file's order");
-    check_closed(&r, "tet.gltf");
+    tl_check_closed(&r, "tet.gltf");
     ss_mesh_free(&r);
   }
   /* the same JSON from memory */

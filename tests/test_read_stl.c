@@ -13,7 +13,6 @@
 #include "specseg/synth.h"
 #include "testlib.h"
 
-
 /* STL of m: every face's three corners as float32 (ascii with %.17g of the same floats, which reads
  * back as those values exactly, so both encodings hold identical coordinates). */
 static void write_stl(const char *path, const ss_mesh *m, int binary) {
@@ -63,15 +62,6 @@ static int same_as_welded(const ss_mesh *m, const ss_mesh *r) {
   return ok;
 }
 
-static void check_closed(const ss_mesh *r, const char *what) {
-  ss_mesh_report rep;
-  ss_error e;
-  CHECK(ss_mesh_check(r, &rep, &e) == SS_OK);
-  CHECK_MSG(rep.components == 1 && rep.boundary_edges == 0 && rep.manifold && rep.oriented && rep.euler_characteristic == 2,
-            "%s: components %d, boundary edges %d, manifold %d, oriented %d, chi %d", what, rep.components,
-            rep.boundary_edges, rep.manifold, rep.oriented, rep.euler_characteristic);
-}
-
 static void test_weld(void) {
   /* two triangles sharing an edge, given as a soup; -0 equals 0; NaN vertices stay apart */
   double V[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, /* */ 1, 0, 0, 1, 1, 0, -0.0, 1, 0, /* */ NAN, 0, 0, NAN, 0, 0, 5, 5, 5};
@@ -112,7 +102,7 @@ static void test_stl(void) {
       CHECK_MSG(r.nv == ms[s]->nv && r.nf == ms[s]->nf, "%s %s: %d v %d f, want %d %d", s ? "cube" : "icosphere",
                 bin ? "binary" : "ascii", r.nv, r.nf, ms[s]->nv, ms[s]->nf);
       CHECK(same_as_welded(ms[s], &r));
-      check_closed(&r, p);
+      tl_check_closed(&r, p);
       /* the same bytes from memory: the format comes from the content */
       size_t n;
       char *b = tl_read_file(p, &n);

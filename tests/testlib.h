@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "specseg/mesh.h"
+
 static int tl_pass = 0, tl_fail = 0, tl_skip = 0;
 
 #define CHECK(cond)                                                                   \
@@ -87,6 +89,16 @@ static inline void tl_write_file(const char *path, const void *data, size_t n) {
   if (!f) { perror(path); exit(2); }
   fwrite(data, 1, n, f);
   fclose(f);
+}
+
+/* r is one closed, manifold, consistently oriented surface of genus 0 (a sphere's topology) */
+static inline void tl_check_closed(const ss_mesh *r, const char *what) {
+  ss_mesh_report rep;
+  ss_error e;
+  CHECK(ss_mesh_check(r, &rep, &e) == SS_OK);
+  CHECK_MSG(rep.components == 1 && rep.boundary_edges == 0 && rep.manifold && rep.oriented && rep.euler_characteristic == 2,
+            "%s: components %d, boundary edges %d, manifold %d, oriented %d, chi %d", what, rep.components,
+            rep.boundary_edges, rep.manifold, rep.oriented, rep.euler_characteristic);
 }
 
 /* For each of nv vertices V (nv x 3), the vertex nearest to its mirror image in the plane x = 0 (brute
