@@ -282,8 +282,9 @@ specseg.write_png(path("b.png"), img)
 with open(path("b.png"), "rb") as f:
     check(f.read(8) == b"\x89PNG\r\n\x1a\n", "write_png signature")
 
-# --- read_mesh of STL (binary) and glTF: the vertices welded in order of first occurrence, as float32;
-#     the same mesh as the CLI reads (segment --ply writes the input mesh it read, float64) ---
+# --- read_mesh of STL (binary; our reader) and glTF (assimp): the vertices welded in order of first
+#     occurrence, as float32; the same mesh as the CLI reads (segment --ply writes the input mesh it
+#     read, float64) ---
 first = np.unique(F.ravel(), return_index=True)
 order = first[0][np.argsort(first[1])]            # vertices in order of first occurrence in F
 new_id = np.full(n, -1, np.int64)
@@ -294,10 +295,13 @@ with open(path("m.stl"), "wb") as f:
     rec = np.zeros(F.shape[0], dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
     rec["v"] = V32[F]
     f.write(rec.tobytes())
+Vs, Fs = specseg.read_mesh(path("m.stl"))  # our own reader: with or without assimp
+check(Vs.shape == (order.size, 3) and np.array_equal(Fs, new_id[F]), "read_mesh STL: welded faces")
+check(np.array_equal(Vs, V32[order].astype(np.float64)), "read_mesh STL: float32 vertices, first-occurrence order")
+cli("segment", path("m.stl"), "-o", path("ls.txt"), "--ply", path("ms.ply"), "--faces", 4000)
+Vp, Fp = specseg.read_mesh(path("ms.ply"))
+check(np.array_equal(Vp, Vs) and np.array_equal(Fp, Fs), "read_mesh STL = the mesh specseg reads")
 try:
-    Vs, Fs = specseg.read_mesh(path("m.stl"))
-    check(Vs.shape == (order.size, 3) and np.array_equal(Fs, new_id[F]), "read_mesh STL: welded faces")
-    check(np.array_equal(Vs, V32[order].astype(np.float64)), "read_mesh STL: float32 vertices, first-occurrence order")
     import base64, json
     blob = V32.tobytes() + F.astype(np.uint32).tobytes()
     g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "scale": [2, 2, 2]}],
@@ -317,12 +321,9 @@ try:
     gid = np.searchsorted(keep, first_i[inv.ravel()])
     check(np.array_equal(Fg, gid[F]) and np.array_equal(Vg, 2 * V32[keep].astype(np.float64)),
           "read_mesh glTF: the node's scale applied, equal vertices welded")
-    cli("segment", path("m.stl"), "-o", path("ls.txt"), "--ply", path("ms.ply"), "--faces", 4000)
-    Vp, Fp = specseg.read_mesh(path("ms.ply"))
-    check(np.array_equal(Vp, Vs) and np.array_equal(Fp, Fs), "read_mesh STL = the mesh specseg reads")
 except specseg.SpecsegError as ex:
-    check("libassimp-dev" in str(ex), "read_mesh STL without assimp names libassimp-dev: %s" % ex)
-    print("SKIP: STL / glTF (%s)" % ex)
+    check("libassimp-dev" in str(ex), "read_mesh glTF without assimp names libassimp-dev: %s" % ex)
+    print("SKIP: glTF (%s)" % ex)
 
 # --- the library's calls run with OpenBLAS single-threaded; the caller's setting comes back ---
 from specseg import _clib  # noqa: E402
