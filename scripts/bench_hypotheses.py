@@ -4,11 +4,14 @@
 side: rounds interleaved (the order of the methods rotates from round to round), one thread each,
 medians printed with their ratios.
 
-  scripts/bench_hypotheses.py SPECSEG X1 Y1 [X2 Y2 ...] [--rounds R] [--pyfm DIR]
+  scripts/bench_hypotheses.py SPECSEG X1 Y1 [X2 Y2 ...] [--rounds R] [--pyfm DIR] [--skip-tol T]
 
 X, Y: prepared shapes (.sss) or meshes; a mesh is prepared once (`SPECSEG prepare`, default
 eigenpairs, into a temporary folder, not timed). specseg: process CPU (user + system) of each
 `SPECSEG match X.sss Y.sss` (OMP_NUM_THREADS=1), measured with getrusage.
+
+--skip-tol T: also the default with `--skip-tol T` (candidates whose landmarks an earlier map keeps
+are not mapped), timed in the same rounds, with its ratio to the default.
 
 --pyfm DIR (a pyFM source tree, the folder holding pyFM/; never vendored): X, Y must then be meshes
 (.off or .obj, pyFM's readers). pyFM runs the pipeline of scripts/bench_pyfm_maps.py (WKS,
@@ -45,6 +48,7 @@ def main(argv):
     if r is not None:
         rounds = int(r)
     pyfm_dir = take_option(argv, "--pyfm")
+    skip_tol = take_option(argv, "--skip-tol")
     if len(argv) < 3 or len(argv) % 2 == 0:
         sys.exit(__doc__)
     binary, shapes = argv[0], argv[1:]
@@ -57,12 +61,12 @@ def main(argv):
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
     tmp = tempfile.mkdtemp()
     try:
-        run(binary, shapes, rounds, pyfm_dir, env, tmp)
+        run(binary, shapes, rounds, pyfm_dir, skip_tol, env, tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
 
-def run(binary, shapes, rounds, pyfm_dir, env, tmp):
+def run(binary, shapes, rounds, pyfm_dir, skip_tol, env, tmp):
     out = os.path.join(tmp, "map.txt")
 
     prepared = {}  # a mesh -> its prepared shape, made once (not timed)
@@ -78,6 +82,9 @@ def run(binary, shapes, rounds, pyfm_dir, env, tmp):
         return lambda x, y: cpu_of([binary, "match", prepared.get(x, x), prepared.get(y, y), "-o", out] + extra, env)
 
     variants = [("default (4 hypotheses)", specseg([])), ("one hypothesis", specseg(["--hypotheses", "1"]))]
+    skip_name = "--skip-tol %s" % skip_tol
+    if skip_tol is not None:
+        variants.append((skip_name, specseg(["--skip-tol", skip_tol])))
 
     if pyfm_dir is not None:
         # single-threaded numpy / BLAS in this process: set before numpy is first imported
@@ -113,6 +120,8 @@ def run(binary, shapes, rounds, pyfm_dir, env, tmp):
                                                                               len(pairs), rounds))
     default, one = variants[0][0], variants[1][0]
     print("ratio default / one hypothesis: %.2fx" % (med[default] / med[one]))
+    if skip_tol is not None:
+        print("ratio %s / default: %.2fx" % (skip_name, med[skip_name] / med[default]))
     if pyfm_dir is not None:
         print("ratio pyFM / default: %.2fx" % (med["pyFM"] / med[default]))
         print("ratio pyFM / one hypothesis: %.2fx" % (med["pyFM"] / med[one]))
