@@ -15,17 +15,15 @@
 ss_status io_parse_off(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_obj(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_parse_ply(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
-/* STL, ASCII or binary (read_stl.c); the facets' corners welded by exact coordinates. */
-ss_status io_parse_stl(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
-/* Is this STL by content? Binary: the length is exactly 84 + 50 n for the n > 0 facets its header
- * declares; ASCII: the word "solid" first, then "facet" within the first 4 KiB. */
-int io_stl_sniff(const char *buf, size_t len);
-/* The binary STL's facet count when the length is exactly 84 + 50 n, else -1. */
-int64_t io_stl_binary_facets(const char *buf, size_t len);
 /* The same with the vertices' colours (red / green / blue, also diffuse_red.. or r g b): *rgb gets 3 nv
  * malloc'd bytes, or NULL when the file has none (rgb itself may be NULL: not wanted). */
 ss_status io_parse_ply_rgb(const char *path, const char *buf, size_t len, ss_mesh *m, unsigned char **rgb,
                            ss_error *err);
+/* STL, ASCII or binary (read_stl.c); the facets' corners welded by exact coordinates. */
+ss_status io_parse_stl(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+/* Is this STL by content? Binary: the length is exactly 84 + 50 n for the n > 0 facets its header
+ * declares; ASCII: the word "solid" first, then "facet" (or "FACET") within the first 4 KiB. */
+int io_stl_sniff(const char *buf, size_t len);
 
 /* Read the whole file and run one of the parsers above on it (the body of ss_read_off/obj/ply). */
 typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);

@@ -13,7 +13,7 @@
 #include "mesh/io_internal.h"
 
 /* binary STL: the facet count its header declares when the length is exactly 84 + 50 n, else -1 */
-int64_t io_stl_binary_facets(const char *buf, size_t len) {
+static int64_t binary_facets(const char *buf, size_t len) {
   if (len < 84) return -1;
   const unsigned char *u = (const unsigned char *)buf + 80;
   uint64_t nf = (uint64_t)u[0] | (uint64_t)u[1] << 8 | (uint64_t)u[2] << 16 | (uint64_t)u[3] << 24;
@@ -40,7 +40,7 @@ static int starts_solid(const char *buf, size_t len) {
 }
 
 int io_stl_sniff(const char *buf, size_t len) {
-  if (io_stl_binary_facets(buf, len) > 0) return 1;
+  if (binary_facets(buf, len) > 0) return 1;
   if (!starts_solid(buf, len)) return 0;
   size_t lim = len < 4096 ? len : 4096;
   for (size_t j = 5; j + 5 <= lim; j++)
@@ -177,7 +177,7 @@ ss_status io_parse_stl(const char *path, const char *buf, size_t len, ss_mesh *m
   memset(m, 0, sizeof *m);
   io_dvec V = {0};
   io_ivec F = {0};
-  const int64_t nf = io_stl_binary_facets(buf, len);
+  const int64_t nf = binary_facets(buf, len);
   ss_status st;
   if (nf >= 0) st = parse_binary(path, buf, nf, &V, &F, err);
   else if (starts_solid(buf, len)) st = parse_ascii(path, buf, len, &V, &F, err);
