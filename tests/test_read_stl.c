@@ -147,6 +147,20 @@ static void test_stl_variants(void) {
   ss_mesh_free(&r);
 }
 
+/* ss_read_stl reads STL whatever the extension (ss_read_mesh would take a .txt for text of another
+ * format), and refuses NULL arguments */
+static void test_read_stl_by_name(void) {
+  static const char one[] = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                            "endloop\nendfacet\nendsolid t\n";
+  tl_write_file(tl_tmp("one.txt"), one, sizeof one - 1);
+  ss_mesh r = {0};
+  ss_error e;
+  CHECK_MSG(ss_read_stl(tl_tmp("one.txt"), &r, &e) == SS_OK && r.nv == 3 && r.nf == 1, "%s", e.msg);
+  ss_mesh_free(&r);
+  CHECK(ss_read_stl(NULL, &r, &e) == SS_ERR_INVALID && !r.V && ss_read_stl(tl_tmp("one.txt"), NULL, &e) == SS_ERR_INVALID);
+  CHECK(ss_read_stl(tl_tmp("missing.stl"), &r, &e) == SS_ERR_IO && !r.V);
+}
+
 typedef struct bad_case {
   const char *text, *want; /* want: a part of the message */
 } bad_case;
@@ -211,6 +225,7 @@ int main(void) {
         ss_mesh_extension_supported("stl") == 0 && ss_mesh_extension_supported("d.stl/x") == 0);
   test_stl();
   test_stl_variants();
+  test_read_stl_by_name();
   test_stl_errors();
   tl_tmpdir_remove();
   TEST_MAIN_END();

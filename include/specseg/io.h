@@ -77,6 +77,17 @@ SS_API ss_status ss_read_obj(const char *path, ss_mesh *m, ss_error *err);
  *   *m is zeroed.
  */
 SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
+/* Reads an STL file, ascii or binary (the STL reader of ss_read_mesh, whatever the extension): the
+ * facets' corners welded by exact coordinates into one mesh.
+ *
+ * Inputs:
+ *   path     the file
+ * Outputs:
+ *   m        the mesh (free with ss_mesh_free)
+ * Errors: SS_ERR_IO; SS_ERR_PARSE "PATH:LINE: what" (ascii) or "PATH: what" (binary, e.g. a length
+ *   that is not 84 + 50 n for the n facets its header declares); SS_ERR_NOMEM. On failure *m is zeroed.
+ */
+SS_API ss_status ss_read_stl(const char *path, ss_mesh *m, ss_error *err);
 /* ss_read_mesh from len bytes in memory (e.g. a program's standard input). The format always comes
  * from content sniffing: STL (ascii or binary), a "ply" first line, an OFF header or counts, OBJ
  * keywords; with assimp also glTF JSON and GLB.

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "mesh/io_internal.h"
+#include "specseg/io.h"
 
 /* binary STL: the facet count its header declares when the length is exactly 84 + 50 n, else -1 */
 static int64_t binary_facets(const char *buf, size_t len) {
@@ -196,4 +197,13 @@ ss_status io_parse_stl(const char *path, const char *buf, size_t len, ss_mesh *m
   free(V.a), free(F.a);
   if (st) ss_mesh_free(m);
   return st;
+}
+
+ss_status ss_read_stl(const char *path, ss_mesh *m, ss_error *err) {
+  if (!m) return ss_fail(err, SS_ERR_INVALID, "read STL: NULL output");
+  if (!path) {
+    memset(m, 0, sizeof *m);
+    return ss_fail(err, SS_ERR_INVALID, "read STL: NULL path");
+  }
+  return io_read_with(path, io_parse_stl, m, err);
 }
