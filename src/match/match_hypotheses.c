@@ -404,8 +404,9 @@ static ss_status recheck_polished(const ss_shape_prep *X, const ss_shape_prep *Y
 
 /* The earlier candidate (mapped, not itself skipped) whose map sends every landmark of candidate c
  * within tol (Euclidean, Y's units) of its partner, -1 when none does (ss_autopair_options
- * .hyp_skip_tol; tol 0: none). Such a candidate's map would be that one's or near it: on the FAUST_r
- * and TOSCA_r tuning splits about a quarter of the candidates, and the choice no worse
+ * .hyp_skip_tol; tol 0: none). Such a candidate's map would be that one's or near it (about a quarter
+ * of the candidates of the FAUST_r and TOSCA_r tuning splits at 0.05), but its own hypothesis energy,
+ * which can differ from that one's by more than two distinct maps differ, is then not known
  * (docs/tuning.md). */
 static int kept_by_earlier(const ss_mesh *Y, const cand_set *cs, int c, const int *maps, size_t nX,
                            const int *skipped_by, double tol) {
