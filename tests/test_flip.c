@@ -75,16 +75,6 @@ static int *read_vts(const char *path, int nv, int *n) {
  *   way round (error 3.0; here the flipped map 0.03, the mirror 0.15).
  * - cat3 -> cat4: the map kept before the flips kept orientation (0.63) but was wrong (error 16.3);
  *   its mirror images had the lower energy, which is what asks for the flips now (error 2.8). */
-/* A candidate not mapped (hyp_skip_tol): an earlier candidate's map, itself mapped, kept its
- * landmarks; it has no numbers, is not the one kept and no flip is made of it. */
-static int skipped_ok(const ss_autopair_info *ai, int h) {
-  const int by = ai->hyp_skipped_by[h];
-  int flipped = 0;
-  for (int c = 0; c < ai->hypotheses; c++) flipped |= ai->hyp_flip_of[c] == h;
-  return by >= 0 && by < h && ai->hyp_skipped_by[by] == -1 && h != ai->hypothesis && !flipped &&
-         isnan(ai->hyp_energy[h]) && isnan(ai->hyp_distortion[h]) && isnan(ai->hyp_orientation[h]);
-}
-
 static void test_tosca_flip(const char *a, const char *b, int by_y, int flip_side, int want_right) {
   const char *d = tl_data_dir();
   char px[4096], py[4096], vx[4096], vy[4096];
@@ -138,14 +128,8 @@ static void test_tosca_flip(const char *a, const char *b, int by_y, int flip_sid
     CHECK(err < 0.05);
     /* the selection: none that keeps orientation when the kept one does not, and none of the kept
      * one's class of lower energy (landmark-free: every candidate is eligible) */
-    int lv[SS_MAX_HYPOTHESES], skipped = 0;
+    int lv[SS_MAX_HYPOTHESES];
     for (int h = 0; h < ai->hypotheses; h++) {
-      if (ai->hyp_skipped_by[h] >= 0) {
-        printf("  #%d: not mapped, #%d's map kept its landmarks\n", h, ai->hyp_skipped_by[h]);
-        CHECK_MSG(skipped_ok(ai, h), "#%d skipped by #%d", h, ai->hyp_skipped_by[h]);
-        lv[h] = -1, skipped++;
-        continue;
-      }
       const double or = ai->hyp_orientation[h];
       lv[h] = !(or < mo.autopair.hyp_min_orientation);
       printf("  #%d: energy %.4f, orientation %.3f (class %d), flip of %d%s\n", h, ai->hyp_energy[h], or, lv[h],
@@ -158,7 +142,6 @@ static void test_tosca_flip(const char *a, const char *b, int by_y, int flip_sid
      * shortfall below the confident level, weighted as the options say */
     const ss_autopair_options *ao = &mo.autopair;
     for (int h = 0; h < ai->hypotheses; h++) {
-      if (lv[h] < 0) continue; /* not mapped */
       const double me = ai->hyp_map_energy[h], sh = ao->hyp_confident_orientation - ai->hyp_orientation[h];
       const double E = ai->hyp_distortion[h] + ao->hyp_w_reversed * ai->hyp_reversed[h] +
                        (isfinite(me) ? ao->hyp_w_map * me : 0) + (sh > 0 ? ao->hyp_w_orientation * sh : 0);
@@ -169,13 +152,12 @@ static void test_tosca_flip(const char *a, const char *b, int by_y, int flip_sid
       CHECK(lv[h] <= lv[ai->hypothesis]);
       if (lv[h] == lv[ai->hypothesis]) CHECK(ai->hyp_energy[ai->hypothesis] <= ai->hyp_energy[h]);
     }
-    CHECK(skipped < ai->hypotheses);
     /* the flips were looked for (the kept map is one), and none was needed only if the kept map
      * keeps orientation clearly and no mirror image has the lower energy */
     int flips = 0, mirror_below = 0;
     for (int h = 0; h < ai->hypotheses; h++) {
       flips += ai->hyp_flip_of[h] >= 0;
-      mirror_below |= lv[h] == 0 && ai->hyp_energy[h] < ai->hyp_energy[ai->hypothesis];
+      mirror_below |= !lv[h] && ai->hyp_energy[h] < ai->hyp_energy[ai->hypothesis];
     }
     CHECK(flips > 0 || (!mirror_below && ai->hyp_orientation[ai->hypothesis] >= ao->hyp_confident_orientation));
   }

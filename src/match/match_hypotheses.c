@@ -426,13 +426,10 @@ static int kept_by_earlier(const ss_mesh *Y, const cand_set *cs, int c, const in
   return -1;
 }
 
-/* Candidate c not mapped, as its map would be candidate by's: that map stands in for it where every
- * candidate's map is read (the flips' and the differences' bookkeeping), its numbers are NaN, and it
- * is neither chosen nor compared (not eligible). */
-static void skip_candidate(ss_autopair_info *info, int c, int by, int *maps, size_t nX, int *eligible, int *oriented,
-                           int *lm_off) {
+/* Candidate c not mapped, as its map would be candidate by's: its numbers are NaN, and it is neither
+ * chosen, compared, flipped nor read as a map (not eligible; hyp_skipped_by set). */
+static void skip_candidate(ss_autopair_info *info, int c, int by, int *eligible, int *oriented, int *lm_off) {
   info->hyp_skipped_by[c] = by;
-  memcpy(maps + nX * (size_t)c, maps + nX * (size_t)by, sizeof(int) * nX);
   info->hyp_pair_energy[c] = info->hyp_distortion[c] = info->hyp_orientation[c] = NAN;
   info->hyp_scale[c] = info->hyp_energy[c] = info->hyp_map_energy[c] = NAN;
   info->hyp_reversed[c] = info->hyp_orientation_min[c] = info->hyp_differ[c] = NAN;
@@ -454,7 +451,7 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
   else ss_match_default_options(&o);
   if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
     return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
-  if (hyp_options_check(&o.autopair, err)) return SS_ERR_INVALID;
+  /* (the options were checked by match_hypotheses, its only caller, before the probe caches) */
   ss_centre_signature own[2];
   memset(own, 0, sizeof own);
   ss_segment_pairs hyp[SS_MAX_HYPOTHESES], rhyp[SS_MAX_HYPOTHESES];
@@ -597,7 +594,7 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
                                                            o.autopair.hyp_skip_tol * hc.sY)
                                          : -1;
     if (by >= 0) /* not mapped: its map would be #by's */
-      skip_candidate(&info, c, by, maps, nX, eligible, oriented, lm_off);
+      skip_candidate(&info, c, by, eligible, oriented, lm_off);
     else {
       if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &fw, &r, err))) goto done;
       double E = 0, dist = NAN, orient = NAN, pe = NAN, scale = NAN;
