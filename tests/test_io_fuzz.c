@@ -18,18 +18,6 @@ static uint32_t rnd(void) {
   return (uint32_t)(rng >> 11);
 }
 
-static unsigned char *load(const char *path, size_t *n) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long sz = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  unsigned char *b = malloc((size_t)sz + 64);
-  *n = fread(b, 1, (size_t)sz, f);
-  fclose(f);
-  return b;
-}
-
 int main(void) {
   char dir[] = "/tmp/ss_test_fuzz_XXXXXX";
   if (!mkdtemp(dir)) return 2;
@@ -59,7 +47,7 @@ int main(void) {
   int rounds = 400, crashes = 0, accepted = 0, rejected = 0;
   for (int k = 0; k < 5; k++) {
     size_t n0;
-    unsigned char *orig = load(paths[k], &n0);
+    unsigned char *orig = (unsigned char *)tl_read_file(paths[k], &n0);
     CHECK(orig != NULL);
     if (!orig) continue;
     unsigned char *buf = malloc(n0 + 64);

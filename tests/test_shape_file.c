@@ -70,18 +70,6 @@ static int same_result(const ss_match_result *a, const ss_match_result *b) {
          !strcmp(a->notes, b->notes);
 }
 
-static unsigned char *slurp(const char *path, size_t *n) {
-  FILE *f = fopen(path, "rb");
-  if (!f) return NULL;
-  fseek(f, 0, SEEK_END);
-  long len = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  unsigned char *b = malloc((size_t)len + 1);
-  *n = b ? fread(b, 1, (size_t)len, f) : 0;
-  fclose(f);
-  return b;
-}
-
 /* the bytes b[0, n) as a file read back: the status and the message */
 static ss_status read_bytes(const char *path, const unsigned char *b, size_t n, ss_error *e) {
   FILE *f = fopen(path, "wb");
@@ -98,7 +86,7 @@ static ss_status read_bytes(const char *path, const unsigned char *b, size_t n, 
 
 static void damage_tests(const char *good, const char *dir) {
   size_t n = 0;
-  unsigned char *b = slurp(good, &n);
+  unsigned char *b = (unsigned char *)tl_read_file(good, &n);
   CHECK(b && n > 1000);
   if (!b) return;
   char path[4200];
