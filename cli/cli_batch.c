@@ -348,8 +348,8 @@ static int add_folder(cli_batch *b, cli_args *A, const char *dir) {
     free(p);
   }
   closedir(d);
-  if (b->nin == first) return cli_bad(A, "%s: no mesh files (OFF, OBJ, PLY, STL%s, prepared shapes .sss) in the folder", dir,
-                                      ss_mesh_extension_supported("x.gltf") ? ", glTF, ..." : "");
+  if (b->nin == first) return cli_bad(A, "%s: no mesh files (OFF, OBJ, PLY, STL, glTF%s, prepared shapes .sss) in the folder",
+                                      dir, ss_mesh_extension_supported("x.fbx") ? ", FBX, ..." : "");
   qsort(b->in + first, (size_t)(b->nin - first), sizeof *b->in, cmp_name);
   if (skipped)
     cli_warn("%s: %d entr%s skipped (subfolders, files that are neither meshes nor prepared shapes)", dir, skipped,

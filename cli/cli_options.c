@@ -16,7 +16,7 @@ void cli_print_usage(const char *usage, FILE *f) {
         "An option that takes a value accepts it as the next argument or after '=': --opt VALUE or --opt=VALUE.\n"
         "Vector files (labels, maps, fields, landmarks) are text, or NumPy when named *.npy (read: shape (n,),\n"
         "(n, 1), landmarks (n, 2), fields F.npy:J for column J; written: (n, 1) int32 / float64).\n"
-        "Meshes: OFF, OBJ, PLY, STL (ascii / binary; our readers); glTF 2.0 (.gltf / .glb), FBX, COLLADA, 3DS and\n"
+        "Meshes: OFF, OBJ, PLY, STL (ascii / binary), glTF 2.0 (.gltf / .glb) (our readers); FBX, COLLADA, 3DS and\n"
         "the other formats of assimp when built with libassimp-dev (all meshes of a scene merged, node transforms\n"
         "applied); an STL's and a scene's vertices welded by exact coordinates.\n",
         f);

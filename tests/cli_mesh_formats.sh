@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
-# Meshes in other formats from the command line: the demo humanoid written as ascii and binary STL (our
-# reader) and as a glTF with an embedded base64 buffer (through assimp; python3 writes them, no numpy
+# Meshes in other formats from the command line: the demo humanoid written as ascii and binary STL and as
+# a glTF with an embedded base64 buffer (our readers, in every build; python3 writes them, no numpy
 # needed) reads back with the OFF's counts and checks (welded, closed), from a file and from standard
-# input, and goes through smooth / segment; a malformed STL fails with the file's name and line. A
-# build without assimp must refuse glTF naming libassimp-dev (then the glTF checks SKIP).
+# input, and goes through smooth / segment; a malformed STL or glTF fails with the file's name and cause.
 # Usage: cli_mesh_formats.sh PATH/TO/specseg
 set -u
 BIN=${1:?usage: $0 PATH/TO/specseg}
@@ -58,12 +57,6 @@ with open(t + "/h32.off", "w") as f:  # the humanoid in float32, in OFF, shifted
 PYEOF
 
 FORMATS="h.stl hb.stl h.gltf"
-"$BIN" info "$TMP/h.gltf" > "$TMP/probe.out" 2> "$TMP/probe.err"
-if grep -q "libassimp-dev" "$TMP/probe.err"; then
-  grep -q "h.gltf" "$TMP/probe.err" && ok || bad "the refusal does not name the file: $(cat "$TMP/probe.err")"
-  skip "this build has no assimp: $(cat "$TMP/probe.err")"
-  FORMATS="h.stl hb.stl"
-fi
 
 "$BIN" info "$M" | grep -v -e '^area' -e '^bbox' > "$TMP/off.info" || bad "info OFF"
 for f in $FORMATS; do
@@ -78,7 +71,6 @@ for f in $FORMATS; do
     bad "info - < $f: $(diff "$TMP/$f.stdin" "$TMP/$f.info" | head -4)"
 done
 # the coordinates: float32 values, the glTF node translation applied
-if [ "$FORMATS" != "h.stl hb.stl" ]; then
 "$BIN" smooth "$TMP/h.gltf" --steps 0 -o "$TMP/g.off" > /dev/null 2>&1 && ok || bad "smooth --steps 0 of the glTF"
 # (smooth --steps 0 normalises and restores the scale: equal up to rounding, not bit for bit)
 "$PY" - "$TMP/g.off" "$TMP/h32.off" <<'PYEOF' && ok || bad "the glTF's vertices are not the float32 OFF shifted by the node"
@@ -91,7 +83,6 @@ for la, lb in zip(a[2:2 + nv], b[2:2 + nv]):
         assert abs(x - y) <= 1e-14 * max(1.0, abs(y)), (la, lb)
 assert a[2 + nv:] == b[2 + nv:], "faces differ"
 PYEOF
-fi
 "$BIN" segment "$TMP/hb.stl" -o "$TMP/l.txt" --faces 4000 > "$TMP/seg.out" 2>&1 && ok || bad "segment an STL: $(cat "$TMP/seg.out")"
 [ "$(wc -l < "$TMP/l.txt")" = "$(sed -n 2p "$M" | awk '{print $1}')" ] && ok || bad "segment STL: one label per welded vertex"
 # malformed: the name of the file and the format in the message
@@ -99,4 +90,8 @@ printf 'solid x\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0\n' > "$T
 "$BIN" info "$TMP/bad.stl" > /dev/null 2> "$TMP/bad.err"
 [ $? = 1 ] && grep -q "^specseg: error: .*bad.stl:4: the file ends inside a vertex" "$TMP/bad.err" && ok ||
   bad "malformed STL: $(cat "$TMP/bad.err")"
+printf '{"asset":{"version":"1.0"}}' > "$TMP/old.gltf"
+"$BIN" info "$TMP/old.gltf" > /dev/null 2> "$TMP/old.err"
+[ $? = 1 ] && grep -q "^specseg: error: .*old.gltf: glTF version '1.0': only glTF 2.0 is read" "$TMP/old.err" && ok ||
+  bad "glTF 1.0: $(cat "$TMP/old.err")"
 finish

@@ -14,7 +14,7 @@
  *    its threads should set to 1). One exception is internal and invisible in results: ARPACK
  *    (Fortran, with SAVE variables) is not reentrant, so ss_eigs serialises its ARPACK iterations
  *    across threads with one process-wide lock; concurrent ss_eigs calls are safe, and run their
- *    factorisations and solves in parallel. Likewise imports through assimp (STL, glTF, ...: see io.h)
+ *    factorisations and solves in parallel. Likewise imports through assimp (FBX, COLLADA, ...: see io.h)
  *    are serialised by a lock of their own;
  *  - OpenMP is used inside calls only;
  *  - public symbols carry the ss_ prefix (macros SS_ / SPECSEG_); everything else is hidden. */

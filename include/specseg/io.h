@@ -11,21 +11,21 @@ extern "C" {
 
 /* Reads a triangle mesh from a file, the format chosen by extension (case-insensitive; content
  * sniffing when the extension says nothing).
- * OFF, OBJ, PLY and STL are read by our own readers: polygons are fan-triangulated; OBJ negative
+ * OFF, OBJ, PLY, STL and glTF 2.0 are read by our own readers: polygons are fan-triangulated; OBJ negative
  * indices are relative. OFF: optional [ST][C][N]OFF header, '#' comments, one vertex / one polygon a
  * line, extra values (colours, normals) ignored. PLY: ascii / binary LE / binary BE, x y z of any
  * numeric type, faces from the list `vertex_indices` (or `vertex_index`), everything else skipped.
  * STL: binary (exactly 84 + 50 n bytes for the n facets its header declares; float32 corners) or
  * ascii ("solid", facets of three "vertex" lines, "endsolid"; keywords in either case; several solids
  * allowed; facet normals checked as numbers and ignored). NaN/Inf coordinate literals are read as such
- * (ss_mesh_check reports them).
- * Other formats go through the Open Asset Import Library (Debian's libassimp-dev, when the build found
- * it): glTF 2.0 (.gltf with embedded or external buffers, .glb), FBX, COLLADA (.dae), 3DS and every
- * other extension assimp supports. The scene is flattened: the meshes of every node, in depth-first
- * order, with the node's accumulated transform applied to their vertices (a mesh instanced twice
- * appears twice); polygons are triangulated, points and lines dropped; coordinates are assimp's
- * float32 values. Imports through assimp are serialised by a process-wide lock (its error message is
- * one global string); they are safe to call from any thread.
+ * (ss_mesh_check reports them). glTF: see ss_read_gltf.
+ * Other formats, by extension only, go through the Open Asset Import Library (Debian's libassimp-dev,
+ * when the build found it): FBX, COLLADA (.dae), 3DS and every other extension assimp supports. The
+ * scene is flattened: the meshes of every node, in depth-first order, with the node's accumulated
+ * transform applied to their vertices (a mesh instanced twice appears twice); polygons are
+ * triangulated, points and lines dropped; coordinates are assimp's float32 values. Imports through
+ * assimp are serialised by a process-wide lock (its error message is one global string); they are
+ * safe to call from any thread.
  * An STL's and a scene's vertices with exactly equal coordinates are then welded (O(n log n), by a
  * sort; each kept vertex is the first of its group in file order, for STL facet by facet), which joins
  * an STL's per-facet vertex soup, and the vertices other formats split at normal creases or texture
@@ -37,7 +37,8 @@ extern "C" {
  *   m        the mesh (free with ss_mesh_free)
  * Errors: SS_ERR_IO (cannot open or read the file); SS_ERR_PARSE "PATH:LINE: what" (malformed
  *   content, no faces, a polygon of fewer than 3 vertices, an index out of range, unknown format);
- *   SS_ERR_UNSUPPORTED (an assimp format in a build without assimp: the message names libassimp-dev);
+ *   SS_ERR_UNSUPPORTED (an assimp format in a build without assimp: the message names libassimp-dev;
+ *   glTF refusals, see ss_read_gltf);
  *   SS_ERR_INVALID on NULL arguments; SS_ERR_NOMEM. On failure *m is zeroed.
  */
 SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
@@ -45,8 +46,8 @@ SS_API ss_status ss_read_mesh(const char *path, ss_mesh *m, ss_error *err);
  *
  * Inputs:
  *   path     a file name (NULL allowed)
- * Returns: 1 for OFF, OBJ, PLY or STL (our readers); 2 for a format read through assimp (only when
- *   the library was built with it); 0 otherwise.
+ * Returns: 1 for OFF, OBJ, PLY, STL, glTF or GLB (our readers); 2 for a format read through assimp
+ *   (only when the library was built with it); 0 otherwise.
  */
 SS_API int ss_mesh_extension_supported(const char *path);
 /* Reads an OFF file (the OFF reader of ss_read_mesh, whatever the extension).
@@ -88,9 +89,33 @@ SS_API ss_status ss_read_ply(const char *path, ss_mesh *m, ss_error *err);
  *   that is not 84 + 50 n for the n facets its header declares); SS_ERR_NOMEM. On failure *m is zeroed.
  */
 SS_API ss_status ss_read_stl(const char *path, ss_mesh *m, ss_error *err);
+/* Reads a glTF 2.0 file, .gltf (JSON) or .glb (binary), told apart by content (the glTF reader of
+ * ss_read_mesh, whatever the extension). Buffers: base64 data URIs, the GLB's BIN chunk, or files
+ * named by a relative (or absolute) path, found beside the .gltf (other URI schemes are refused). The
+ * scene `scene` (else the first; without scenes every mesh once, untransformed) is flattened: the
+ * triangles of every mesh instance (modes TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN; points and lines
+ * dropped), in depth-first node order, with the node's world transform (matrix or translation /
+ * rotation / scale) applied in double precision; vertices with exactly equal coordinates are welded
+ * as for STL. Positions float32, or integers with KHR_mesh_quantization; indices 8, 16 or 32 bit.
+ * Refused: glTF 1.0, other required extensions (Draco, meshopt, ...), sparse accessors, accessors
+ * without a buffer view, node cycles.
+ *
+ * Inputs:
+ *   path     the file
+ * Outputs:
+ *   m        the mesh (free with ss_mesh_free)
+ * Errors: SS_ERR_IO (the file or an external buffer cannot be read); SS_ERR_PARSE "PATH: what" naming
+ *   the element (e.g. "accessors[2]: count 9 with stride 12 needs 108 bytes; bufferViews[0] has 96";
+ *   JSON syntax: "PATH:LINE:COLUMN: what"); SS_ERR_UNSUPPORTED (glTF 1.0, a required extension, a
+ *   sparse accessor or one without bufferView, a URI scheme other than data:, an external buffer
+ *   when read from memory); SS_ERR_INVALID on NULL arguments; SS_ERR_NOMEM.
+ *   On failure *m is zeroed.
+ */
+SS_API ss_status ss_read_gltf(const char *path, ss_mesh *m, ss_error *err);
 /* ss_read_mesh from len bytes in memory (e.g. a program's standard input). The format always comes
  * from content sniffing: STL (ascii or binary), a "ply" first line, an OFF header or counts, OBJ
- * keywords; with assimp also glTF JSON and GLB.
+ * keywords, glTF JSON (a '{' first, the key "asset" within 64 KiB) or GLB (the magic "glTF"). A glTF
+ * read from memory can only use embedded buffers (data URIs, the GLB's BIN chunk).
  *
  * Inputs:
  *   buf, len the bytes (not modified or kept; buf may be NULL when len is 0)

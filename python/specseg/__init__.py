@@ -64,11 +64,12 @@ def read_mesh(path):
     """Read a triangle mesh: OFF, OBJ, PLY, STL, glTF 2.0 or another format assimp reads.
 
     The format is chosen by the extension (case-insensitive), else by the content. Polygons are
-    fan-triangulated; PLY and STL may be ASCII or binary. glTF (.gltf, .glb), FBX, COLLADA, 3DS, ...
-    are read through the Open Asset Import Library when the C library was built with
-    libassimp-dev: all meshes of the scene merged with their node transforms applied; coordinates
-    are float32 values. An STL's and a scene's vertices with exactly equal coordinates are welded
-    (in order of first occurrence), so an STL's per-facet vertex soup becomes one connected mesh.
+    fan-triangulated; PLY and STL may be ASCII or binary. glTF 2.0 (.gltf with embedded or
+    external buffers, .glb) is read by our own reader: all mesh instances of the scene merged with
+    their node transforms applied. FBX, COLLADA, 3DS, ... are read through the Open Asset Import
+    Library when the C library was built with libassimp-dev (coordinates are float32 values). An
+    STL's and a scene's vertices with exactly equal coordinates are welded (in order of first
+    occurrence), so an STL's per-facet vertex soup becomes one connected mesh.
 
     Parameters
     ----------
@@ -86,8 +87,9 @@ def read_mesh(path):
     ------
     SpecsegError
         The file cannot be read ("i/o error") or is malformed ("parse error": the message gives
-        the file and line or byte offset); a glTF / FBX / ... file with a library built without
-        assimp ("unsupported", the message names libassimp-dev).
+        the file and line or byte offset, or the glTF element); an FBX / COLLADA / ... file with a
+        library built without assimp ("unsupported", the message names libassimp-dev); a glTF that
+        needs an unsupported extension or is glTF 1.0 ("unsupported").
     """
     m, e = _clib.ss_mesh(), _err()
     _check(lib.ss_read_mesh(os.fsencode(path), C.byref(m), C.byref(e)), e)

@@ -25,20 +25,27 @@ ss_status io_parse_stl(const char *path, const char *buf, size_t len, ss_mesh *m
  * declares; ASCII: the word "solid" first, then "facet" (or "FACET") within the first 4 KiB. */
 int io_stl_sniff(const char *buf, size_t len);
 
+/* glTF 2.0, .gltf (JSON) or .glb (binary container) by the magic (read_gltf.c): the triangles of every mesh
+ * instance of the scene, node transforms applied, welded by exact coordinates. path: the .gltf's own path,
+ * to find external buffer files beside it; NULL (from memory) refuses them. name for messages (NULL: path or
+ * "<memory>"). */
+ss_status io_parse_gltf(const char *path, const char *name, const char *buf, size_t len, ss_mesh *m, ss_error *err);
+/* Is this glTF by content? The GLB magic "glTF", or text whose first non-blank is '{' with the key "asset"
+ * within the first 64 KiB. */
+int io_gltf_sniff(const char *buf, size_t len);
+
 /* Read the whole file and run one of the parsers above on it (the body of ss_read_off/obj/ply). */
 typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err);
 
-/* ---- formats read through assimp (read_assimp.c) ----
- * Does the extension of path belong to a format read through assimp (glTF, FBX, ...; never OFF, OBJ,
- * PLY or STL)? Then 1, and the lower-case extension in hint (cap bytes) when hint is not NULL. Without
- * assimp in the build, the common formats' extensions still answer 1 (ssi_read_assimp then refuses). */
+/* ---- formats read through assimp (read_assimp.c), by extension only ----
+ * Does the extension of path belong to a format read through assimp (FBX, COLLADA, ...; never OFF, OBJ,
+ * PLY, STL, glTF or GLB)? Then 1, and the lower-case extension in hint (cap bytes) when hint is not NULL.
+ * Without assimp in the build, the common formats' extensions still answer 1 (ssi_read_assimp then
+ * refuses). */
 int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap);
-/* The assimp format of loaded bytes by content: "glb" (the glTF magic), "gltf" (JSON with an "asset"
- * key), else NULL. */
-const char *ssi_mesh_assimp_sniff(const char *buf, size_t len);
 /* Read a scene through assimp, by path (path not NULL: a regular file) or from len bytes in buf with
- * the format hint ("glb", "gltf", ...); name for messages. All node meshes merged with their transforms,
+ * the format hint ("fbx", "dae", ...); name for messages. All node meshes merged with their transforms,
  * triangles only, vertices welded exactly (ssi_mesh_weld). Without assimp: SS_ERR_UNSUPPORTED naming
  * libassimp-dev. */
 ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, size_t len, const char *hint, ss_mesh *m,

@@ -1,6 +1,6 @@
 /* Exact welding of vertices with equal coordinates (ssi_mesh_weld): the readers of vertex soups (STL
  * stores three vertices per facet) and of formats that split vertices at normal creases or texture
- * seams (through assimp) join the surface back into one connected mesh. */
+ * seams (glTF, or through assimp) join the surface back into one connected mesh. */
 #include <stdlib.h>
 #include <string.h>
 

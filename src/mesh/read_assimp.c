@@ -1,4 +1,4 @@
-/* Meshes in the formats we do not parse ourselves (glTF 2.0, FBX, COLLADA, 3DS, ...), read through
+/* Meshes in the formats we do not parse ourselves (FBX, COLLADA, 3DS, ...), by extension only, read through
  * the C API of the Open Asset Import Library (Debian's libassimp-dev) when the build found it
  * (SS_HAVE_ASSIMP), else refused with a message naming the package.
  *
@@ -19,8 +19,9 @@
 /* ---- which files go to assimp -------------------------------------------------------------------- */
 
 /* Formats we always route to assimp (and name in the message when it is missing); with assimp, any
- * extension it reports as supported also goes to it (OFF, OBJ, PLY and STL stay with our own readers). */
-static const char *const KNOWN[] = {"gltf", "glb", "fbx", "dae", "3ds", "blend", "x3d", "3mf", "x", "lwo",
+ * extension it reports as supported also goes to it (OFF, OBJ, PLY, STL and glTF / GLB stay with our own
+ * readers: assimp's glTF importer crashed on malformed input). */
+static const char *const KNOWN[] = {"fbx", "dae", "3ds", "blend", "x3d", "3mf", "x", "lwo",
                                     "ase", "ms3d", "ifc", "ac", "dxf", "md2", "md3", "md5mesh", "smd", "ogex", "b3d",
                                     "cob", "q3o", "q3s", "irr", "irrmesh", "lws", "nff", "raw", "ter", "xgl", "zgl", NULL};
 
@@ -50,7 +51,9 @@ static pthread_mutex_t assimp_lock = PTHREAD_MUTEX_INITIALIZER;
 int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap) {
   char ext[16];
   if (!path || !lower_ext(path, ext, sizeof ext)) return 0;
-  if (!strcmp(ext, "off") || !strcmp(ext, "obj") || !strcmp(ext, "ply") || !strcmp(ext, "stl")) return 0;
+  if (!strcmp(ext, "off") || !strcmp(ext, "obj") || !strcmp(ext, "ply") || !strcmp(ext, "stl") || !strcmp(ext, "gltf") ||
+      !strcmp(ext, "glb"))
+    return 0;
   int known = 0;
   for (const char *const *k = KNOWN; *k && !known; k++) known = !strcmp(*k, ext);
 #ifdef SS_HAVE_ASSIMP
@@ -66,19 +69,7 @@ int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap) {
   return known;
 }
 
-const char *ssi_mesh_assimp_sniff(const char *buf, size_t len) {
-  if (len >= 12 && !memcmp(buf, "glTF", 4)) return "glb";
-  size_t i = 0;
-  while (i < len && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n')) i++;
-  if (i < len && buf[i] == '{') {
-    size_t lim = len < i + 65536 ? len : i + 65536;
-    for (size_t j = i; j + 7 <= lim; j++)
-      if (!memcmp(buf + j, "\"asset\"", 7)) return "gltf";
-  }
-  return NULL;
-}
-
-/* "STL", "GLTF", ... for messages */
+/* "FBX", "DAE", ... for messages */
 static const char *format_name(const char *hint, char *up, size_t cap) {
   size_t i = 0;
   for (; hint && hint[i] && i + 1 < cap; i++) up[i] = (char)(hint[i] >= 'a' && hint[i] <= 'z' ? hint[i] - 'a' + 'A' : hint[i]);
@@ -95,7 +86,7 @@ ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, s
   char up[16];
   return ss_fail(err, SS_ERR_UNSUPPORTED,
                  "%s: reading %s files needs the Open Asset Import Library: install libassimp-dev and rebuild specseg "
-                 "(this build reads OFF, OBJ, PLY and STL only)",
+                 "(this build reads OFF, OBJ, PLY, STL and glTF only)",
                  name ? name : "<memory>", format_name(hint, up, sizeof up));
 }
 
@@ -199,7 +190,7 @@ ss_status ssi_read_assimp(const char *path, const char *name, const char *buf, s
   const unsigned flags = aiProcess_Triangulate;
   pthread_mutex_lock(&assimp_lock);
   const struct aiScene *sc;
-  if (path) sc = aiImportFile(path, flags); /* by path: a .gltf's external buffers are found beside it */
+  if (path) sc = aiImportFile(path, flags); /* by path: files a scene refers to are found beside it */
   else if (len > (size_t)UINT32_MAX) sc = NULL;
   else sc = aiImportFileFromMemory(buf, (unsigned)len, flags, hint ? hint : "");
   if (!sc) {

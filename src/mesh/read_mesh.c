@@ -62,8 +62,10 @@ static int sniff(const char *buf, size_t len) {
   return 0;
 }
 
-/* The parser for a loaded buffer: by the extension of `path` when given, else by content (our formats
- * first, then those assimp reads). */
+static int is_gltf_ext(const char *path) { return ext_is(path, "gltf") || ext_is(path, "glb"); }
+
+/* The parser for a loaded buffer: by the extension of `path` when given (the path also locates a .gltf's
+ * external buffers), else by content, our formats only: nothing read from memory goes to assimp. */
 static ss_status parse_any(const char *path, const char *name, const char *buf, size_t len, ss_mesh *m,
                            unsigned char **rgb, ss_error *err) {
   char hint[16];
@@ -71,22 +73,22 @@ static ss_status parse_any(const char *path, const char *name, const char *buf, 
              : path && ext_is(path, "obj") ? 'j'
              : path && ext_is(path, "ply") ? 'p'
              : path && ext_is(path, "stl") ? 's'
+             : path && is_gltf_ext(path)   ? 'g'
              : path && ssi_mesh_assimp_ext(path, hint, sizeof hint) ? 'a'
              : io_stl_sniff(buf, len)      ? 's' /* first: a binary STL's header may hold any text */
                                            : sniff(buf, len);
-  const char *sniffed = kind ? NULL : ssi_mesh_assimp_sniff(buf, len);
-  if (sniffed) snprintf(hint, sizeof hint, "%s", sniffed), kind = 'a';
+  if (!kind && io_gltf_sniff(buf, len)) kind = 'g';
   switch (kind) {
     case 'o': return io_parse_off(name, buf, len, m, err);
     case 'j': return io_parse_obj(name, buf, len, m, err);
     case 'p': return io_parse_ply_rgb(name, buf, len, m, rgb, err);
     case 's': return io_parse_stl(name, buf, len, m, err);
+    case 'g': return io_parse_gltf(path, name, buf, len, m, err);
     case 'a': return ssi_read_assimp(NULL, name, buf, len, hint, m, err);
     default:
       return len == 0 ? ss_fail(err, SS_ERR_PARSE, "%s:1: empty file", name)
                       : ss_fail(err, SS_ERR_UNSUPPORTED,
-                                "%s:1: unknown mesh format (expected OFF, OBJ, PLY, STL, glTF or another format assimp reads)",
-                                name);
+                                "%s:1: unknown mesh format (expected OFF, OBJ, PLY, STL or glTF)", name);
   }
 }
 
@@ -95,7 +97,7 @@ ss_status ss_read_mesh_colors(const char *path, ss_mesh *m, unsigned char **rgb,
   memset(m, 0, sizeof *m);
   if (rgb) *rgb = NULL;
   if (!path) return ss_fail(err, SS_ERR_INVALID, "read mesh: NULL path");
-  /* a regular file in an assimp format goes to assimp by path (a .gltf's buffers lie beside it) */
+  /* a regular file in an assimp format goes to assimp by path (files the scene refers to lie beside it) */
   char hint[16];
   struct stat sb;
   if (ssi_mesh_assimp_ext(path, hint, sizeof hint) && stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
@@ -146,7 +148,8 @@ ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_er
 
 int ss_mesh_extension_supported(const char *path) {
   if (!path) return 0;
-  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply") || ext_is(path, "stl")) return 1;
+  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply") || ext_is(path, "stl") || is_gltf_ext(path))
+    return 1;
 #ifdef SS_HAVE_ASSIMP
   if (ssi_mesh_assimp_ext(path, NULL, 0)) return 2;
 #endif

@@ -4,6 +4,7 @@ usage: test_binding.py SPECSEG_BIN MESH WORKDIR [--no-match]
 Runs `specseg eigs / geodesic / segment / error / match` and the binding's eigs / geodesic / segment /
 error / match on MESH and compares; also laplacian invariants, rendering and error reporting.
 Prints "N passed, N failed" like the C tests and exits 1 on any failure."""
+import base64
 import json
 import math
 import os
@@ -282,7 +283,7 @@ specseg.write_png(path("b.png"), img)
 with open(path("b.png"), "rb") as f:
     check(f.read(8) == b"\x89PNG\r\n\x1a\n", "write_png signature")
 
-# --- read_mesh of STL (binary; our reader) and glTF (assimp): the vertices welded in order of first
+# --- read_mesh of STL (binary) and glTF (our readers, in every build): the vertices welded in order of first
 #     occurrence, as float32; the same mesh as the CLI reads (segment --ply writes the input mesh it
 #     read, float64) ---
 first = np.unique(F.ravel(), return_index=True)
@@ -295,35 +296,30 @@ with open(path("m.stl"), "wb") as f:
     rec = np.zeros(F.shape[0], dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
     rec["v"] = V32[F]
     f.write(rec.tobytes())
-Vs, Fs = specseg.read_mesh(path("m.stl"))  # our own reader: with or without assimp
+Vs, Fs = specseg.read_mesh(path("m.stl"))
 check(Vs.shape == (order.size, 3) and np.array_equal(Fs, new_id[F]), "read_mesh STL: welded faces")
 check(np.array_equal(Vs, V32[order].astype(np.float64)), "read_mesh STL: float32 vertices, first-occurrence order")
 cli("segment", path("m.stl"), "-o", path("ls.txt"), "--ply", path("ms.ply"), "--faces", 4000)
 Vp, Fp = specseg.read_mesh(path("ms.ply"))
 check(np.array_equal(Vp, Vs) and np.array_equal(Fp, Fs), "read_mesh STL = the mesh specseg reads")
-try:
-    import base64, json
-    blob = V32.tobytes() + F.astype(np.uint32).tobytes()
-    g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "scale": [2, 2, 2]}],
-         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
-         "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
-         "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": V32.nbytes},
-                         {"buffer": 0, "byteOffset": V32.nbytes, "byteLength": F.size * 4}],
-         "accessors": [{"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
-                        "min": V32.min(0).tolist(), "max": V32.max(0).tolist()},
-                       {"bufferView": 1, "componentType": 5125, "count": F.size, "type": "SCALAR"}]}
-    with open(path("m.gltf"), "w") as f:
-        json.dump(g, f)
-    Vg, Fg = specseg.read_mesh(path("m.gltf"))
-    # an indexed mesh: the weld keeps the first of equal vertices in the file's vertex order
-    _, first_i, inv = np.unique(V32, axis=0, return_index=True, return_inverse=True)
-    keep = np.sort(first_i)
-    gid = np.searchsorted(keep, first_i[inv.ravel()])
-    check(np.array_equal(Fg, gid[F]) and np.array_equal(Vg, 2 * V32[keep].astype(np.float64)),
-          "read_mesh glTF: the node's scale applied, equal vertices welded")
-except specseg.SpecsegError as ex:
-    check("libassimp-dev" in str(ex), "read_mesh glTF without assimp names libassimp-dev: %s" % ex)
-    print("SKIP: glTF (%s)" % ex)
+blob = V32.tobytes() + F.astype(np.uint32).tobytes()
+g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "scale": [2, 2, 2]}],
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+     "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": V32.nbytes},
+                     {"buffer": 0, "byteOffset": V32.nbytes, "byteLength": F.size * 4}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+                    "min": V32.min(0).tolist(), "max": V32.max(0).tolist()},
+                   {"bufferView": 1, "componentType": 5125, "count": F.size, "type": "SCALAR"}]}
+with open(path("m.gltf"), "w") as f:
+    json.dump(g, f)
+Vg, Fg = specseg.read_mesh(path("m.gltf"))
+# an indexed mesh: the weld keeps the first of equal vertices in the file's vertex order
+_, first_i, inv = np.unique(V32, axis=0, return_index=True, return_inverse=True)
+keep = np.sort(first_i)
+gid = np.searchsorted(keep, first_i[inv.ravel()])
+check(np.array_equal(Fg, gid[F]) and np.array_equal(Vg, 2 * V32[keep].astype(np.float64)),
+      "read_mesh glTF: the node's scale applied, equal vertices welded")
 
 # --- the library's calls run with OpenBLAS single-threaded; the caller's setting comes back ---
 from specseg import _clib  # noqa: E402
