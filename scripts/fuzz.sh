@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# libFuzzer harnesses of tests/fuzz (issue 13, item 8): every reader (OFF, OBJ, PLY, STL, content
+# libFuzzer harnesses of tests/fuzz (issue 13, item 8): every reader (OFF, OBJ, PLY, STL, glTF, content
 # sniffing, text vectors, landmarks), read -> check -> geodesics / eigenpairs on small meshes, and the
 # prepared-shape reader on mutated payloads whose checksum the harness recomputes (shape).
 #   scripts/fuzz.sh SECONDS [--save] [HARNESS...]
-# builds them with clang (ASan + UBSan + coverage, in build-fuzz/), then runs each for SECONDS (all
+# builds them with clang (ASan + UBSan + coverage, in build-fuzz/ or $SS_FUZZ_BUILD), then runs each for SECONDS (all
 # harnesses by default, e.g. `scripts/fuzz.sh 60 geometry`). The seed corpus is
 # tests/fuzz/corpus/HARNESS/ (regression inputs, run every time); new inputs go to a scratch corpus in
 # build-fuzz/corpus/HARNESS/, and --save merges those that add coverage back into the repository's
@@ -16,12 +16,12 @@ secs=${1:?usage: scripts/fuzz.sh SECONDS [--save] [HARNESS...]}
 shift
 save=0
 if [ "${1:-}" = --save ]; then save=1; shift; fi
-all=(off obj ply stl mesh vectors landmarks geometry shape)
+all=(off obj ply stl gltf mesh vectors landmarks geometry shape)
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=("${all[@]}")
 command -v clang > /dev/null || { echo "fuzz: clang not found (apt-get install clang)" >&2; exit 77; }
 
-B=build-fuzz
+B=${SS_FUZZ_BUILD:-build-fuzz}
 mkdir -p "$B"
 cmake -S . -B "$B" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSS_FUZZ=ON -DSS_BUILD_TESTS=OFF \
   -DSS_BUILD_BENCH=OFF > "$B/configure.log" 2>&1 || { cat "$B/configure.log" >&2; exit 1; }
