@@ -436,6 +436,338 @@ static void skip_candidate(ss_autopair_info *info, int c, int by, int *eligible,
   eligible[c] = 0, oriented[c] = oriented[by], lm_off[c] = 0;
 }
 
+/* One match's candidates as they are built, mapped and compared: match_hypotheses_cached's state,
+ * read and written by its stages below. */
+typedef struct {
+  const ss_shape_prep *X, *Y;
+  const ss_centre_signature *SX, *SY;
+  ss_match_options o;
+  ss_match_options oall; /* for a candidate whose map uses its pairing's segments (see map_candidate) */
+  int nlg;               /* given landmarks, lgX[i] on X and lgY[i] on Y */
+  const int *lgX, *lgY;
+  double *gdX, *gdY; /* the given landmarks' graph distance fields, nv x nlg each */
+  ssi_hyp_ctx hc;    /* the distortion context (and the geodesic graphs) */
+  ssi_zoomout_plan plan;
+  ssi_fmap_work fw;
+  cand_set cs;
+  size_t nX;
+  int *maps;    /* every mapped candidate's map, nX each (several candidates only) */
+  double *segs; /* scratch of ssi_map_orientation_reversed, 2 per centre of X */
+  ss_autopair_info info;
+  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES];
+  double best; /* the hypothesis energy of the map kept so far */
+} hyp_run;
+
+/* With given landmarks: their distance fields, and their own candidate (slot 0) */
+static ss_status add_given_landmarks(hyp_run *R, ss_error *err) {
+  const int nlg = R->nlg, nvX = R->X->mesh->nv, nvY = R->Y->mesh->nv;
+  R->gdX = malloc(sizeof(double) * (size_t)nvX * nlg);
+  R->gdY = malloc(sizeof(double) * (size_t)nvY * nlg);
+  if (!R->gdX || !R->gdY) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  ss_status st;
+  for (int i = 0; i < nlg; i++)
+    if ((st = ss_graph_dijkstra(&R->hc.gX, &R->lgX[i], 1, 0, R->gdX + (size_t)nvX * i, NULL, err)) ||
+        (st = ss_graph_dijkstra(&R->hc.gY, &R->lgY[i], 1, 0, R->gdY + (size_t)nvY * i, NULL, err)))
+      return st;
+  memcpy(R->cs.lx, R->lgX, sizeof(int) * (size_t)nlg), memcpy(R->cs.ly, R->lgY, sizeof(int) * (size_t)nlg);
+  cand_push(&R->cs, nlg, NULL, 0, NULL);
+  return SS_OK;
+}
+
+/* Each of X's nh pairing hypotheses as a landmark-free candidate (its kept pairs; sets repeating an
+ * earlier one skipped), up to want of them. Beside given landmarks (hyp_landmarks 2) they are
+ * eligible where they keep them (see score_candidate): a landmark on a spot where two body parts
+ * touch and the mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the
+ * protrusions'. Returns the hypotheses looked at (the agreeing pairs use as many). */
+static int add_free_hypotheses(hyp_run *R, const ss_segment_pairs *hyp, int nh, int want) {
+  cand_set *cs = &R->cs;
+  int nfree = 0, hused = nh < want ? nh : want;
+  for (int h = 0; (R->nlg == 0 || R->o.autopair.hyp_landmarks == 2) && h < nh && nfree < want &&
+                  cs->nc < SS_MAX_HYPOTHESES;
+       h++) {
+    int *cx = cand_x(cs, cs->nc), *cy = cand_y(cs, cs->nc);
+    const int nk = kept_pairs(R->SX, &hyp[h], R->o.autopair.hyp_keep, R->X, R->Y, cx, cy);
+    hused = h + 1;
+    if (repeats_free(cs, nk)) continue;
+    cand_push(cs, nk, nk < hyp[h].n ? NULL : &hyp[h], 1, &hyp[h]);
+    nfree++;
+  }
+  return hused;
+}
+
+/* Landmark-free: the descriptors' own candidate (X's protrusion centres and their images under the
+ * descriptors' functional map), then, with hyp_reverse, Y's pairing hypotheses read from X's side and
+ * Y's descriptors' candidate with its pairs swapped. *desc_c: X's descriptor candidate (-1: none). */
+static ss_status add_free_extras(hyp_run *R, int want, ss_segment_pairs *rhyp, int *nrh, int *desc_c, ss_error *err) {
+  cand_set *cs = &R->cs;
+  const ss_autopair_options *a = &R->o.autopair;
+  ss_status st;
+  *desc_c = -1;
+  if (a->hyp_descriptor_map && want > 1 && cs->nc < SS_MAX_HYPOTHESES) {
+    int nd = 0;
+    if ((st = ssi_match_plan(R->X, R->Y, &R->o, &R->plan, err))) return st;
+    if ((st = descriptor_landmarks(R->X, R->Y, R->SX, &R->o, &R->fw, &R->plan, cand_x(cs, cs->nc), cand_y(cs, cs->nc),
+                                   &nd, err)))
+      return st;
+    if (nd >= 3) *desc_c = cs->nc, cand_push(cs, nd, NULL, 1, NULL);
+  }
+  if (!a->hyp_reverse || want < 2) return SS_OK;
+  if ((st = ss_pair_centres_hypotheses(R->SY, R->SX, a, SS_MAX_HYPOTHESES, rhyp, nrh, NULL, err))) return st;
+  int nrev = 0;
+  for (int h = 0; h < *nrh && nrev < want && cs->nc < SS_MAX_HYPOTHESES; h++) {
+    const ss_segment_pairs turned = {rhyp[h].n, rhyp[h].sy, rhyp[h].sx, rhyp[h].energy, rhyp[h].ny, rhyp[h].nx};
+    const int nk = kept_pairs(R->SX, &turned, a->hyp_keep, R->X, R->Y, cand_x(cs, cs->nc), cand_y(cs, cs->nc));
+    if (repeats_free(cs, nk)) continue;
+    R->info.hyp_from_y[cs->nc] = 1;
+    cand_push(cs, nk, NULL, 1, &rhyp[h]);
+    nrev++;
+  }
+  if (a->hyp_descriptor_map && cs->nc < SS_MAX_HYPOTHESES) {
+    int nd = 0;
+    if ((st = descriptor_landmarks(R->Y, R->X, R->SY, &R->o, &R->fw, NULL, cand_y(cs, cs->nc), cand_x(cs, cs->nc), &nd,
+                                   err)))
+      return st;
+    if (nd >= 3 && !repeats_free(cs, nd)) R->info.hyp_from_y[cs->nc] = 1, cand_push(cs, nd, NULL, 1, NULL);
+  }
+  return SS_OK;
+}
+
+/* With given landmarks: for each of the first hused hypotheses, the landmarks plus the hypothesis's
+ * kept pairs that agree with them (agreeing_pairs), distinct sets only; mx: room for a kept set */
+static ss_status add_agreeing(hyp_run *R, const ss_segment_pairs *hyp, int hused, int mx, ss_error *err) {
+  cand_set *cs = &R->cs;
+  const int nlg = R->nlg;
+  int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
+  if (!kx || !ky) {
+    free(kx), free(ky);
+    return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  }
+  for (int h = 0; h < hused && cs->nc < SS_MAX_HYPOTHESES; h++) {
+    int nk = kept_pairs(R->SX, &hyp[h], R->o.autopair.hyp_keep, R->X, R->Y, kx, ky);
+    int *cx = cand_x(cs, cs->nc), *cy = cand_y(cs, cs->nc);
+    memcpy(cx, R->lgX, sizeof(int) * (size_t)nlg), memcpy(cy, R->lgY, sizeof(int) * (size_t)nlg);
+    const double tol = R->o.autopair.hyp_landmark_tol;
+    int ne = agreeing_pairs(&R->hc, nlg, R->gdX, R->gdY, nk, kx, ky, tol, cx + nlg, cy + nlg);
+    int dup = ne == 0;
+    for (int c = 1; c < cs->nc && !dup; c++)
+      dup = !cs->lm_free[c] && same_set(cs->n[c], cand_x(cs, c), cand_y(cs, c), nlg + ne, cx, cy);
+    if (!dup) cand_push(cs, nlg + ne, NULL, 0, NULL);
+  }
+  free(kx), free(ky);
+  return SS_OK;
+}
+
+/* Candidate c's numbers from its map r (info's hyp_* of c, oriented[c], eligible[c], lm_off[c]) */
+static ss_status score_map(hyp_run *R, int c, const ss_match_result *r, ss_error *err) {
+  const ss_autopair_options *a = &R->o.autopair;
+  ss_autopair_info *info = &R->info;
+  double E = 0, dist = NAN, pe = NAN, scale = NAN;
+  const double map_energy = r->refine_choice >= 0 ? r->refine_energy[r->refine_choice] : NAN;
+  const ss_segment_pairs *hp = R->cs.pairs_of[c]; /* the pairing hypothesis behind it, X's or Y's */
+  if (hp) {
+    pe = 0;
+    for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
+  }
+  const double orient = ssi_map_orientation(R->SX, R->SY, r->map);
+  /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
+   * whole mirror has the lower distortion and even the lower reversed-segment share; docs/tuning.md) */
+  R->oriented[c] = !(orient < a->hyp_min_orientation);
+  if (R->cs.nc > 1) {
+    memcpy(R->maps + R->nX * c, r->map, sizeof(int) * R->nX);
+    ss_status st = ssi_hyp_distortion(&R->hc, r->map, &dist, err);
+    if (st) return st;
+    scale = R->hc.scale;
+    const double rev = ssi_map_orientation_reversed(R->SX, R->SY, r->map, a->hyp_reversed_below, R->segs,
+                                                    &info->hyp_orientation_min[c]);
+    info->hyp_reversed[c] = rev;
+    E = hypothesis_energy(a, dist, rev, map_energy, orient);
+  }
+  info->hyp_pair_energy[c] = pe, info->hyp_distortion[c] = dist, info->hyp_orientation[c] = orient;
+  info->hyp_scale[c] = scale;
+  info->hyp_energy[c] = E;
+  info->hyp_map_energy[c] = map_energy;
+  /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
+   * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
+  int off = 0;
+  const size_t nvY = (size_t)R->Y->mesh->nv;
+  for (int i = 0; i < R->nlg; i++) off += !(R->gdY[nvY * i + r->map[R->lgX[i]]] / R->hc.sY <= a->hyp_landmark_tol);
+  R->eligible[c] = !R->cs.lm_free[c] || off <= R->nlg / 4, R->lm_off[c] = off;
+  return SS_OK;
+}
+
+/* Candidate c mapped and scored; its result becomes *out when it is the best so far (eligible, as
+ * oriented as the best, and of lower energy), else it is freed. zp: the shared ZoomOut plan. */
+static ss_status map_and_score(hyp_run *R, int c, const ssi_zoomout_plan *zp, ss_match_result *out, ss_error *err) {
+  ss_match_result r;
+  memset(&r, 0, sizeof r);
+  ss_status st = map_candidate(R->X, R->Y, &R->cs, c, &R->o, &R->oall, zp, &R->fw, &r, err);
+  if (!st) st = score_map(R, c, &r, err);
+  if (st) {
+    ss_match_result_free(&r);
+    return st;
+  }
+  const int hk = R->info.hypothesis, *oriented = R->oriented;
+  const double E = R->info.hyp_energy[c];
+  if (c == 0 || (R->eligible[c] && (oriented[c] > oriented[hk] || (oriented[c] == oriented[hk] && E < R->best)))) {
+    if (c > 0) ss_match_result_free(out);
+    *out = r, R->best = E, R->info.hypothesis = c, R->info.hyp_landmarks = R->cs.n[c];
+  } else
+    ss_match_result_free(&r);
+  return SS_OK;
+}
+
+/* Once the first candidates are mapped: the flipped ones, when the map kept is not clearly
+ * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs) or
+ * a mirror image beats it; by X's own symmetry, then by Y's (hyp_flip_side): where one shape's
+ * symmetry map fails (a cat curled up) the other's turns the mirror round. The flips are optional:
+ * a side that fails (other than for memory) is skipped with a note, written in skipped (cap bytes),
+ * instead of failing a match whose candidates are all mapped. */
+static ss_status add_flips(hyp_run *R, char *skipped, size_t cap, ss_error *err) {
+  const ss_autopair_options *a = &R->o.autopair;
+  if (!(R->nlg == 0 && R->cs.nc > 1 && a->hyp_flip_orient > 0 &&
+        flips_wanted(&R->info, R->oriented, R->cs.nc, R->info.hypothesis, a->hyp_confident_orientation)))
+    return SS_OK;
+  /* the flips' room: the 8 candidates in all that a match had before hyp_reverse, all of it with it */
+  const int flip_cap = a->hyp_reverse ? SS_MAX_HYPOTHESES : 8;
+  for (int by_y = 0; by_y < 2; by_y++) {
+    if (a->hyp_flip_side != 2 && a->hyp_flip_side != by_y) continue;
+    ss_error ferr = {{0}};
+    const ss_status fs = add_flipped(R->X, R->Y, by_y, R->SX, &R->o, R->maps, R->oriented, flip_cap, &R->cs, &R->info,
+                                     &ferr);
+    if (fs == SS_ERR_NOMEM) return ss_fail(err, fs, "%s", ferr.msg);
+    if (fs)
+      snprintf(skipped, cap, "no flipped candidates by %s's symmetry: its own symmetry map failed (%s)",
+               by_y ? "Y" : "X", ferr.msg);
+  }
+  return SS_OK;
+}
+
+/* Every candidate mapped and scored in turn (a candidate whose landmarks an earlier map keeps is
+ * skipped: hyp_skip_tol), the flipped ones added once the first are done; the best is *out. */
+static ss_status map_candidates(hyp_run *R, const ssi_zoomout_plan *zp, ss_match_result *out, char *flip_skipped,
+                                size_t cap, ss_error *err) {
+  ss_autopair_info *info = &R->info;
+  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info->hyp_flip_of[c] = info->hyp_skipped_by[c] = -1; /* (flip_by_y: 0) */
+  R->best = INFINITY;
+  int flips_looked = 0;
+  ss_status st;
+  for (int c = 0; c < R->cs.nc; c++) {
+    const int by = R->nlg == 0 && R->cs.nc > 1 ? kept_by_earlier(R->Y->mesh, &R->cs, c, R->maps, R->nX,
+                                                                 info->hyp_skipped_by,
+                                                                 R->o.autopair.hyp_skip_tol * R->hc.sY)
+                                               : -1;
+    if (by >= 0) skip_candidate(info, c, by, R->eligible, R->oriented, R->lm_off); /* its map would be #by's */
+    else if ((st = map_and_score(R, c, zp, out, err)))
+      return st;
+    if (c == R->cs.nc - 1 && !flips_looked) {
+      flips_looked = 1;
+      if ((st = add_flips(R, flip_skipped, cap, err))) return st;
+    }
+  }
+  return SS_OK;
+}
+
+/* How far the map kept (before any recheck) can be trusted */
+typedef struct {
+  int oriented;        /* it keeps orientation (or no candidate does) */
+  int low_orient;      /* it keeps it, but not clearly */
+  int high_map_energy; /* its own refinement energy is high */
+  double orientation, map_energy; /* its orientation score and own energy (the notes name them) */
+} doubts;
+
+/* The margin against the maps that differ from the one kept (info's hyp_differ, hyp_margin) and the
+ * confidence; with landmarks, the landmarks' map and a right landmark-free map agree at almost equal
+ * energy, and that tie is no doubt (FAUST_r tuning pairs with gt:5: 83 of 97 flagged by it alone;
+ * docs/tuning.md) */
+static doubts judge_kept(hyp_run *R) {
+  ss_autopair_info *info = &R->info;
+  const ss_autopair_options *a = &R->o.autopair;
+  const int nc = R->cs.nc, kept = info->hypothesis;
+  doubts d;
+  d.oriented = nc > 0 && R->oriented[kept];
+  info->hyp_margin = INFINITY;
+  for (int c = 0; c < nc && nc > 1; c++) {
+    if (info->hyp_skipped_by[c] >= 0) continue; /* (NaN: not mapped) */
+    info->hyp_differ[c] = map_differ_share(R->Y->mesh, a->hyp_differ_tol * R->hc.sY, (int)R->nX, R->maps + R->nX * c,
+                                           R->maps + R->nX * kept);
+    if (c != kept && R->eligible[c] && R->oriented[c] == d.oriented && info->hyp_differ[c] >= a->hyp_differ_share &&
+        info->hyp_energy[c] - R->best < info->hyp_margin)
+      info->hyp_margin = info->hyp_energy[c] - R->best;
+  }
+  if (nc > 1) info->confident = info->hyp_margin >= a->hyp_min_margin;
+  else if (R->nlg > 0) info->confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
+  d.orientation = info->hyp_orientation[kept], d.map_energy = info->hyp_map_energy[kept];
+  d.low_orient = d.oriented && d.orientation < a->hyp_confident_orientation;
+  /* NaN (no such energy) compares false: not flagged by it */
+  d.high_map_energy = d.map_energy > a->hyp_max_map_energy;
+  if (!d.oriented || d.low_orient || d.high_map_energy) info->confident = 0;
+  return d;
+}
+
+/* A landmark-free choice in doubt, rechecked by the polished maps (recheck_polished); another choice
+ * is mapped again, for its whole result, into *out, with a note. */
+static ss_status recheck_choice(hyp_run *R, const ssi_zoomout_plan *zp, ss_match_result *out, ss_error *err) {
+  ss_autopair_info *info = &R->info;
+  const ss_autopair_options *a = &R->o.autopair;
+  info->hyp_recheck_from = info->hypothesis;
+  if (!(R->nlg == 0 && R->cs.nc > 1 && !info->confident && a->hyp_recheck_window > 0 && R->o.refine != SS_REFINE_NONE))
+    return SS_OK;
+  int choice;
+  ss_status st = recheck_polished(R->X, R->Y, &R->hc, R->cs.nc, R->maps, R->eligible, R->oriented,
+                                  a->hyp_recheck_window, a->hyp_differ_share, info, &choice, &info->hyp_rechecked, err);
+  if (st || choice == info->hypothesis) return st;
+  ss_match_result r;
+  memset(&r, 0, sizeof r);
+  if ((st = map_candidate(R->X, R->Y, &R->cs, choice, &R->o, &R->oall, zp, &R->fw, &r, err))) {
+    ss_match_result_free(&r);
+    return st;
+  }
+  ss_match_result_free(out);
+  *out = r, info->hypothesis = choice, info->hyp_landmarks = R->cs.n[choice];
+  char msg[220];
+  snprintf(msg, sizeof msg, "the choice in doubt, the %d closest candidates polished and compared again: #%d kept "
+           "instead of #%d (the confidence below is #%d's)", info->hyp_rechecked, choice, info->hyp_recheck_from,
+           info->hyp_recheck_from);
+  ssi_match_note(out, msg);
+  return SS_OK;
+}
+
+/* The notes that say why the map kept may be wrong */
+static void note_doubts(const hyp_run *R, const doubts *d, ss_match_result *out) {
+  const ss_autopair_info *info = &R->info;
+  const ss_autopair_options *a = &R->o.autopair;
+  const int nlg = R->nlg, kept = info->hypothesis;
+  char msg[256];
+  const size_t cap = sizeof msg;
+  const char *ask = nlg ? "check the landmarks" : "give landmarks";
+  if (nlg > 0 && R->lm_off[kept] > 0) {
+    snprintf(msg, cap, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
+             "under the map kept (hypothesis #%d%s); check them", R->lm_off[kept], nlg, a->hyp_landmark_tol, kept,
+             R->cs.lm_free[kept] ? ", landmark-free" : "");
+    ssi_match_note(out, msg);
+  }
+  if (!d->oriented)
+    snprintf(msg, cap, "map NOT confident: it reverses orientation (whole-map orientation score %.2f, below %.2g, "
+             "and no hypothesis reaches it): it may be a mirror image (%s)", info->hyp_orientation[kept],
+             a->hyp_min_orientation, ask);
+  else if (d->low_orient)
+    snprintf(msg, cap, "map NOT confident: its orientation score %.2f is below %.2g (part of it may be mirrored; %s)",
+             d->orientation, a->hyp_confident_orientation, ask);
+  else if (d->high_map_energy)
+    snprintf(msg, cap, "map NOT confident: its own energy %.3g is above %.3g (its functional map is far from "
+             "orthogonal or the descriptors badly kept; %s)", d->map_energy, a->hyp_max_map_energy, ask);
+  else if (!info->confident && R->cs.nc > 1)
+    snprintf(msg, cap, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
+             "hypothesis maps almost as well; the map may be wrong (%s)", nlg ? "the" : "landmark-free",
+             info->hyp_margin, a->hyp_min_margin, nlg ? "check the landmarks, add some" : "give landmarks");
+  else if (!info->confident)
+    snprintf(msg, cap, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
+             "%.2f): the map may be wrong (give landmarks)", info->gap, a->min_gap, info->mirror_margin, a->min_mirror);
+  else
+    return;
+  ssi_match_note(out, msg);
+}
+
 /* The hypotheses' maps and the one of least hypothesis energy (ss_match_prepared_auto; with nlg > 0
  * given landmarks, ss_match_prepared's hypotheses: the given landmarks alone first, then each
  * pairing hypothesis's agreeing protrusion pairs added to them, distinct sets only); the shapes
@@ -446,324 +778,100 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
                                          ss_match_result *out, ss_error *err) {
   if (!out) return ss_fail(err, SS_ERR_INVALID, "match: NULL output");
   memset(out, 0, sizeof *out);
-  ss_match_options o;
-  if (opts_in) o = *opts_in;
-  else ss_match_default_options(&o);
   if (!X || !Y || !X->mesh || !Y->mesh || !X->evecs || !Y->evecs)
     return ss_fail(err, SS_ERR_INVALID, "match: shapes not prepared");
   /* (the options were checked by match_hypotheses, its only caller, before the probe caches) */
+  hyp_run R;
+  memset(&R, 0, sizeof R);
+  if (opts_in) R.o = *opts_in;
+  else ss_match_default_options(&R.o);
+  R.X = X, R.Y = Y, R.nlg = nlg, R.lgX = lgX, R.lgY = lgY, R.nX = (size_t)X->mesh->nv;
+  const ss_autopair_options *a = &R.o.autopair;
   ss_centre_signature own[2];
   memset(own, 0, sizeof own);
   ss_segment_pairs hyp[SS_MAX_HYPOTHESES], rhyp[SS_MAX_HYPOTHESES];
   memset(hyp, 0, sizeof hyp), memset(rhyp, 0, sizeof rhyp);
   int nh = 0, nrh = 0;
-  ss_autopair_info info;
-  ssi_hyp_ctx hc = {0};
-  ss_match_result r;
-  memset(&r, 0, sizeof r);
-  ssi_zoomout_plan plan = {0}; /* X -> Y's, once for every map of that direction (it depends on the shapes alone) */
-  ssi_fmap_work fw = {0}; /* the functional-map systems' buffers, for every candidate */
-  cand_set cs = {0};
-  int *maps = NULL;
-  double *segs = NULL, *gdX = NULL, *gdY = NULL;
   ss_status st = SS_OK;
   double t0 = ss_time();
-  if (!sigX && (st = ss_centre_signature_compute(X, &o.autopair, &own[0], err))) goto done;
-  if (!sigY && (st = ss_centre_signature_compute(Y, &o.autopair, &own[1], err))) goto done;
-  const ss_centre_signature *SX = sigX ? sigX : &own[0], *SY = sigY ? sigY : &own[1];
+  if (!sigX && (st = ss_centre_signature_compute(X, a, &own[0], err))) goto done;
+  if (!sigY && (st = ss_centre_signature_compute(Y, a, &own[1], err))) goto done;
+  R.SX = sigX ? sigX : &own[0], R.SY = sigY ? sigY : &own[1];
   /* with given landmarks, one candidate slot is theirs alone */
-  const int want = nlg > 0 && o.autopair.hypotheses >= SS_MAX_HYPOTHESES ? SS_MAX_HYPOTHESES - 1 : o.autopair.hypotheses;
+  const int want = nlg > 0 && a->hypotheses >= SS_MAX_HYPOTHESES ? SS_MAX_HYPOTHESES - 1 : a->hypotheses;
   /* the search gives every hypothesis it has; one whose landmarks (its kept protrusion pairs) are an
-   * earlier one's would give the same map and is skipped below, so the `want` maps differ (on
-   * TOSCA_r's 14-centre shapes the pairings of the first four often differ only in pairs that are
-   * not kept) */
-  if ((st = ss_pair_centres_hypotheses(SX, SY, &o.autopair, SS_MAX_HYPOTHESES, hyp, &nh, &info, err))) goto done;
-  if (nlg > 0) info.used = 0;
+   * earlier one's would give the same map and is skipped, so the `want` maps differ (on TOSCA_r's
+   * 14-centre shapes the pairings of the first four often differ only in pairs that are not kept) */
+  if ((st = ss_pair_centres_hypotheses(R.SX, R.SY, a, SS_MAX_HYPOTHESES, hyp, &nh, &R.info, err))) goto done;
+  if (nlg > 0) R.info.used = 0;
   /* the given landmarks' distance fields need the graphs now; landmark-free, the context is built
    * once the candidates are known (below) */
-  if (nlg > 0 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, o.autopair.hyp_fit_scale, &hc, err))) goto done;
+  if (nlg > 0 && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, a->hyp_fit_scale, &R.hc, err))) goto done;
   double t_pair = ss_time() - t0;
+  /* the candidates' landmark sets: room for the given landmarks and every centre */
   int mx = 1;
   for (int h = 0; h < nh; h++)
     if (hyp[h].n > mx) mx = hyp[h].n;
-  /* the candidates' landmark sets: room for the given landmarks and every centre */
-  if (SX->m > mx) mx = SX->m; /* the descriptors' candidates */
-  if (SY->m > mx) mx = SY->m;
-  cs.stride = nlg + mx;
-  cs.lx = malloc(sizeof(int) * (size_t)cs.stride * SS_MAX_HYPOTHESES);
-  cs.ly = malloc(sizeof(int) * (size_t)cs.stride * SS_MAX_HYPOTHESES);
-  segs = malloc(sizeof(double) * 2 * (size_t)SX->m);
-  if (!cs.lx || !cs.ly || !segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-  if (nlg > 0) {
-    gdX = malloc(sizeof(double) * (size_t)X->mesh->nv * nlg);
-    gdY = malloc(sizeof(double) * (size_t)Y->mesh->nv * nlg);
-    if (!gdX || !gdY) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int i = 0; i < nlg; i++)
-      if ((st = ss_graph_dijkstra(&hc.gX, &lgX[i], 1, 0, gdX + (size_t)X->mesh->nv * i, NULL, err)) ||
-          (st = ss_graph_dijkstra(&hc.gY, &lgY[i], 1, 0, gdY + (size_t)Y->mesh->nv * i, NULL, err)))
-        goto done;
-    memcpy(cs.lx, lgX, sizeof(int) * (size_t)nlg), memcpy(cs.ly, lgY, sizeof(int) * (size_t)nlg);
-    cand_push(&cs, nlg, NULL, 0, NULL);
-  }
-  /* each hypothesis's landmark-free map; beside given landmarks (hyp_landmarks 2) eligible where it
-   * keeps them (see the selection below): a landmark on a spot where two body parts touch and the
-   * mesh joins them (FAUST_r tr_reg_017's foot) misleads the landmarks' map, not the protrusions' */
-  int nfree = 0, hused = nh < want ? nh : want; /* hypotheses looked at (the agreeing pairs below use as many) */
-  for (int h = 0; (nlg == 0 || o.autopair.hyp_landmarks == 2) && h < nh && nfree < want && cs.nc < SS_MAX_HYPOTHESES;
-       h++) {
-    const int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc));
-    hused = h + 1;
-    if (repeats_free(&cs, nk)) continue;
-    cand_push(&cs, nk, nk < hyp[h].n ? NULL : &hyp[h], 1, &hyp[h]);
-    nfree++;
-  }
-  /* the descriptors' own candidate, landmark-free with several hypotheses only (one: the pairing's
-   * answer alone) */
-  int desc_c = -1;
-  if (nlg == 0 && o.autopair.hyp_descriptor_map && want > 1 && cs.nc < SS_MAX_HYPOTHESES) {
-    int nd = 0;
-    if ((st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
-    if ((st = descriptor_landmarks(X, Y, SX, &o, &fw, &plan, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc), &nd, err)))
-      goto done;
-    if (nd >= 3) desc_c = cs.nc, cand_push(&cs, nd, NULL, 1, NULL);
-  }
-  /* the other direction's (hyp_reverse): Y's pairing hypotheses read from X's side, then Y's
-   * descriptors' candidate with its pairs swapped */
-  if (nlg == 0 && o.autopair.hyp_reverse && want > 1) {
-    if ((st = ss_pair_centres_hypotheses(SY, SX, &o.autopair, SS_MAX_HYPOTHESES, rhyp, &nrh, NULL, err))) goto done;
-    int nrev = 0;
-    for (int h = 0; h < nrh && nrev < want && cs.nc < SS_MAX_HYPOTHESES; h++) {
-      const ss_segment_pairs turned = {rhyp[h].n, rhyp[h].sy, rhyp[h].sx, rhyp[h].energy, rhyp[h].ny, rhyp[h].nx};
-      const int nk = kept_pairs(SX, &turned, o.autopair.hyp_keep, X, Y, cand_x(&cs, cs.nc), cand_y(&cs, cs.nc));
-      if (repeats_free(&cs, nk)) continue;
-      info.hyp_from_y[cs.nc] = 1;
-      cand_push(&cs, nk, NULL, 1, &rhyp[h]);
-      nrev++;
-    }
-    if (o.autopair.hyp_descriptor_map && cs.nc < SS_MAX_HYPOTHESES) {
-      int nd = 0;
-      if ((st = descriptor_landmarks(Y, X, SY, &o, &fw, NULL, cand_y(&cs, cs.nc), cand_x(&cs, cs.nc), &nd, err)))
-        goto done;
-      if (nd >= 3 && !repeats_free(&cs, nd)) info.hyp_from_y[cs.nc] = 1, cand_push(&cs, nd, NULL, 1, NULL);
-    }
-  }
-  if (nlg > 0) {
-    int *kx = malloc(sizeof(int) * (size_t)mx), *ky = malloc(sizeof(int) * (size_t)mx);
-    if (!kx || !ky) { free(kx), free(ky); st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
-    for (int h = 0; h < hused && cs.nc < SS_MAX_HYPOTHESES; h++) {
-      int nk = kept_pairs(SX, &hyp[h], o.autopair.hyp_keep, X, Y, kx, ky);
-      int *cx = cand_x(&cs, cs.nc), *cy = cand_y(&cs, cs.nc);
-      memcpy(cx, lgX, sizeof(int) * (size_t)nlg), memcpy(cy, lgY, sizeof(int) * (size_t)nlg);
-      int ne = agreeing_pairs(&hc, nlg, gdX, gdY, nk, kx, ky, o.autopair.hyp_landmark_tol, cx + nlg, cy + nlg);
-      int dup = ne == 0;
-      for (int c = 1; c < cs.nc && !dup; c++)
-        dup = !cs.lm_free[c] && same_set(cs.n[c], cand_x(&cs, c), cand_y(&cs, c), nlg + ne, cx, cy);
-      if (!dup) cand_push(&cs, nlg + ne, NULL, 0, NULL);
-    }
-    free(kx), free(ky);
-  }
+  if (R.SX->m > mx) mx = R.SX->m; /* the descriptors' candidates */
+  if (R.SY->m > mx) mx = R.SY->m;
+  R.cs.stride = nlg + mx;
+  R.cs.lx = malloc(sizeof(int) * (size_t)R.cs.stride * SS_MAX_HYPOTHESES);
+  R.cs.ly = malloc(sizeof(int) * (size_t)R.cs.stride * SS_MAX_HYPOTHESES);
+  R.segs = malloc(sizeof(double) * 2 * (size_t)R.SX->m);
+  if (!R.cs.lx || !R.cs.ly || !R.segs) { st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory"); goto done; }
+  if (nlg > 0 && (st = add_given_landmarks(&R, err))) goto done;
+  const int hused = add_free_hypotheses(&R, hyp, nh, want);
+  int desc_c = -1; /* (one hypothesis: the pairing's answer alone) */
+  if (nlg == 0 && (st = add_free_extras(&R, want, rhyp, &nrh, &desc_c, err))) goto done;
+  if (nlg > 0 && (st = add_agreeing(&R, hyp, hused, mx, err))) goto done;
   /* hyp_keep = 1 (landmark-free): the paired centres are the landmarks and the pairing is the
    * segments'; otherwise the segments are paired from the landmarks as with given landmarks (the
    * saddles' centres sit front or back inconsistently between shapes) */
-  ss_match_options oall = o;
-  oall.pairing.min_landmarks = 1;
-  oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
-  double best = INFINITY, t_loop = ss_time();
-  int eligible[SS_MAX_HYPOTHESES], lm_off[SS_MAX_HYPOTHESES], oriented[SS_MAX_HYPOTHESES];
-  const size_t nX = (size_t)X->mesh->nv;
+  R.oall = R.o;
+  R.oall.pairing.min_landmarks = 1;
+  R.oall.pairing.min_map_share = 0; /* the STD map is built from these very centres: no independent check */
+  const double t_loop = ss_time();
   /* every candidate's map, to tell the candidates that differ from the returned one */
-  if (cs.nc > 1 && !(maps = malloc(sizeof(int) * nX * SS_MAX_HYPOTHESES))) {
+  if (R.cs.nc > 1 && !(R.maps = malloc(sizeof(int) * R.nX * SS_MAX_HYPOTHESES))) {
     st = ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
     goto done;
   }
   /* the distortion context whenever candidates are compared: Y's hypotheses or the descriptors'
    * candidate can make several even where X's search gave one */
-  if (cs.nc > 1 && !hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, o.autopair.hyp_fit_scale, &hc, err)))
-    goto done;
+  if (R.cs.nc > 1 && !R.hc.X && (st = ssi_hyp_ctx_new(X->mesh, Y->mesh, 16, a->hyp_fit_scale, &R.hc, err))) goto done;
   /* one ZoomOut plan for every candidate (unless made above; an empty one, no ZoomOut, costs nothing) */
-  if (cs.nc > 1 && plan.n_S == 0 && (st = ssi_match_plan(X, Y, &o, &plan, err))) goto done;
-  const ssi_zoomout_plan *zp = plan.n_S > 0 ? &plan : NULL;
-  for (int c = 0; c < SS_MAX_HYPOTHESES; c++) info.hyp_flip_of[c] = info.hyp_skipped_by[c] = -1; /* (flip_by_y: 0) */
-  int flips_looked = 0;
-  /* the flips' room: the 8 candidates in all that a match had before hyp_reverse, all of it with it */
-  const int flip_cap = o.autopair.hyp_reverse ? SS_MAX_HYPOTHESES : 8;
+  if (R.cs.nc > 1 && R.plan.n_S == 0 && (st = ssi_match_plan(X, Y, &R.o, &R.plan, err))) goto done;
+  const ssi_zoomout_plan *zp = R.plan.n_S > 0 ? &R.plan : NULL;
   char flip_skipped[sizeof(ss_error) + 96] = "";
-  for (int c = 0; c < cs.nc; c++) {
-    const int nl = cs.n[c];
-    const int by = nlg == 0 && cs.nc > 1 ? kept_by_earlier(Y->mesh, &cs, c, maps, nX, info.hyp_skipped_by,
-                                                           o.autopair.hyp_skip_tol * hc.sY)
-                                         : -1;
-    if (by >= 0) /* not mapped: its map would be #by's */
-      skip_candidate(&info, c, by, eligible, oriented, lm_off);
-    else {
-      if ((st = map_candidate(X, Y, &cs, c, &o, &oall, zp, &fw, &r, err))) goto done;
-      double E = 0, dist = NAN, orient = NAN, pe = NAN, scale = NAN;
-      const double map_energy = r.refine_choice >= 0 ? r.refine_energy[r.refine_choice] : NAN;
-      /* the pairing hypothesis behind it (landmark-free), X's or Y's */
-      const ss_segment_pairs *hp = cs.pairs_of[c];
-      if (hp) {
-        pe = 0;
-        for (int p = 0; p < hp->n; p++) pe += hp->energy[p];
-      }
-      orient = ssi_map_orientation(SX, SY, r.map);
-      /* a map that reverses orientation on most of X is a mirror image (TOSCA_r's cats and horses: the
-       * whole mirror has the lower distortion and even the lower reversed-segment share; docs/tuning.md) */
-      oriented[c] = !(orient < o.autopair.hyp_min_orientation);
-      if (cs.nc > 1) {
-        memcpy(maps + nX * c, r.map, sizeof(int) * nX);
-        if ((st = ssi_hyp_distortion(&hc, r.map, &dist, err))) goto done;
-        scale = hc.scale;
-        double rev = ssi_map_orientation_reversed(SX, SY, r.map, o.autopair.hyp_reversed_below, segs,
-                                                  &info.hyp_orientation_min[c]);
-        info.hyp_reversed[c] = rev;
-        E = hypothesis_energy(&o.autopair, dist, rev, map_energy, orient);
-      }
-      info.hyp_pair_energy[c] = pe, info.hyp_distortion[c] = dist, info.hyp_orientation[c] = orient;
-      info.hyp_scale[c] = scale;
-      info.hyp_energy[c] = E;
-      info.hyp_map_energy[c] = map_energy;
-      /* a landmark-free map beside given landmarks must keep them: at most a quarter of them (none of
-       * three or fewer) farther than hyp_landmark_tol (geodesic / √area) from their partners */
-      int off = 0;
-      for (int i = 0; i < nlg; i++)
-        off += !(gdY[(size_t)Y->mesh->nv * i + r.map[lgX[i]]] / hc.sY <= o.autopair.hyp_landmark_tol);
-      eligible[c] = !cs.lm_free[c] || off <= nlg / 4, lm_off[c] = off;
-      const int hk = info.hypothesis;
-      if (c == 0 || (eligible[c] && (oriented[c] > oriented[hk] || (oriented[c] == oriented[hk] && E < best)))) {
-        if (c > 0) ss_match_result_free(out);
-        *out = r, best = E, info.hypothesis = c, info.hyp_landmarks = nl;
-      } else
-        ss_match_result_free(&r);
-      memset(&r, 0, sizeof r);
-    }
-    /* once the first candidates are mapped: the flipped ones, when the map kept is not clearly
-     * orientation-preserving (a quadruped mapped as its mirror image: TOSCA_r's cats, dogs, centaurs)
-     * or a mirror image beats it */
-    if (c == cs.nc - 1 && !flips_looked) {
-      flips_looked = 1;
-      const int want_flips = nlg == 0 && cs.nc > 1 && o.autopair.hyp_flip_orient > 0 &&
-                             flips_wanted(&info, oriented, cs.nc, info.hypothesis, o.autopair.hyp_confident_orientation);
-      /* by X's own symmetry, then by Y's (hyp_flip_side): where one shape's symmetry map fails (a
-       * cat curled up) the other's turns the mirror round */
-      for (int by_y = 0; want_flips && by_y < 2; by_y++) {
-        if (o.autopair.hyp_flip_side != 2 && o.autopair.hyp_flip_side != by_y) continue;
-        ss_error ferr = {{0}};
-        const ss_status fs = add_flipped(X, Y, by_y, SX, &o, maps, oriented, flip_cap, &cs, &info, &ferr);
-        /* the flips are optional: one side that fails (other than for memory) is skipped with a
-         * note, instead of failing a match whose candidates are all mapped */
-        if (fs == SS_ERR_NOMEM) {
-          st = ss_fail(err, fs, "%s", ferr.msg);
-          goto done;
-        }
-        if (fs)
-          snprintf(flip_skipped, sizeof flip_skipped, "no flipped candidates by %s's symmetry: its own symmetry map "
-                   "failed (%s)", by_y ? "Y" : "X", ferr.msg);
-      }
-    }
-  }
-  const int nc = cs.nc;
-  info.hypotheses = nc;
-  const int best_oriented = nc > 0 && oriented[info.hypothesis];
-  info.hyp_descriptor = desc_c;
-  info.hyp_margin = INFINITY;
-  /* the margin against the maps that differ from the returned one: with landmarks, the landmarks'
-   * map and a right landmark-free map agree at almost equal energy, and that tie is no doubt
-   * (FAUST_r tuning pairs with gt:5: 83 of 97 flagged by it alone; docs/tuning.md) */
-  for (int c = 0; c < nc && nc > 1; c++) {
-    if (info.hyp_skipped_by[c] >= 0) continue; /* (NaN: not mapped) */
-    info.hyp_differ[c] = map_differ_share(Y->mesh, o.autopair.hyp_differ_tol * hc.sY, (int)nX, maps + nX * c,
-                                          maps + nX * info.hypothesis);
-    if (c != info.hypothesis && eligible[c] && oriented[c] == best_oriented &&
-        info.hyp_differ[c] >= o.autopair.hyp_differ_share && info.hyp_energy[c] - best < info.hyp_margin)
-      info.hyp_margin = info.hyp_energy[c] - best;
-  }
-  if (nc > 1) info.confident = info.hyp_margin >= o.autopair.hyp_min_margin;
-  else if (nlg > 0) info.confident = 1; /* no hypothesis agreeing with the landmarks offers another map */
-  const double kept_orient = info.hyp_orientation[info.hypothesis];
-  const int low_orient = best_oriented && kept_orient < o.autopair.hyp_confident_orientation;
-  const double kept_map_energy = info.hyp_map_energy[info.hypothesis];
-  /* NaN (no such energy) compares false: not flagged by it */
-  const int high_map_energy = kept_map_energy > o.autopair.hyp_max_map_energy;
-  if (!best_oriented || low_orient || high_map_energy) info.confident = 0;
-  info.hyp_recheck_from = info.hypothesis;
-  if (nlg == 0 && nc > 1 && !info.confident && o.autopair.hyp_recheck_window > 0 && o.refine != SS_REFINE_NONE) {
-    int choice;
-    if ((st = recheck_polished(X, Y, &hc, nc, maps, eligible, oriented, o.autopair.hyp_recheck_window,
-                               o.autopair.hyp_differ_share, &info, &choice, &info.hyp_rechecked, err)))
-      goto done;
-    if (choice != info.hypothesis) { /* mapped again, for the whole result of that candidate */
-      if ((st = map_candidate(X, Y, &cs, choice, &o, &oall, zp, &fw, &r, err)))
-        goto done;
-      ss_match_result_free(out);
-      *out = r, info.hypothesis = choice, info.hyp_landmarks = cs.n[choice];
-      memset(&r, 0, sizeof r);
-      char msg[220];
-      snprintf(msg, sizeof msg, "the choice in doubt, the %d closest candidates polished and compared again: #%d kept "
-               "instead of #%d (the confidence below is #%d's)", info.hyp_rechecked, choice, info.hyp_recheck_from,
-               info.hyp_recheck_from);
-      ssi_match_note(out, msg);
-    }
-  }
+  if ((st = map_candidates(&R, zp, out, flip_skipped, sizeof flip_skipped, err))) goto done;
+  R.info.hypotheses = R.cs.nc;
+  R.info.hyp_descriptor = desc_c;
+  const doubts d = judge_kept(&R);
+  if ((st = recheck_choice(&R, zp, out, err))) goto done;
   /* the map kept, refined further and polished, with landmarks or without (their time is ZoomOut's) */
   const double t_final = ss_time();
-  if ((st = refine_kept(X, Y, &o, out, &info.hyp_final_k, err))) goto done;
-  if (o.autopair.hyp_final_polish && o.refine != SS_REFINE_NONE && out->map) {
+  if ((st = refine_kept(X, Y, &R.o, out, &R.info.hyp_final_k, err))) goto done;
+  if (a->hyp_final_polish && R.o.refine != SS_REFINE_NONE && out->map) {
     if ((st = ss_map_polish(X->mesh, Y->mesh, out->map, NULL, out->map, err))) goto done;
-    info.hyp_final_polished = 1;
+    R.info.hyp_final_polished = 1;
   }
   out->t_zoomout += ss_time() - t_final;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
   out->t_total = out->t_segment + out->t_eigs + (ss_time() - t0);
-  out->autopair = info;
+  out->autopair = R.info;
   if (flip_skipped[0]) ssi_match_note(out, flip_skipped);
-  if (nlg > 0 && lm_off[info.hypothesis] > 0) {
-    char msg[256];
-    snprintf(msg, sizeof msg, "%d of the %d landmarks lie farther than %.2g (geodesic / sqrt(area)) from their partners "
-             "under the map kept (hypothesis #%d%s); check them", lm_off[info.hypothesis], nlg,
-             o.autopair.hyp_landmark_tol, info.hypothesis, cs.lm_free[info.hypothesis] ? ", landmark-free" : "");
-    ssi_match_note(out, msg);
-  }
-  if (!best_oriented) {
-    char msg[240];
-    snprintf(msg, sizeof msg, "map NOT confident: it reverses orientation (whole-map orientation score %.2f, below %.2g, "
-             "and no hypothesis reaches it): it may be a mirror image (%s)", info.hyp_orientation[info.hypothesis],
-             o.autopair.hyp_min_orientation, nlg ? "check the landmarks" : "give landmarks");
-    ssi_match_note(out, msg);
-  } else if (low_orient) {
-    char msg[240];
-    snprintf(msg, sizeof msg, "map NOT confident: its orientation score %.2f is below %.2g (part of it may be mirrored; %s)",
-             kept_orient, o.autopair.hyp_confident_orientation, nlg ? "check the landmarks" : "give landmarks");
-    ssi_match_note(out, msg);
-  } else if (high_map_energy) {
-    char msg[240];
-    snprintf(msg, sizeof msg, "map NOT confident: its own energy %.3g is above %.3g (its functional map is far from "
-             "orthogonal or the descriptors badly kept; %s)", kept_map_energy, o.autopair.hyp_max_map_energy,
-             nlg ? "check the landmarks" : "give landmarks");
-    ssi_match_note(out, msg);
-  } else if (!info.confident) {
-    char msg[240];
-    if (nc > 1)
-      snprintf(msg, sizeof msg, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
-               "hypothesis maps almost as well; the map may be wrong (%s)", nlg ? "the" : "landmark-free",
-               info.hyp_margin, o.autopair.hyp_min_margin, nlg ? "check the landmarks, add some" : "give landmarks");
-    else
-      snprintf(msg, sizeof msg, "landmark-free pairing NOT confident (gap %.3g, min %.3g; orientation margin %.2f, min "
-               "%.2f): the map may be wrong (give landmarks)", info.gap, o.autopair.min_gap, info.mirror_margin,
-               o.autopair.min_mirror);
-    ssi_match_note(out, msg);
-  }
+  note_doubts(&R, &d, out);
 done:
   if (st) ss_match_result_free(out);
-  ss_match_result_free(&r);
-  ssi_hyp_ctx_free(&hc);
-  ssi_zoomout_plan_free(&plan);
-  ssi_fmap_work_free(&fw);
+  ssi_hyp_ctx_free(&R.hc);
+  ssi_zoomout_plan_free(&R.plan);
+  ssi_fmap_work_free(&R.fw);
   ss_centre_signature_free(&own[0]);
   ss_centre_signature_free(&own[1]);
   for (int h = 0; h < nh; h++) ss_segment_pairs_free(&hyp[h]);
   for (int h = 0; h < nrh; h++) ss_segment_pairs_free(&rhyp[h]);
-  free(cs.lx), free(cs.ly), free(segs), free(gdX), free(gdY), free(maps);
+  free(R.cs.lx), free(R.cs.ly), free(R.segs), free(R.gdX), free(R.gdY), free(R.maps);
   return st;
 }
 
