@@ -38,6 +38,10 @@ int io_gltf_sniff(const char *buf, size_t len);
 typedef ss_status (*io_mesh_parser)(const char *path, const char *buf, size_t len, ss_mesh *m, ss_error *err);
 ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_error *err);
 
+/* The format of our own readers that path's extension names (case-insensitive): 'o' OFF, 'j' OBJ, 'p' PLY,
+ * 's' STL, 'g' glTF / GLB; 0: none of ours (path NULL included). */
+int ssi_mesh_own_format(const char *path);
+
 /* ---- formats read through assimp (read_assimp.c), by extension only ----
  * Does the extension of path belong to a format read through assimp (FBX, COLLADA, ...; never OFF, OBJ,
  * PLY, STL, glTF or GLB)? Then 1, and the lower-case extension in hint (cap bytes) when hint is not NULL.

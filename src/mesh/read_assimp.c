@@ -51,9 +51,7 @@ static pthread_mutex_t assimp_lock = PTHREAD_MUTEX_INITIALIZER;
 int ssi_mesh_assimp_ext(const char *path, char *hint, size_t cap) {
   char ext[16];
   if (!path || !lower_ext(path, ext, sizeof ext)) return 0;
-  if (!strcmp(ext, "off") || !strcmp(ext, "obj") || !strcmp(ext, "ply") || !strcmp(ext, "stl") || !strcmp(ext, "gltf") ||
-      !strcmp(ext, "glb"))
-    return 0;
+  if (ssi_mesh_own_format(path)) return 0;
   int known = 0;
   for (const char *const *k = KNOWN; *k && !known; k++) known = !strcmp(*k, ext);
 #ifdef SS_HAVE_ASSIMP

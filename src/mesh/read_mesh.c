@@ -41,6 +41,19 @@ static int ext_is(const char *path, const char *ext) {
   return 1;
 }
 
+/* The formats our own readers parse, by extension: the one list that the dispatch below,
+ * ss_mesh_extension_supported and the assimp routing (which never takes these) all read. */
+static const struct {
+  const char *ext;
+  char kind; /* parse_any's switch */
+} OWN_FORMATS[] = {{"off", 'o'}, {"obj", 'j'}, {"ply", 'p'}, {"stl", 's'}, {"gltf", 'g'}, {"glb", 'g'}};
+
+int ssi_mesh_own_format(const char *path) {
+  for (size_t i = 0; path && i < sizeof OWN_FORMATS / sizeof *OWN_FORMATS; i++)
+    if (ext_is(path, OWN_FORMATS[i].ext)) return OWN_FORMATS[i].kind;
+  return 0;
+}
+
 /* Content sniffing for files without a known extension. */
 static int sniff(const char *buf, size_t len) {
   if (len >= 4 && !memcmp(buf, "ply", 3) && (buf[3] == '\n' || buf[3] == '\r')) return 'p';
@@ -62,20 +75,14 @@ static int sniff(const char *buf, size_t len) {
   return 0;
 }
 
-static int is_gltf_ext(const char *path) { return ext_is(path, "gltf") || ext_is(path, "glb"); }
-
 /* The parser for a loaded buffer: by the extension of `path` when given (the path also locates a .gltf's
  * external buffers), else by content, our formats only: nothing read from memory goes to assimp. */
 static ss_status parse_any(const char *path, const char *name, const char *buf, size_t len, ss_mesh *m,
                            unsigned char **rgb, ss_error *err) {
   char hint[16];
-  int kind = path && ext_is(path, "off")   ? 'o'
-             : path && ext_is(path, "obj") ? 'j'
-             : path && ext_is(path, "ply") ? 'p'
-             : path && ext_is(path, "stl") ? 's'
-             : path && is_gltf_ext(path)   ? 'g'
-             : path && ssi_mesh_assimp_ext(path, hint, sizeof hint) ? 'a'
-             : io_stl_sniff(buf, len)      ? 's' /* first: a binary STL's header may hold any text */
+  int kind = ssi_mesh_own_format(path);
+  if (!kind && path && ssi_mesh_assimp_ext(path, hint, sizeof hint)) kind = 'a';
+  if (!kind) kind = io_stl_sniff(buf, len) ? 's' /* first: a binary STL's header may hold any text */
                                            : sniff(buf, len);
   if (!kind && io_gltf_sniff(buf, len)) kind = 'g';
   switch (kind) {
@@ -148,8 +155,7 @@ ss_status io_read_with(const char *path, io_mesh_parser parse, ss_mesh *m, ss_er
 
 int ss_mesh_extension_supported(const char *path) {
   if (!path) return 0;
-  if (ext_is(path, "off") || ext_is(path, "obj") || ext_is(path, "ply") || ext_is(path, "stl") || is_gltf_ext(path))
-    return 1;
+  if (ssi_mesh_own_format(path)) return 1;
 #ifdef SS_HAVE_ASSIMP
   if (ssi_mesh_assimp_ext(path, NULL, 0)) return 2;
 #endif
