@@ -61,13 +61,32 @@ typedef struct bshape {
   ss_prepared_shape ps;
 } bshape;
 
-/* the run's shared state: messages and the lock around them and the CSV */
+/* the run's state: the options, info, messages and the lock around them and the CSV, then what run's
+ * stages build in turn */
 typedef struct brun {
   const ss_benchmark_options *o;
   ss_benchmark_info *info;
 #ifdef _OPENMP
   omp_lock_t lock;
 #endif
+  ss_match_options mo;
+  const ss_autopair_options *ap; /* mo's: the prepared shapes' pairing signature */
+  int kev;                       /* the prepared shapes' eigenpairs */
+  char ours[SS_BENCH_METHOD];    /* our maps' method name */
+  int NM;                        /* methods: ours (when o->match, first), then each maps folder's */
+  const char **mname;
+  ss_benchmark_set B;
+  int p0, p1;                   /* the shard: pairs p0..p1-1 of B */
+  char *csv, *mapdir;           /* OUT/pairs.csv, OUT/maps */
+  int have_header;              /* pairs.csv is there (resume) */
+  ss_benchmark_row *old;        /* its rows */
+  char **keys, **skeys;         /* the scored rows' keys; the skipped rows' keys with their notes (sorted) */
+  int nkeys, nskeys;
+  int *todo, ntodo;             /* the shard's pairs with a row to compute */
+  int *need_m;                  /* ntodo x NM: whether pair todo[t] needs method m's row */
+  bshape *sh;                   /* per shape of B */
+  int lm[MAX_LM], nlm;          /* --landmarks gt:N: the ground-truth points used */
+  int nthreads;
 } brun;
 
 static void lock(brun *R) {
@@ -337,6 +356,435 @@ static int *read_ext_map(const char *dir, const char *x, const char *y, int nx, 
   return map;
 }
 
+/* The run's methods: our own maps (when o->match, first) and each maps folder's; a folder name that is
+ * not a valid method name, not a folder, or given twice is refused. Sets ours, NM, mname. */
+static ss_status check_methods(brun *R, ss_error *err) {
+  const ss_benchmark_options *o = R->o;
+  ss_benchmark_method_name(o, R->ours, sizeof R->ours);
+  R->NM = (o->match ? 1 : 0) + o->nmaps;
+  if (!(R->mname = calloc((size_t)R->NM, sizeof *R->mname)))
+    return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  int k = 0;
+  if (o->match) R->mname[k++] = R->ours;
+  for (int i = 0; i < o->nmaps; i++) R->mname[k++] = o->map_names[i];
+  const char **mname = R->mname;
+  for (int i = o->match; i < R->NM; i++) {
+    if (!valid_method_name(mname[i]))
+      return ss_fail(err, SS_ERR_INVALID,
+                     "benchmark: method name '%s': letters, digits, '_', '-' and '.' only, at most %d", mname[i],
+                     SS_BENCH_METHOD - 1);
+    if (!bm_is_dir(o->map_dirs[i - o->match]))
+      return ss_fail(err, SS_ERR_IO, "benchmark: %s: maps folder %s is not a folder", mname[i],
+                     o->map_dirs[i - o->match]);
+    for (int j = 0; j < i; j++)
+      if (!strcmp(mname[i], mname[j]))
+        return ss_fail(err, SS_ERR_INVALID, "benchmark: method '%s' given twice%s", mname[i],
+                       j == 0 && o->match ? " (our own maps' name)" : "");
+  }
+  return SS_OK;
+}
+
+/* The output folder and its paths (csv, mapdir); pairs.csv's rows already there: the scored ones' keys
+ * (keys: not run again) and the skipped ones' keys with their notes (skeys: retried, but not written
+ * again when skipped for the same reason), each sorted */
+static ss_status read_resume(brun *R, ss_error *err) {
+  const char *dir = R->o->out_dir;
+  if (mkdir(dir, 0755) && errno != EEXIST)
+    return ss_fail(err, SS_ERR_IO, "%s: cannot create: %s", dir, strerror(errno));
+  if (!bm_is_dir(dir)) return ss_fail(err, SS_ERR_IO, "%s: not a folder", dir);
+  R->csv = bm_join(dir, "pairs.csv"), R->mapdir = bm_join(dir, "maps");
+  if (!R->csv || !R->mapdir) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  R->have_header = ssi_csv_repair_tail(R->csv);
+  if (!R->have_header) return SS_OK;
+  ss_status st;
+  int nold = 0;
+  if ((st = ss_benchmark_csv_read(R->csv, &R->old, &nold, err))) return st;
+  R->keys = malloc(sizeof *R->keys * (size_t)(nold > 0 ? nold : 1));
+  R->skeys = malloc(sizeof *R->skeys * (size_t)(nold > 0 ? nold : 1));
+  if (!R->keys || !R->skeys) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  for (int i = 0; i < nold; i++) {
+    const ss_benchmark_row *w = &R->old[i];
+    char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4 + sizeof w->notes];
+    row_key(w->method, w->x, w->y, k, sizeof k);
+    if (!w->ok) {
+      size_t L = strlen(k);
+      snprintf(k + L, sizeof k - L, "\t%s", w->notes);
+      if (!(R->skeys[R->nskeys] = bm_strdup(k))) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+      R->nskeys++;
+      continue;
+    }
+    if (!(R->keys[R->nkeys] = bm_strdup(k))) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+    R->info->rows_kept++;
+    R->nkeys++;
+  }
+  qsort(R->keys, (size_t)R->nkeys, sizeof *R->keys, str_cmp);
+  qsort(R->skeys, (size_t)R->nskeys, sizeof *R->skeys, str_cmp);
+  return SS_OK;
+}
+
+/* Our maps' folder, marked with the method whose maps it holds (another method needs another --out),
+ * and the cache folder */
+static ss_status make_map_folders(brun *R, ss_error *err) {
+  const ss_benchmark_options *o = R->o;
+  if (!o->match) return SS_OK;
+  const char *mapdir = R->mapdir;
+  if (mkdir(mapdir, 0755) && errno != EEXIST)
+    return ss_fail(err, SS_ERR_IO, "%s: cannot create: %s", mapdir, strerror(errno));
+  char omark[4400], was[SS_BENCH_METHOD] = "";
+  snprintf(omark, sizeof omark, "%s/.method", mapdir);
+  FILE *mf = fopen(omark, "rb");
+  if (mf) {
+    if (!fgets(was, sizeof was, mf)) was[0] = 0;
+    fclose(mf);
+    was[strcspn(was, "\r\n")] = 0;
+  }
+  if (was[0] && strcmp(was, R->ours))
+    return ss_fail(err, SS_ERR_INVALID, "%s: its maps/ hold %s's maps; %s needs another --out", o->out_dir, was,
+                   R->ours);
+  if (!was[0]) {
+    mf = fopen(omark, "wb");
+    if (!mf || fprintf(mf, "%s\n", R->ours) < 0 || fclose(mf))
+      return ss_fail(err, SS_ERR_IO, "%s: cannot write", omark);
+  }
+  if (o->cache_dir && mkdir(o->cache_dir, 0755) && errno != EEXIST)
+    return ss_fail(err, SS_ERR_IO, "%s: cannot create the cache folder: %s", o->cache_dir, strerror(errno));
+  return SS_OK;
+}
+
+/* The shard's pairs with a method to run (todo, need_m: which methods) and what each shape is needed
+ * for (sh[].need); *rows_total: the rows to compute */
+static ss_status plan_pairs(brun *R, long *rows_total, ss_error *err) {
+  const ss_benchmark_set *B = &R->B;
+  const int NM = R->NM, np = R->p1 - R->p0 > 0 ? R->p1 - R->p0 : 1;
+  R->todo = malloc(sizeof(int) * (size_t)np);
+  R->need_m = calloc((size_t)np * NM, sizeof(int));
+  R->sh = calloc((size_t)B->nshapes, sizeof *R->sh);
+  if (!R->todo || !R->need_m || !R->sh) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  bshape *sh = R->sh;
+  *rows_total = 0;
+  for (int p = R->p0; p < R->p1; p++) {
+    int any = 0;
+    for (int m = 0; m < NM; m++) {
+      int t = !is_done(R->keys, R->nkeys, R->mname[m], B->shapes[B->px[p]].name, B->shapes[B->py[p]].name);
+      R->need_m[(size_t)R->ntodo * NM + m] = t;
+      any |= t;
+      *rows_total += t;
+      if (t && R->o->match && m == 0) sh[B->px[p]].need = sh[B->py[p]].need = 2;
+    }
+    if (!any) continue;
+    if (!sh[B->px[p]].need) sh[B->px[p]].need = 1;
+    if (!sh[B->py[p]].need) sh[B->py[p]].need = 1;
+    R->todo[R->ntodo++] = p;
+  }
+  return SS_OK;
+}
+
+/* --landmarks gt:N: farthest-point sampling on the first shape whose mesh and points read */
+static ss_status pick_landmarks(brun *R, ss_error *err) {
+  const ss_benchmark_set *B = &R->B;
+  ss_benchmark_info *I = R->info;
+  for (int s = 0; s < B->nshapes && !R->nlm; s++) { /* read on its own (cheap), whatever the shard needs */
+    bshape tmp = {0};
+    tmp.need = 1;
+    load_shape(R, &B->shapes[s], &tmp, R->kev, R->ap, B->corres_dir);
+    if (tmp.ok) {
+      R->nlm = fps_points(&tmp, R->o->landmarks, R->lm);
+      snprintf(I->landmark_shape, sizeof I->landmark_shape, "%s", B->shapes[s].name);
+    }
+    ss_mesh_free(&tmp.mesh);
+    free(tmp.vts), free(tmp.sym);
+  }
+  if (!R->nlm) return ss_fail(err, SS_ERR_INVALID, "benchmark: --landmarks: no shape whose mesh and points read");
+  I->nlandmarks = R->nlm;
+  memcpy(I->landmarks, R->lm, sizeof(int) * (size_t)R->nlm);
+  char list[600] = "";
+  for (int j = 0; j < R->nlm; j++) snprintf(list + strlen(list), sizeof list - strlen(list), " %d", R->lm[j]);
+  say(R, "benchmark: landmarks: %d ground-truth points by farthest-point sampling on %s from its point 0:%s", R->nlm,
+      I->landmark_shape, list);
+  if (R->nlm < R->o->landmarks)
+    warn(R, "--landmarks gt:%d: %s has only %d points: %d landmarks", R->o->landmarks, I->landmark_shape, R->nlm,
+         R->nlm);
+  return SS_OK;
+}
+
+/* What did not read, once per shape with the pairs it skips; points files of unequal length (the most
+ * common length, and each file that differs); the shapes prepared and cached counted in info */
+static ss_status report_shapes(brun *R, ss_error *err) {
+  const ss_benchmark_set *B = &R->B;
+  const bshape *sh = R->sh;
+  ss_benchmark_info *I = R->info;
+  int *npairs = calloc((size_t)B->nshapes, sizeof(int)), *mode = NULL;
+  if (!npairs) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  for (int t = 0; t < R->ntodo; t++) {
+    const int p = R->todo[t];
+    npairs[B->px[p]]++, npairs[B->py[p]] += B->px[p] != B->py[p];
+  }
+  int nok = 0;
+  for (int s = 0; s < B->nshapes; s++) {
+    if (!sh[s].need) continue;
+    if (!sh[s].ok)
+      warn(R, "%s: its %d pair%s skipped", sh[s].why, npairs[s], npairs[s] == 1 ? "" : "s");
+    else if (sh[s].need == 2 && !sh[s].prepared)
+      warn(R, "%s: its %d pair%s skipped for %s", sh[s].prep_why, npairs[s], npairs[s] == 1 ? "" : "s", R->ours);
+    if (sh[s].ok) {
+      nok++;
+      I->shapes_prepared += sh[s].prepared && !sh[s].from_cache;
+      I->shapes_cached += sh[s].from_cache;
+    }
+  }
+  if (!(mode = malloc(sizeof(int) * (size_t)(nok > 0 ? nok : 1)))) {
+    free(npairs);
+    return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  }
+  int k = 0;
+  for (int s = 0; s < B->nshapes; s++)
+    if (sh[s].need && sh[s].ok) mode[k++] = sh[s].nvts;
+  int best = 0, bestc = 0;
+  for (int a = 0; a < k; a++) {
+    int c = 0;
+    for (int b = 0; b < k; b++) c += mode[b] == mode[a];
+    if (c > bestc || (c == bestc && mode[a] > best)) bestc = c, best = mode[a];
+  }
+  for (int s = 0; s < B->nshapes; s++) {
+    if (!sh[s].need || !sh[s].ok) continue;
+    if (sh[s].nvts != best)
+      warn(R, "%s: %d points where the others have %d: its pairs use the points both files have", B->shapes[s].vts,
+           sh[s].nvts, best);
+    if (sh[s].sym && sh[s].nsym != sh[s].nvts)
+      warn(R, "%s: %d mirror points for %d points: the symmetric error of pairs onto %s uses the first %d",
+           B->shapes[s].sym, sh[s].nsym, sh[s].nvts, B->shapes[s].name,
+           sh[s].nsym < sh[s].nvts ? sh[s].nsym : sh[s].nvts);
+  }
+  free(mode), free(npairs);
+  return SS_OK;
+}
+
+/* Phase 1: every shape the pairs need read (and prepared for our maps), in parallel, then reported */
+static ss_status load_shapes(brun *R, ss_error *err) {
+  const ss_benchmark_set *B = &R->B;
+  int *list = malloc(sizeof(int) * (size_t)B->nshapes), nlist = 0;
+  if (!list) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  for (int s = 0; s < B->nshapes; s++)
+    if (R->sh[s].need) list[nlist++] = s;
+  int loaded = 0;
+  double t1 = ss_time();
+  progress(R, 0, nlist, 0, R->ntodo, t1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(R->nthreads)
+  for (int i = 0; i < nlist; i++) {
+    load_shape(R, &B->shapes[list[i]], &R->sh[list[i]], R->kev, R->ap, B->corres_dir);
+    lock(R);
+    loaded++;
+    progress(R, loaded, nlist, 0, R->ntodo, t1);
+    unlock(R);
+  }
+  free(list);
+  ss_status st = report_shapes(R, err);
+  if (st) return st;
+  say(R, "benchmark: shapes read%s in %.1f s (%d prepared, %d from the cache)", R->o->match ? " and prepared" : "",
+      ss_time() - t1, R->info->shapes_prepared, R->info->shapes_cached);
+  return SS_OK;
+}
+
+/* Phase 2's shared state: the CSV open for appending, the first write error, the maps folders' missing
+ * files (counted per method, the first named), the pairs done */
+typedef struct {
+  FILE *out;
+  int werr;
+  ss_error wmsg;
+  int *nmissing;
+  char (*first_missing)[1200];
+  int done_pairs;
+  double t0;
+} bpairs;
+
+/* The write error e, unless one came first (the caller holds no lock) */
+static void write_failed(brun *R, bpairs *P, ss_status code, const ss_error *e) {
+  lock(R);
+  if (!P->werr) P->werr = code, P->wmsg = *e;
+  unlock(R);
+}
+
+/* Our own map of pair (x, y) (X, Y read and prepared), written to maps/X__Y.txt: returned (malloc'd),
+ * with its seconds and confidence in r; NULL when not made, the reason in r's notes (or, for a write
+ * error, in P) */
+static int *our_map(brun *R, bpairs *P, const bshape *X, const bshape *Y, const char *xn, const char *yn, int K,
+                    ss_benchmark_row *r) {
+  if (!X->prepared || !Y->prepared) {
+    bm_note(r->notes, sizeof r->notes, "%s", !X->prepared ? X->prep_why : Y->prep_why);
+    return NULL;
+  }
+  int lx[MAX_LM], ly[MAX_LM], nl = 0;
+  for (int j = 0; j < R->nlm; j++)
+    if (R->lm[j] < K) lx[nl] = X->vts[R->lm[j]], ly[nl] = Y->vts[R->lm[j]], nl++;
+  if (R->o->landmarks > 0 && nl < R->nlm)
+    bm_note(r->notes, sizeof r->notes, "%d of the %d landmarks (the others beyond point %d)", nl, R->nlm, K);
+  if (R->o->landmarks > 0 && nl == 0) {
+    bm_note(r->notes, sizeof r->notes, "no landmark among the points both shapes have");
+    return NULL;
+  }
+  ss_error e;
+  ss_match_result res = {0};
+  char wbuf[1024] = "";
+  double ts = ss_time();
+  if (ss_match_prepared_shapes(&X->ps, &Y->ps, nl, lx, ly, NULL, &res, wbuf, sizeof wbuf, &e)) {
+    bm_note(r->notes, sizeof r->notes, "match failed: %s", e.msg);
+    ss_match_result_free(&res);
+    return NULL;
+  }
+  r->seconds = ss_time() - ts;
+  if (res.autopair.used || res.autopair.hypotheses > 1) r->confident = res.autopair.confident;
+  if (res.notes[0]) bm_note(r->notes, sizeof r->notes, "%s", res.notes);
+  if (wbuf[0]) bm_note(r->notes, sizeof r->notes, "%s", wbuf);
+  char mp[4400];
+  snprintf(mp, sizeof mp, "%s/%s__%s.txt", R->mapdir, xn, yn);
+  int *map = NULL;
+  if (ss_write_ints(mp, res.map, res.nX, &e))
+    write_failed(R, P, SS_ERR_IO, &e);
+  else
+    map = res.map, res.map = NULL;
+  ss_match_result_free(&res);
+  return map;
+}
+
+/* Pair t's rows, one per method it needs (rows[m]): the map (ours, or method m's file), scored */
+static void score_pair(brun *R, bpairs *P, int t, ss_benchmark_row *rows) {
+  const ss_benchmark_options *o = R->o;
+  const ss_benchmark_set *B = &R->B;
+  const int p = R->todo[t], x = B->px[p], y = B->py[p];
+  const bshape *X = &R->sh[x], *Y = &R->sh[y];
+  const char *xn = B->shapes[x].name, *yn = B->shapes[y].name;
+  const int K = X->ok && Y->ok ? (X->nvts < Y->nvts ? X->nvts : Y->nvts) : 0;
+  const int NS = Y->ok && Y->sym ? Y->nsym : 0;
+  for (int m = 0; m < R->NM; m++) {
+    ss_benchmark_row *r = &rows[m];
+    snprintf(r->method, sizeof r->method, "%s", R->mname[m]);
+    snprintf(r->x, sizeof r->x, "%s", xn);
+    snprintf(r->y, sizeof r->y, "%s", yn);
+    r->mean = r->median = r->sym_mean = r->seconds = NAN;
+    r->confident = -1;
+    if (!R->need_m[(size_t)t * R->NM + m]) continue;
+    if (!X->ok || !Y->ok) {
+      bm_note(r->notes, sizeof r->notes, "%s", !X->ok ? X->why : Y->why);
+      continue;
+    }
+    if (X->nvts != Y->nvts)
+      bm_note(r->notes, sizeof r->notes, "the first %d points (%s has %d, %s %d)", K, xn, X->nvts, yn, Y->nvts);
+    int *map;
+    if (o->match && m == 0)
+      map = our_map(R, P, X, Y, xn, yn, K, r);
+    else {
+      char why[1200];
+      int missing = 0;
+      map = read_ext_map(o->map_dirs[m - o->match], xn, yn, X->mesh.nv, Y->mesh.nv, why, sizeof why, &missing);
+      if (!map) {
+        bm_note(r->notes, sizeof r->notes, "%s", why);
+        lock(R);
+        if (!missing)
+          warn(R, "%s: %s -> %s skipped: %s", R->mname[m], xn, yn, why);
+        else if (!P->nmissing[m]++)
+          snprintf(P->first_missing[m], sizeof P->first_missing[m], "%s", why);
+        unlock(R);
+      }
+    }
+    if (!map) continue;
+    ss_error e;
+    if (ss_benchmark_score(&Y->mesh, X->mesh.nv, map, K, X->vts, Y->vts, Y->sym, NS, r, NULL, &e))
+      bm_note(r->notes, sizeof r->notes, "not scored: %s", e.msg);
+    else
+      r->ok = 1;
+    free(map);
+  }
+}
+
+/* Pair t's rows appended to pairs.csv and flushed, but a row skipped for the same reason as before
+ * (the caller holds the lock) */
+static void write_rows(brun *R, bpairs *P, int t, const ss_benchmark_row *rows) {
+  ss_benchmark_info *I = R->info;
+  for (int m = 0; m < R->NM && !P->werr; m++) {
+    if (!R->need_m[(size_t)t * R->NM + m]) continue;
+    if (!rows[m].ok && R->nskeys > 0) {
+      char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4 + sizeof rows[m].notes], *kp = k;
+      row_key(rows[m].method, rows[m].x, rows[m].y, k, sizeof k);
+      size_t L = strlen(k);
+      snprintf(k + L, sizeof k - L, "\t%s", rows[m].notes);
+      if (bsearch(&kp, R->skeys, (size_t)R->nskeys, sizeof *R->skeys, str_cmp)) {
+        I->rows_same_skip++;
+        continue;
+      }
+    }
+    char line[SS_BENCH_CSV_LINE];
+    ss_benchmark_csv_format_row(&rows[m], line, sizeof line);
+    if (fprintf(P->out, "%s\n", line) < 0)
+      P->werr = SS_ERR_IO, snprintf(P->wmsg.msg, sizeof P->wmsg.msg, "%s: write error", R->csv);
+    I->rows_new++;
+  }
+  fflush(P->out);
+}
+
+/* Phase 2: the pairs, in parallel, each pair's rows written as it finishes */
+static ss_status score_pairs(brun *R, ss_error *err) {
+  bpairs P;
+  memset(&P, 0, sizeof P);
+  if (!(P.out = fopen(R->csv, R->have_header ? "ab" : "wb")))
+    return ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", R->csv, strerror(errno));
+  if (!R->have_header) fprintf(P.out, "%s\n", ss_benchmark_csv_header());
+  fflush(P.out);
+  ss_status st = SS_OK;
+  P.nmissing = calloc((size_t)R->NM, sizeof(int));
+  P.first_missing = calloc((size_t)R->NM, sizeof *P.first_missing);
+  if (!P.nmissing || !P.first_missing) {
+    st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+    goto done;
+  }
+  P.t0 = ss_time();
+  progress(R, 1, 1, 0, R->ntodo, P.t0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(R->nthreads)
+  for (int t = 0; t < R->ntodo; t++) {
+    if (P.werr) continue;
+    ss_benchmark_row *rows = calloc((size_t)R->NM, sizeof *rows);
+    if (!rows) {
+      ss_error e;
+      snprintf(e.msg, sizeof e.msg, "benchmark: out of memory");
+      write_failed(R, &P, SS_ERR_NOMEM, &e);
+      continue;
+    }
+    score_pair(R, &P, t, rows);
+    lock(R);
+    write_rows(R, &P, t, rows);
+    P.done_pairs++;
+    progress(R, 1, 1, P.done_pairs, R->ntodo, P.t0);
+    unlock(R);
+    free(rows);
+  }
+  for (int m = 0; m < R->NM; m++)
+    if (P.nmissing[m])
+      warn(R, "%s: %d of the %d pairs have no map file (%s): skipped", R->mname[m], P.nmissing[m], R->ntodo,
+           P.first_missing[m]);
+  if (P.werr)
+    st = ss_fail(err, (ss_status)P.werr, "%s", P.wmsg.msg);
+  else
+    say(R, "benchmark: %d rows of %d pairs in %.1f s", R->info->rows_new, R->ntodo, ss_time() - P.t0);
+done:
+  if (fclose(P.out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write error: %s", R->csv, strerror(errno));
+  free(P.nmissing), free(P.first_missing);
+  return st;
+}
+
+/* The run's state freed (not R's options, info and lock) */
+static void run_free(brun *R) {
+  if (R->sh)
+    for (int s = 0; s < R->B.nshapes; s++) {
+      ss_mesh_free(&R->sh[s].mesh);
+      free(R->sh[s].vts), free(R->sh[s].sym);
+      if (R->sh[s].prepared) ss_prepared_shape_free(&R->sh[s].ps);
+    }
+  for (int i = 0; i < R->nkeys; i++) free(R->keys[i]);
+  for (int i = 0; i < R->nskeys; i++) free(R->skeys[i]);
+  free(R->keys), free(R->skeys), free(R->sh), free(R->todo), free(R->need_m), free(R->old), free(R->csv);
+  free(R->mapdir), free(R->mname);
+  ss_benchmark_set_free(&R->B);
+}
+
 static ss_status run(brun *R, ss_error *err) {
   const ss_benchmark_options *o = R->o;
   ss_benchmark_info *I = R->info;
@@ -345,369 +793,38 @@ static ss_status run(brun *R, ss_error *err) {
       o->nmaps < 0 || o->max_pairs < 0 || (o->nmaps > 0 && (!o->map_names || !o->map_dirs)))
     return ss_fail(err, SS_ERR_INVALID, "benchmark: bad options (shard %d/%d, landmarks %d, maps %d)", o->shard_i + 1,
                    o->shard_n, o->landmarks, o->nmaps);
-  if (!o->match && o->nmaps == 0) return ss_fail(err, SS_ERR_INVALID, "benchmark: no method (our maps off and no maps folder)");
-  char ours[SS_BENCH_METHOD];
-  ss_benchmark_method_name(o, ours, sizeof ours);
-  const int NM = (o->match ? 1 : 0) + o->nmaps;
-  const char **mname = calloc((size_t)NM, sizeof *mname);
-  if (!mname) return ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
-  {
-    int k = 0;
-    if (o->match) mname[k++] = ours;
-    for (int i = 0; i < o->nmaps; i++) mname[k++] = o->map_names[i];
-  }
-  ss_status bad = SS_OK;
-  for (int i = o->match; i < NM && !bad; i++) {
-    if (!valid_method_name(mname[i]))
-      bad = ss_fail(err, SS_ERR_INVALID, "benchmark: method name '%s': letters, digits, '_', '-' and '.' only, at most %d",
-                    mname[i], SS_BENCH_METHOD - 1);
-    else if (!bm_is_dir(o->map_dirs[i - o->match]))
-      bad = ss_fail(err, SS_ERR_IO, "benchmark: %s: maps folder %s is not a folder", mname[i], o->map_dirs[i - o->match]);
-    for (int j = 0; j < i && !bad; j++)
-      if (!strcmp(mname[i], mname[j]))
-        bad = ss_fail(err, SS_ERR_INVALID, "benchmark: method '%s' given twice%s", mname[i],
-                      j == 0 && o->match ? " (our own maps' name)" : "");
-  }
-  if (bad) {
-    free(mname);
-    return bad;
-  }
-  ss_status st = SS_OK;
-  ss_benchmark_set B = {0};
-  bshape *sh = NULL;
-  char **keys = NULL, **skeys = NULL;
-  int nkeys = 0, nskeys = 0, *todo = NULL, ntodo = 0, *need_m = NULL;
-  ss_benchmark_row *old = NULL;
-  FILE *out = NULL;
-  char *csv = NULL, *mapdir = NULL;
-  int lm[MAX_LM], nlm = 0;
-  /* the landmark-free match's eigenpairs, also for --landmarks runs (a match with landmarks never
-   * needs more): one cache entry serves both */
-  const int kev = ss_match_eigenpairs(NULL, 0);
-  ss_match_options mo;
-  ss_match_default_options(&mo);
-  /* the landmark-free pairing's signature, also for --landmarks runs (unused there, ~0.2 s a shape):
-   * one cache entry serves both */
-  const ss_autopair_options *ap = &mo.autopair;
+  if (!o->match && o->nmaps == 0)
+    return ss_fail(err, SS_ERR_INVALID, "benchmark: no method (our maps off and no maps folder)");
+  /* the landmark-free match's eigenpairs and pairing signature, also for --landmarks runs (a match with
+   * landmarks never needs more eigenpairs; the signature is unused there, ~0.2 s a shape): one cache
+   * entry serves both */
+  ss_match_default_options(&R->mo);
+  R->kev = ss_match_eigenpairs(NULL, 0), R->ap = &R->mo.autopair;
   double t0 = ss_time();
-
-  if ((st = ss_benchmark_open(o->dir, o->pairs_file, o->max_pairs, o->seed, &B, err))) goto done;
-  I->pairs_listed = B.npairs;
-  const int p0 = (int)((long)B.npairs * o->shard_i / o->shard_n), p1 = (int)((long)B.npairs * (o->shard_i + 1) / o->shard_n);
-  I->pairs_shard = p1 - p0;
-  /* the output folder, pairs.csv (resume), maps/ */
-  if (mkdir(o->out_dir, 0755) && errno != EEXIST) {
-    st = ss_fail(err, SS_ERR_IO, "%s: cannot create: %s", o->out_dir, strerror(errno));
-    goto done;
-  }
-  if (!bm_is_dir(o->out_dir)) { st = ss_fail(err, SS_ERR_IO, "%s: not a folder", o->out_dir); goto done; }
-  csv = bm_join(o->out_dir, "pairs.csv"), mapdir = bm_join(o->out_dir, "maps");
-  if (!csv || !mapdir) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-  int have_header = ssi_csv_repair_tail(csv), nold = 0;
-  if (have_header) {
-    if ((st = ss_benchmark_csv_read(csv, &old, &nold, err))) goto done;
-    keys = malloc(sizeof *keys * (size_t)(nold > 0 ? nold : 1));
-    skeys = malloc(sizeof *skeys * (size_t)(nold > 0 ? nold : 1));
-    if (!keys || !skeys) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-    for (int i = 0; i < nold; i++) {
-      if (!old[i].ok) { /* retried, but not written again when skipped for the same reason */
-        char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4 + sizeof old[i].notes];
-        row_key(old[i].method, old[i].x, old[i].y, k, sizeof k);
-        size_t L = strlen(k);
-        snprintf(k + L, sizeof k - L, "\t%s", old[i].notes);
-        if (!(skeys[nskeys] = bm_strdup(k))) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-        nskeys++;
-        continue;
-      }
-      char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4];
-      row_key(old[i].method, old[i].x, old[i].y, k, sizeof k);
-      if (!(keys[nkeys] = bm_strdup(k))) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-      I->rows_kept++;
-      nkeys++;
-    }
-    qsort(keys, (size_t)nkeys, sizeof *keys, str_cmp);
-    qsort(skeys, (size_t)nskeys, sizeof *skeys, str_cmp);
-  }
-  if (o->match) {
-    if (mkdir(mapdir, 0755) && errno != EEXIST) {
-      st = ss_fail(err, SS_ERR_IO, "%s: cannot create: %s", mapdir, strerror(errno));
-      goto done;
-    }
-    char omark[4400], was[SS_BENCH_METHOD] = "";
-    snprintf(omark, sizeof omark, "%s/.method", mapdir);
-    FILE *mf = fopen(omark, "rb");
-    if (mf) {
-      if (!fgets(was, sizeof was, mf)) was[0] = 0;
-      fclose(mf);
-      was[strcspn(was, "\r\n")] = 0;
-    }
-    if (was[0] && strcmp(was, ours)) {
-      st = ss_fail(err, SS_ERR_INVALID, "%s: its maps/ hold %s's maps; %s needs another --out", o->out_dir, was, ours);
-      goto done;
-    }
-    if (!was[0]) {
-      mf = fopen(omark, "wb");
-      if (!mf || fprintf(mf, "%s\n", ours) < 0 || fclose(mf)) {
-        st = ss_fail(err, SS_ERR_IO, "%s: cannot write", omark);
-        goto done;
-      }
-    }
-  }
-  if (o->match && o->cache_dir && mkdir(o->cache_dir, 0755) && errno != EEXIST) {
-    st = ss_fail(err, SS_ERR_IO, "%s: cannot create the cache folder: %s", o->cache_dir, strerror(errno));
-    goto done;
-  }
-  /* the pairs of the shard with a method to run; what each shape is needed for */
-  todo = malloc(sizeof(int) * (size_t)(p1 - p0 > 0 ? p1 - p0 : 1));
-  need_m = calloc((size_t)(p1 - p0 > 0 ? p1 - p0 : 1) * NM, sizeof(int));
-  sh = calloc((size_t)B.nshapes, sizeof *sh);
-  if (!todo || !need_m || !sh) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
+  ss_status st;
   long rows_total = 0;
-  for (int p = p0; p < p1; p++) {
-    int any = 0;
-    for (int m = 0; m < NM; m++) {
-      int t = !is_done(keys, nkeys, mname[m], B.shapes[B.px[p]].name, B.shapes[B.py[p]].name);
-      need_m[(size_t)ntodo * NM + m] = t;
-      any |= t;
-      rows_total += t;
-      if (t && o->match && m == 0) sh[B.px[p]].need = sh[B.py[p]].need = 2;
-    }
-    if (!any) continue;
-    if (!sh[B.px[p]].need) sh[B.px[p]].need = 1;
-    if (!sh[B.py[p]].need) sh[B.py[p]].need = 1;
-    todo[ntodo++] = p;
-  }
-  say(R, "benchmark: %s: %d shapes (meshes in %s), %d pairs (%s%s)%s: shard %d/%d: %d pairs, %d to do (%ld rows), %d "
-         "rows already in %s",
-      o->dir, B.nshapes, B.mesh_dir, B.npairs, B.pairs_file ? B.pairs_file : "all ordered pairs",
-      B.npairs < B.nall ? ", sampled" : "", "", o->shard_i + 1, o->shard_n, p1 - p0, ntodo, rows_total, I->rows_kept, csv);
-  if (ntodo == 0) goto done;
-  /* --landmarks gt:N: FPS on the first shape whose mesh and points read */
-  if (o->match && o->landmarks > 0) {
-    for (int s = 0; s < B.nshapes && !nlm; s++) { /* read on its own (cheap), whatever the shard needs */
-      bshape tmp = {0};
-      tmp.need = 1;
-      load_shape(R, &B.shapes[s], &tmp, kev, ap, B.corres_dir);
-      if (tmp.ok) {
-        nlm = fps_points(&tmp, o->landmarks, lm);
-        snprintf(I->landmark_shape, sizeof I->landmark_shape, "%s", B.shapes[s].name);
-      }
-      ss_mesh_free(&tmp.mesh);
-      free(tmp.vts), free(tmp.sym);
-    }
-    if (!nlm) { st = ss_fail(err, SS_ERR_INVALID, "benchmark: --landmarks: no shape whose mesh and points read"); goto done; }
-    I->nlandmarks = nlm;
-    memcpy(I->landmarks, lm, sizeof(int) * (size_t)nlm);
-    char list[600] = "";
-    for (int j = 0; j < nlm; j++) snprintf(list + strlen(list), sizeof list - strlen(list), " %d", lm[j]);
-    say(R, "benchmark: landmarks: %d ground-truth points by farthest-point sampling on %s from its point 0:%s", nlm,
-        I->landmark_shape, list);
-    if (nlm < o->landmarks)
-      warn(R, "--landmarks gt:%d: %s has only %d points: %d landmarks", o->landmarks, I->landmark_shape, nlm, nlm);
-  }
-  /* phase 1: read (and prepare) every needed shape, in parallel */
-  int nthreads = ssi_eval_threads(o->jobs);
-  int *list = malloc(sizeof(int) * (size_t)B.nshapes), nlist = 0;
-  if (!list) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-  for (int s = 0; s < B.nshapes; s++)
-    if (sh[s].need) list[nlist++] = s;
-  int loaded = 0;
-  double t1 = ss_time();
-  progress(R, 0, nlist, 0, ntodo, t1);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
-  for (int i = 0; i < nlist; i++) {
-    load_shape(R, &B.shapes[list[i]], &sh[list[i]], kev, ap, B.corres_dir);
-    lock(R);
-    loaded++;
-    progress(R, loaded, nlist, 0, ntodo, t1);
-    unlock(R);
-  }
-  free(list);
-  /* what did not read, once per shape, with the pairs it skips */
-  {
-    int *npairs = calloc((size_t)B.nshapes, sizeof(int)), *mode = NULL;
-    if (!npairs) { st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-    for (int t = 0; t < ntodo; t++) npairs[B.px[todo[t]]]++, npairs[B.py[todo[t]]] += B.px[todo[t]] != B.py[todo[t]];
-    int nok = 0;
-    for (int s = 0; s < B.nshapes; s++) {
-      if (!sh[s].need) continue;
-      if (!sh[s].ok) warn(R, "%s: its %d pair%s skipped", sh[s].why, npairs[s], npairs[s] == 1 ? "" : "s");
-      else if (sh[s].need == 2 && !sh[s].prepared)
-        warn(R, "%s: its %d pair%s skipped for %s", sh[s].prep_why, npairs[s], npairs[s] == 1 ? "" : "s", ours);
-      if (sh[s].ok) {
-        nok++;
-        I->shapes_prepared += sh[s].prepared && !sh[s].from_cache;
-        I->shapes_cached += sh[s].from_cache;
-      }
-    }
-    /* points files of unequal length: the most common length, and each file that differs */
-    mode = malloc(sizeof(int) * (size_t)(nok > 0 ? nok : 1));
-    if (!mode) { free(npairs); st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory"); goto done; }
-    int k = 0;
-    for (int s = 0; s < B.nshapes; s++)
-      if (sh[s].need && sh[s].ok) mode[k++] = sh[s].nvts;
-    int best = 0, bestc = 0;
-    for (int a = 0; a < k; a++) {
-      int c = 0;
-      for (int b = 0; b < k; b++) c += mode[b] == mode[a];
-      if (c > bestc || (c == bestc && mode[a] > best)) bestc = c, best = mode[a];
-    }
-    for (int s = 0; s < B.nshapes; s++) {
-      if (!sh[s].need || !sh[s].ok) continue;
-      if (sh[s].nvts != best)
-        warn(R, "%s: %d points where the others have %d: its pairs use the points both files have", B.shapes[s].vts,
-             sh[s].nvts, best);
-      if (sh[s].sym && sh[s].nsym != sh[s].nvts)
-        warn(R, "%s: %d mirror points for %d points: the symmetric error of pairs onto %s uses the first %d",
-             B.shapes[s].sym, sh[s].nsym, sh[s].nvts, B.shapes[s].name, sh[s].nsym < sh[s].nvts ? sh[s].nsym : sh[s].nvts);
-    }
-    free(mode), free(npairs);
-  }
-  say(R, "benchmark: shapes read%s in %.1f s (%d prepared, %d from the cache)", o->match ? " and prepared" : "",
-      ss_time() - t1, I->shapes_prepared, I->shapes_cached);
-  /* phase 2: the pairs, in parallel */
-  out = fopen(csv, have_header ? "ab" : "wb");
-  if (!out) { st = ss_fail(err, SS_ERR_IO, "%s: cannot open for writing: %s", csv, strerror(errno)); goto done; }
-  if (!have_header) fprintf(out, "%s\n", ss_benchmark_csv_header());
-  fflush(out);
-  int done_pairs = 0, werr = 0, *nmissing = calloc((size_t)NM, sizeof(int));
-  char (*first_missing)[1200] = calloc((size_t)NM, sizeof *first_missing);
-  if (!nmissing || !first_missing) {
-    free(nmissing), free(first_missing);
-    st = ss_fail(err, SS_ERR_NOMEM, "benchmark: out of memory");
+  if ((st = check_methods(R, err))) goto done;
+  if ((st = ss_benchmark_open(o->dir, o->pairs_file, o->max_pairs, o->seed, &R->B, err))) goto done;
+  const ss_benchmark_set *B = &R->B;
+  I->pairs_listed = B->npairs;
+  R->p0 = (int)((long)B->npairs * o->shard_i / o->shard_n),
+  R->p1 = (int)((long)B->npairs * (o->shard_i + 1) / o->shard_n);
+  I->pairs_shard = R->p1 - R->p0;
+  if ((st = read_resume(R, err)) || (st = make_map_folders(R, err)) || (st = plan_pairs(R, &rows_total, err)))
     goto done;
-  }
-  ss_error wmsg = {{0}};
-  double t2 = ss_time();
-  progress(R, 1, 1, 0, ntodo, t2);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
-  for (int t = 0; t < ntodo; t++) {
-    if (werr) continue;
-    const int p = todo[t], x = B.px[p], y = B.py[p];
-    const bshape *X = &sh[x], *Y = &sh[y];
-    const char *xn = B.shapes[x].name, *yn = B.shapes[y].name;
-    ss_benchmark_row *rows = calloc((size_t)NM, sizeof *rows);
-    if (!rows) {
-      lock(R);
-      werr = SS_ERR_NOMEM, snprintf(wmsg.msg, sizeof wmsg.msg, "benchmark: out of memory");
-      unlock(R);
-      continue;
-    }
-    const int K = X->ok && Y->ok ? (X->nvts < Y->nvts ? X->nvts : Y->nvts) : 0;
-    const int NS = Y->ok && Y->sym ? Y->nsym : 0;
-    for (int m = 0; m < NM; m++) {
-      ss_benchmark_row *r = &rows[m];
-      snprintf(r->method, sizeof r->method, "%s", mname[m]);
-      snprintf(r->x, sizeof r->x, "%s", xn);
-      snprintf(r->y, sizeof r->y, "%s", yn);
-      r->mean = r->median = r->sym_mean = r->seconds = NAN;
-      r->confident = -1;
-      if (!need_m[(size_t)t * NM + m]) continue;
-      if (!X->ok || !Y->ok) {
-        bm_note(r->notes, sizeof r->notes, "%s", !X->ok ? X->why : Y->why);
-        continue;
-      }
-      if (X->nvts != Y->nvts)
-        bm_note(r->notes, sizeof r->notes, "the first %d points (%s has %d, %s %d)", K, xn, X->nvts, yn, Y->nvts);
-      ss_error e;
-      int *map = NULL;
-      if (o->match && m == 0) {
-        if (!X->prepared || !Y->prepared) {
-          bm_note(r->notes, sizeof r->notes, "%s", !X->prepared ? X->prep_why : Y->prep_why);
-          continue;
-        }
-        int lx[MAX_LM], ly[MAX_LM], nl = 0;
-        for (int j = 0; j < nlm; j++)
-          if (lm[j] < K) lx[nl] = X->vts[lm[j]], ly[nl] = Y->vts[lm[j]], nl++;
-        if (o->landmarks > 0 && nl < nlm) bm_note(r->notes, sizeof r->notes, "%d of the %d landmarks (the others beyond point %d)", nl, nlm, K);
-        if (o->landmarks > 0 && nl == 0) {
-          bm_note(r->notes, sizeof r->notes, "no landmark among the points both shapes have");
-          continue;
-        }
-        ss_match_result res = {0};
-        char wbuf[1024] = "";
-        double ts = ss_time();
-        if (ss_match_prepared_shapes(&X->ps, &Y->ps, nl, lx, ly, NULL, &res, wbuf, sizeof wbuf, &e)) {
-          bm_note(r->notes, sizeof r->notes, "match failed: %s", e.msg);
-          ss_match_result_free(&res);
-          continue;
-        }
-        r->seconds = ss_time() - ts;
-        if (res.autopair.used || res.autopair.hypotheses > 1) r->confident = res.autopair.confident;
-        if (res.notes[0]) bm_note(r->notes, sizeof r->notes, "%s", res.notes);
-        if (wbuf[0]) bm_note(r->notes, sizeof r->notes, "%s", wbuf);
-        char mp[4400];
-        snprintf(mp, sizeof mp, "%s/%s__%s.txt", mapdir, xn, yn);
-        if (ss_write_ints(mp, res.map, res.nX, &e)) {
-          lock(R);
-          if (!werr) werr = SS_ERR_IO, wmsg = e;
-          unlock(R);
-          ss_match_result_free(&res);
-          continue;
-        }
-        map = res.map, res.map = NULL;
-        ss_match_result_free(&res);
-      } else {
-        char why[1200];
-        int missing = 0;
-        map = read_ext_map(o->map_dirs[m - o->match], xn, yn, X->mesh.nv, Y->mesh.nv, why, sizeof why, &missing);
-        if (!map) {
-          bm_note(r->notes, sizeof r->notes, "%s", why);
-          lock(R);
-          if (!missing) warn(R, "%s: %s -> %s skipped: %s", mname[m], xn, yn, why);
-          else if (!nmissing[m]++) snprintf(first_missing[m], sizeof first_missing[m], "%s", why);
-          unlock(R);
-          continue;
-        }
-      }
-      if (ss_benchmark_score(&Y->mesh, X->mesh.nv, map, K, X->vts, Y->vts, Y->sym, NS, r, NULL, &e))
-        bm_note(r->notes, sizeof r->notes, "not scored: %s", e.msg);
-      else
-        r->ok = 1;
-      free(map);
-    }
-    lock(R);
-    for (int m = 0; m < NM && !werr; m++) {
-      if (!need_m[(size_t)t * NM + m]) continue;
-      if (!rows[m].ok && nskeys > 0) {
-        char k[SS_BENCH_METHOD + 2 * SS_BENCH_NAME + 4 + sizeof rows[m].notes], *kp = k;
-        row_key(rows[m].method, rows[m].x, rows[m].y, k, sizeof k);
-        size_t L = strlen(k);
-        snprintf(k + L, sizeof k - L, "\t%s", rows[m].notes);
-        if (bsearch(&kp, skeys, (size_t)nskeys, sizeof *skeys, str_cmp)) {
-          I->rows_same_skip++;
-          continue;
-        }
-      }
-      char line[SS_BENCH_CSV_LINE];
-      ss_benchmark_csv_format_row(&rows[m], line, sizeof line);
-      if (fprintf(out, "%s\n", line) < 0) werr = SS_ERR_IO, snprintf(wmsg.msg, sizeof wmsg.msg, "%s: write error", csv);
-      I->rows_new++;
-    }
-    fflush(out);
-    done_pairs++;
-    progress(R, 1, 1, done_pairs, ntodo, t2);
-    unlock(R);
-    free(rows);
-  }
-  for (int m = 0; m < NM; m++)
-    if (nmissing[m])
-      warn(R, "%s: %d of the %d pairs have no map file (%s): skipped", mname[m], nmissing[m], ntodo, first_missing[m]);
-  free(nmissing), free(first_missing);
-  if (werr) { st = ss_fail(err, (ss_status)werr, "%s", wmsg.msg); goto done; }
-  say(R, "benchmark: %d rows of %d pairs in %.1f s", I->rows_new, ntodo, ss_time() - t2);
+  say(R,
+      "benchmark: %s: %d shapes (meshes in %s), %d pairs (%s%s)%s: shard %d/%d: %d pairs, %d to do (%ld rows), %d "
+      "rows already in %s",
+      o->dir, B->nshapes, B->mesh_dir, B->npairs, B->pairs_file ? B->pairs_file : "all ordered pairs",
+      B->npairs < B->nall ? ", sampled" : "", "", o->shard_i + 1, o->shard_n, R->p1 - R->p0, R->ntodo, rows_total,
+      I->rows_kept, R->csv);
+  if (R->ntodo == 0) goto done;
+  if (o->match && o->landmarks > 0 && (st = pick_landmarks(R, err))) goto done;
+  R->nthreads = ssi_eval_threads(o->jobs);
+  if ((st = load_shapes(R, err))) goto done;
+  st = score_pairs(R, err);
 done:
-  if (out && fclose(out) && !st) st = ss_fail(err, SS_ERR_IO, "%s: write error: %s", csv, strerror(errno));
-  if (sh)
-    for (int s = 0; s < B.nshapes; s++) {
-      ss_mesh_free(&sh[s].mesh);
-      free(sh[s].vts), free(sh[s].sym);
-      if (sh[s].prepared) ss_prepared_shape_free(&sh[s].ps);
-    }
-  for (int i = 0; i < nkeys; i++) free(keys[i]);
-  for (int i = 0; i < nskeys; i++) free(skeys[i]);
-  free(keys), free(skeys), free(sh), free(todo), free(need_m), free(old), free(csv), free(mapdir), free(mname);
-  ss_benchmark_set_free(&B);
+  run_free(R);
   I->seconds = ss_time() - t0;
   return st;
 }
