@@ -900,6 +900,25 @@ static ss_status local_transform(gl *g, const jv *nd, const char *ctx, double *M
   return SS_OK;
 }
 
+static ss_status add_node(gl *g, long ni, const double *parent, int depth);
+
+/* The nodes listed in obj's member key (a node's "children", a scene's "nodes"), each placed under T;
+ * absent: none */
+static ss_status add_nodes(gl *g, const jv *obj, const char *ctx, const char *key, const double *T, int depth) {
+  const jv *list = jget(&g->d, obj, key);
+  if (!list) return SS_OK;
+  if (list->t != J_ARR) return ss_fail(g->err, SS_ERR_PARSE, "%s: %s.%s is not an array", g->name, ctx, key);
+  for (size_t i = 0; i < list->n; i++) {
+    const jv *e = jat(&g->d, list, i);
+    if (e->t != J_NUM || e->num != floor(e->num) || e->num < 0 || e->num >= (double)alen(g->nodes))
+      return ss_fail(g->err, SS_ERR_PARSE, "%s: %s.%s[%zu] is not an index into 'nodes' (%zu entries)", g->name, ctx,
+                     key, i, alen(g->nodes));
+    ss_status st = add_node(g, (long)e->num, T, depth);
+    if (st) return st;
+  }
+  return SS_OK;
+}
+
 static ss_status add_node(gl *g, long ni, const double *parent, int depth) {
   if (depth > 1000) return ss_fail(g->err, SS_ERR_PARSE, "%s: scene graph deeper than 1000 nodes", g->name);
   if (g->state[ni] == 1)
@@ -911,7 +930,7 @@ static ss_status add_node(gl *g, long ni, const double *parent, int depth) {
   g->state[ni] = 1;
   char ctx[40];
   snprintf(ctx, sizeof ctx, "nodes[%ld]", ni);
-  const jv *nd = NULL, *ch;
+  const jv *nd = NULL;
   double L[16], W[16];
   long mi = -1;
   ss_status st;
@@ -920,16 +939,7 @@ static ss_status add_node(gl *g, long ni, const double *parent, int depth) {
     return st;
   mat_mul(parent, L, W);
   if (mi >= 0 && (st = add_mesh(g, mi, W))) return st;
-  if ((ch = jget(&g->d, nd, "children"))) {
-    if (ch->t != J_ARR) return ss_fail(g->err, SS_ERR_PARSE, "%s: %s.children is not an array", g->name, ctx);
-    for (size_t c = 0; c < ch->n; c++) {
-      const jv *e = jat(&g->d, ch, c);
-      if (e->t != J_NUM || e->num != floor(e->num) || e->num < 0 || e->num >= (double)alen(g->nodes))
-        return ss_fail(g->err, SS_ERR_PARSE, "%s: %s.children[%zu] is not an index into 'nodes' (%zu entries)", g->name,
-                       ctx, c, alen(g->nodes));
-      if ((st = add_node(g, (long)e->num, W, depth + 1))) return st;
-    }
-  }
+  if ((st = add_nodes(g, nd, ctx, "children", W, depth + 1))) return st;
   g->state[ni] = 2;
   return SS_OK;
 }
@@ -985,18 +995,8 @@ static ss_status read_document(gl *g) {
   } else {
     char ctx[40];
     snprintf(ctx, sizeof ctx, "scenes[%ld]", si);
-    const jv *sc = NULL, *roots;
-    if ((st = entry(g, scenes, "scenes", si, &sc))) return st;
-    if ((roots = jget(&g->d, sc, "nodes"))) {
-      if (roots->t != J_ARR) return ss_fail(g->err, SS_ERR_PARSE, "%s: %s.nodes is not an array", g->name, ctx);
-      for (size_t r = 0; r < roots->n; r++) {
-        const jv *e = jat(&g->d, roots, r);
-        if (e->t != J_NUM || e->num != floor(e->num) || e->num < 0 || e->num >= (double)alen(g->nodes))
-          return ss_fail(g->err, SS_ERR_PARSE, "%s: %s.nodes[%zu] is not an index into 'nodes' (%zu entries)", g->name,
-                         ctx, r, alen(g->nodes));
-        if ((st = add_node(g, (long)e->num, IDENTITY, 0))) return st;
-      }
-    }
+    const jv *sc = NULL;
+    if ((st = entry(g, scenes, "scenes", si, &sc)) || (st = add_nodes(g, sc, ctx, "nodes", IDENTITY, 0))) return st;
   }
   if (g->F.n == 0)
     return ss_fail(g->err, SS_ERR_PARSE,
