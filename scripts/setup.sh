@@ -5,8 +5,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# (locales: the data test_c_locale builds its comma-decimal locale from)
 pkgs=(cmake make gcc pkg-config libsuitesparse-dev libarpack2-dev libopenblas-dev liblapacke-dev libpng-dev libassimp-dev
-      python3 python3-numpy python3-venv python3-pip python3-setuptools python3-wheel)
+      python3 python3-numpy python3-venv python3-pip python3-setuptools python3-wheel
+      locales)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

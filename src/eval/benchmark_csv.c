@@ -1,6 +1,7 @@
 /* pairs.csv of `specseg eval --benchmark`: one row per (method, pair), written as it finishes, read
  * back for resume, merge and the summary. */
 #include "benchmark_internal.h"
+#include "util/c_locale.h"
 #include "csv_file.h"
 
 #include <errno.h>
@@ -62,7 +63,7 @@ static size_t put_text(char *buf, size_t size, size_t pos, const char *fmt, ...)
   if (pos >= size) return pos;
   va_list ap;
   va_start(ap, fmt);
-  int n = vsnprintf(buf + pos, size - pos, fmt, ap);
+  int n = ssi_vsnprintf_c(buf + pos, size - pos, fmt, ap);
   va_end(ap);
   return n < 0 ? pos : pos + (size_t)n >= size ? size - 1 : pos + (size_t)n;
 }

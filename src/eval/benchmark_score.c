@@ -2,6 +2,7 @@
  * ss_map_geodesic_error as `specseg error` computes them), the summary per method and class, its JSON
  * and the cumulative curves' picture. */
 #include "benchmark_internal.h"
+#include "util/c_locale.h"
 #include "specseg/fmap.h"
 #include "specseg/geodesic.h"
 
@@ -177,7 +178,7 @@ void bm_json_str(FILE *f, const char *s) {
 }
 
 void bm_json_num(FILE *f, double v) {
-  if (isfinite(v)) fprintf(f, "%.17g", v);
+  if (isfinite(v)) ssi_fprintf_c(f, "%.17g", v);
   else fputs("null", f);
 }
 
@@ -263,7 +264,7 @@ ss_status ss_benchmark_curves_png(const ss_benchmark_summary *s, const char *tit
   for (int m = 0; m < s->nmethods && ns < SS_PLOT_MAX_SERIES; m++) {
     const ss_benchmark_method *M = &s->methods[m];
     if (!M->points) continue;
-    snprintf(labels[ns], sizeof labels[ns], "%s  MEAN %.2f, %d PAIRS", M->name, M->all.mean, M->all.scored);
+    ssi_snprintf_c(labels[ns], sizeof labels[ns], "%s  MEAN %.2f, %d PAIRS", M->name, M->all.mean, M->all.scored);
     ser[ns].n = SS_BENCH_CURVE_N, ser[ns].x = ex, ser[ns].y = M->curve, ser[ns].label = labels[ns];
     ss_plot_color(ns, ser[ns].rgb);
     ns++;

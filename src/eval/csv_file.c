@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "csv_file.h"
+#include "util/c_locale.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -50,7 +51,7 @@ int ssi_csv_parse_int(const char *s, int *v) {
 int ssi_csv_parse_real(const char *s, int empty_nan, double *v) {
   if (empty_nan && !*s) { *v = NAN; return 0; }
   char *end;
-  *v = strtod(s, &end);
+  *v = ssi_strtod_c(s, &end);
   return end == s || *end;
 }
 

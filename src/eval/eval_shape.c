@@ -2,6 +2,7 @@
  * own FPS landmarks and the landmark distance fields at its critical points for the three landmark
  * sets — all of it depends on the shape only, so it is computed once and optionally cached on disk. */
 #include "eval_internal.h"
+#include "util/c_locale.h"
 #include "util/blob.h"
 #include "specseg/io.h"
 #include "specseg/spectrum.h"
@@ -148,7 +149,7 @@ static void cache_key(const ev_context *c, const ev_shape *s, int faust, const s
   char who[32];
   if (faust) snprintf(who, sizeof who, "faust %03d", s->id);
   else snprintf(who, sizeof who, "file");
-  snprintf(key, n,
+  ssi_snprintf_c(key, n,
            CACHE_TAG " lib %d.%d.%d %s int%d double%d %s mesh %d %d %016llx kev %d faces %d nostream %d "
            "cleanup %d neigs %d cmcf %d %.17g best %d %d %d %d %d gt %d %d %d %d %d\n",
            SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, ssi_byte_order(),

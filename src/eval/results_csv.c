@@ -1,5 +1,6 @@
 /* The results CSV of `specseg eval --table1` and the Table 1 aggregation. */
 #include "specseg/eval.h"
+#include "util/c_locale.h"
 #include "csv_file.h"
 
 #include <errno.h>
@@ -43,7 +44,7 @@ const char *ss_eval_csv_header(void) {
 }
 
 void ss_eval_csv_format_row(const ss_eval_row *r, char *buf, size_t size) {
-  snprintf(buf, size, "%s,%s,%s,%d,%d,%.17g,%.17g,%d,%d,%d,%.6f,%d,%.6f,%d", ss_pair_policy_name(r->policy),
+  ssi_snprintf_c(buf, size, "%s,%s,%s,%d,%d,%.17g,%.17g,%d,%d,%d,%.6f,%d,%.6f,%d", ss_pair_policy_name(r->policy),
            ss_lm_set_name(r->landmarks), ss_eval_method_name(r->method), r->x, r->y, r->error, r->error_sym,
            r->segments_x, r->segments_y, r->paired, r->seconds, r->samples, r->cpu_seconds, r->pairing);
 }

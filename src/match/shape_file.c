@@ -2,6 +2,7 @@
  * centre signature), computed once, written to and read from a versioned, checksummed file
  * (util/blob.h: the eval cache's format). See match.h. */
 #include "specseg/match.h"
+#include "util/c_locale.h"
 #include "specseg/streamline.h"
 #include "mesh/mesh_geometry.h"
 #include "mesh/mesh_topology.h"
@@ -94,14 +95,14 @@ const ss_shape_prep *ss_prepared_shape_matched(const ss_prepared_shape *s) {
 static void make_key(const ss_prepared_shape *s, char *key, size_t n) {
   const ss_segment_options *o = &s->seg;
   const ss_autopair_options *a = &s->autopair;
-  int len = snprintf(key, n,
+  int len = ssi_snprintf_c(key, n,
                      TAG " %d %s int%d double%d lib %d.%d.%d mesh %d %d %016llx kev %d seg %d %d %d %d %d %.17g %d sig %d",
                      SS_PREPARED_SHAPE_VERSION, ssi_byte_order(), (int)sizeof(int), (int)sizeof(double),
                      SPECSEG_VERSION_MAJOR, SPECSEG_VERSION_MINOR, SPECSEG_VERSION_PATCH, s->mesh.nv, s->mesh.nf,
                      (unsigned long long)ssi_mesh_hash(&s->mesh), ss_prepared_shape_matched(s)->kev, o->target_faces, o->no_streamline,
                      o->cleanup_rings, o->n_eigs, o->cmcf_steps, o->cmcf_dt, o->sanitize, s->has_signature ? 1 : 0);
   if (s->has_signature && len > 0 && (size_t)len < n)
-    len += snprintf(key + len, n - (size_t)len, " autopair %d %d %.17g %.17g %.17g %.17g %d %d %d %.17g %.17g",
+    len += ssi_snprintf_c(key + len, n - (size_t)len, " autopair %d %d %.17g %.17g %.17g %.17g %d %d %d %.17g %.17g",
                     a->descr_k, a->n_energies, a->sigma_factor, a->descr_radius, a->w_descr, a->w_geo, a->exact_max,
                     a->orient_k, a->orient_descr_k, a->min_gap, a->min_mirror);
   if (len > 0 && (size_t)len + 1 < n) key[len] = '\n', key[len + 1] = 0;
@@ -401,12 +402,12 @@ static int parse_payload(ssi_blob *b, const char *key, ss_prepared_shape *s, cha
   int knv, knf, kkev, sig, pos = 0;
   unsigned long long khash;
   char lib[32];
-  if (sscanf(key, TAG " %*d %*2s int%*d double%*d lib %31s mesh %d %d %16llx kev %d seg %d %d %d %d %d %lf %d sig %d%n",
+  if (ssi_sscanf_c(key, TAG " %*d %*2s int%*d double%*d lib %31s mesh %d %d %16llx kev %d seg %d %d %d %d %d %lf %d sig %d%n",
              lib, &knv, &knf, &khash, &kkev, &o->target_faces, &o->no_streamline, &o->cleanup_rings, &o->n_eigs,
              &o->cmcf_steps, &o->cmcf_dt, &o->sanitize, &sig, &pos) != 13 ||
       (sig != 0 && sig != 1))
     return snprintf(why, n, "key line not understood"), 1;
-  if (sig && sscanf(key + pos, " autopair %d %d %lf %lf %lf %lf %d %d %d %lf %lf", &a->descr_k, &a->n_energies,
+  if (sig && ssi_sscanf_c(key + pos, " autopair %d %d %lf %lf %lf %lf %d %d %d %lf %lf", &a->descr_k, &a->n_energies,
                     &a->sigma_factor, &a->descr_radius, &a->w_descr, &a->w_geo, &a->exact_max, &a->orient_k,
                     &a->orient_descr_k, &a->min_gap, &a->min_mirror) != 11)
     return snprintf(why, n, "key line: no pairing options"), 1;

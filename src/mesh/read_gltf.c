@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "mesh/io_internal.h"
+#include "util/c_locale.h"
 #include "specseg/io.h"
 
 /* ---- JSON ---------------------------------------------------------------------------------------- */
@@ -229,10 +230,10 @@ static int jnumber(jparse *p, double *out) {
   memcpy(t, s + start, n);
   t[n] = '\0';
   char *end;
-  double v = strtod(t, &end);
-  const int whole = end == t + n; /* not so under a locale whose decimal point is not '.' */
+  double v = ssi_strtod_c(t, &end);
+  const int whole = end == t + n;
   if (t != small) free(t);
-  if (!whole) return jfail(p, start, "number not readable (the C locale's decimal point is not '.')");
+  if (!whole) return jfail(p, start, "number not readable");
   if (!isfinite(v)) return jfail(p, start, "number out of range");
   *out = v;
   p->pos = i;

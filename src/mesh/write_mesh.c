@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "specseg/io.h"
+#include "util/c_locale.h"
 #include "util/out_file.h"
 
 static ss_status check_mesh(const char *path, const ss_mesh *m, ss_error *err) {
@@ -40,9 +41,9 @@ ss_status ss_write_off(const char *path, const ss_mesh *m, const unsigned char *
   for (int i = 0; i < m->nv && !ferror(f); i++) {
     const double *p = m->V + 3 * (size_t)i;
     if (rgb)
-      fprintf(f, "%.17g %.17g %.17g %u %u %u 255\n", p[0], p[1], p[2], rgb[3 * (size_t)i], rgb[3 * (size_t)i + 1], rgb[3 * (size_t)i + 2]);
+      ssi_fprintf_c(f, "%.17g %.17g %.17g %u %u %u 255\n", p[0], p[1], p[2], rgb[3 * (size_t)i], rgb[3 * (size_t)i + 1], rgb[3 * (size_t)i + 2]);
     else
-      fprintf(f, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
+      ssi_fprintf_c(f, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
   }
   for (int i = 0; i < m->nf && !ferror(f); i++) {
     const int *t = m->F + 3 * (size_t)i;
@@ -78,7 +79,7 @@ ss_status ss_write_ply_labels(const char *path, const ss_mesh *m, const unsigned
   if (fmt == SS_PLY_ASCII) {
     for (int i = 0; i < m->nv && !ferror(f); i++) {
       const double *p = m->V + 3 * (size_t)i;
-      fprintf(f, "%.17g %.17g %.17g", p[0], p[1], p[2]);
+      ssi_fprintf_c(f, "%.17g %.17g %.17g", p[0], p[1], p[2]);
       if (rgb) fprintf(f, " %u %u %u", rgb[3 * (size_t)i], rgb[3 * (size_t)i + 1], rgb[3 * (size_t)i + 2]);
       if (labels) fprintf(f, " %d", labels[i]);
       fputc('\n', f);
@@ -125,10 +126,10 @@ ss_status ss_write_obj(const char *path, const ss_mesh *m, const unsigned char *
   fprintf(f, "# written by specseg\n");
   for (int i = 0; i < m->nv && !ferror(f); i++) {
     const double *p = m->V + 3 * (size_t)i;
-    fprintf(f, "v %.17g %.17g %.17g", p[0], p[1], p[2]);
+    ssi_fprintf_c(f, "v %.17g %.17g %.17g", p[0], p[1], p[2]);
     /* the common "v x y z r g b" extension, colours in [0, 1] */
     if (rgb)
-      fprintf(f, " %.9g %.9g %.9g", rgb[3 * (size_t)i] / 255.0, rgb[3 * (size_t)i + 1] / 255.0, rgb[3 * (size_t)i + 2] / 255.0);
+      ssi_fprintf_c(f, " %.9g %.9g %.9g", rgb[3 * (size_t)i] / 255.0, rgb[3 * (size_t)i + 1] / 255.0, rgb[3 * (size_t)i + 2] / 255.0);
     fputc('\n', f);
   }
   for (int i = 0; i < m->nf && !ferror(f); i++) {

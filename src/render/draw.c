@@ -1,6 +1,7 @@
 /* 2-D drawing on RGB images: fill, blit, rectangles, a 5x7 bitmap font and a labelled colour bar —
  * what panels, titles and the colour scale of error pictures need, without any font library. */
 #include "specseg/render.h"
+#include "util/c_locale.h"
 
 #include <ctype.h>
 #include <stdio.h>
@@ -150,7 +151,7 @@ void ss_draw_colorbar(unsigned char *rgb, int w, int h, int x, int y, int bw, in
   const double v[3] = {hi, 0.5 * (lo + hi), lo};
   for (int k = 0; k < 3; k++) {
     char buf[32];
-    snprintf(buf, sizeof buf, "%.3g", v[k]);
+    ssi_snprintf_c(buf, sizeof buf, "%.3g", v[k]);
     int ty = y + (int)((double)k / 2 * (bh - 1)) - th / 2;
     /* a short tick, then a clear gap: a tick touching the label reads as a minus sign ("-0.1") */
     ss_image_rect(rgb, w, h, x + bw, y + (int)((double)k / 2 * (bh - 1)), 2 * text_scale, 1, text_rgb);

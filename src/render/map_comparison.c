@@ -5,6 +5,7 @@
  * paired segments in one colour. `specseg eval --figures` (FAUST) and `specseg demo` (the synthetic
  * humanoid) both draw through here. */
 #include "specseg/render.h"
+#include "util/c_locale.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -171,7 +172,7 @@ ss_status ss_render_map_comparison(const ss_map_comparison *c, const ss_render_o
     snprintf(title[1 + m], TL, "%s", name);
     ss_render_scene_init(b, X);
     b->vertex_rgb = ecol[m];
-    snprintf(title[cols + 1 + m], TL, "%s%smean %.4f", name, *name ? " " : "", c->mean_error[m]);
+    ssi_snprintf_c(title[cols + 1 + m], TL, "%s%smean %.4f", name, *name ? " " : "", c->mean_error[m]);
   }
   if (c->gt) { /* the ground truth, under the target */
     s = &P[cols].scene;

@@ -2,6 +2,7 @@
  * a title under each, an optional heading line and an optional colour bar at the right — the layout
  * of `specseg render` with several meshes and of the evaluation's figures. */
 #include "specseg/render.h"
+#include "util/c_locale.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -52,7 +53,7 @@ ss_status ss_render_panels(const ss_panel *panels, int n, const ss_render_option
     int lw = 0, tw = l->bar_title ? ss_text_width(l->bar_title, ts) : 0;
     for (int k = 0; k < 3; k++) {
       char buf[32];
-      snprintf(buf, sizeof buf, "%.3g", v[k]);
+      ssi_snprintf_c(buf, sizeof buf, "%.3g", v[k]);
       if (ss_text_width(buf, ts) > lw) lw = ss_text_width(buf, ts);
     }
     int need = bar_bw + 5 * ts + lw > tw ? bar_bw + 5 * ts + lw : tw; /* labels 5*ts right of the bar */

@@ -1,6 +1,7 @@
 /* Line plots on an RGB image: frame, ticks, grid, anti-aliased curves, legend, title and axis labels
  * in the built-in font (draw.c) — what a cumulative error curve needs, without a plotting library. */
 #include "specseg/render.h"
+#include "util/c_locale.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -50,7 +51,7 @@ static int tick_decimals(double step) {
 
 static void tick_label(char *buf, size_t n, double v, int dec) {
   if (fabs(v) < 0.5 * pow(10, -dec)) v = 0; /* no "-0.00" */
-  snprintf(buf, n, "%.*f", dec, v);
+  ssi_snprintf_c(buf, n, "%.*f", dec, v);
 }
 
 /* distance from (px, py) to the segment a-b */

@@ -1,4 +1,5 @@
 #include "util/io_text.h"
+#include "util/c_locale.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -133,7 +134,7 @@ int io_parse_double(const char *tb, size_t tl, double *out) {
   if (tok_copy(tb, tl, s, sizeof s)) return -1;
   char *end;
   errno = 0;
-  double v = strtod(s, &end);
+  double v = ssi_strtod_c(s, &end);
   if (end != s + tl) return -1;
   /* ERANGE on underflow gives a usable denormal/zero; on overflow strtod returns ±HUGE_VAL, which is
    * what an "inf" literal gives too — keep it and let the mesh checks report non-finite values. */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "specseg/io.h"
+#include "util/c_locale.h"
 #include "util/io_text.h"
 #include "util/out_file.h"
 
@@ -153,7 +154,7 @@ static ss_status write_values(const char *path, const int *iv, const double *dv,
   if (st) return st;
   for (int i = 0; i < n && !ferror(o.f); i++) {
     if (iv) fprintf(o.f, "%d\n", iv[i]);
-    else fprintf(o.f, "%.17g\n", dv[i]);
+    else ssi_fprintf_c(o.f, "%.17g\n", dv[i]);
   }
   return ssi_out_commit(&o, path, err);
 }
