@@ -16,7 +16,7 @@ static const char USAGE[] =
     "                     [--segment-profile indicator|tent|soft] [--k K] [--zoomout KMAX] [--fmap C.npy]\n"
     "                     [--no-refine] [--zoomout-step S] [--zoomout-samples N] [--descr-k K] [--orient W]\n"
     "                     [--hypotheses N] [--flip-by x|y|both] [--final-zoomout KMAX] [--no-polish] [--no-recheck]\n"
-    "                     [--scale-fit] [--skip-tol T]\n"
+    "                     [--scale-fit] [--skip-tol T] [--min-coverage C]\n"
     "                     [--one-way]\n"
     "                     [--pairs PAIRS.txt] [--descriptors DX.npy DY.npy [--no-wks]] [--timings] [--json]\n"
     "\n"
@@ -80,6 +80,8 @@ static const char USAGE[] =
     "                      already sends within T sqrt(area) of their partners is not mapped, 0..10^6\n"
     "                      (default 0: every one is; 0.05: about 0.8x the time, its own energy lost, so\n"
     "                      the choice and the confidence may change; --json: skipped_by)\n"
+    "  --min-coverage C    the map is not confident when its distinct images make up less than C of the\n"
+    "                      smaller shape's vertices, 0..1 (default 0.65; 0: not used; --json: coverage)\n"
     "  --zoomout-step S    ZoomOut's size increment, 1..10000 (default 5)\n"
     "  --zoomout-samples N ZoomOut's iterations on N samples of X, 0..10^9 (default 1000; 0 or at least\n"
     "                      X's vertex count: on every vertex, ZoomOut's plain loop)\n"
@@ -168,6 +170,7 @@ int cmd_match(int argc, char **argv) {
       CLI_OPT_FLAG("--no-recheck", &no_recheck, 1),
       CLI_OPT_FLAG("--scale-fit", &o.autopair.hyp_fit_scale, 1),
       CLI_OPT_DOUBLE("--skip-tol", &o.autopair.hyp_skip_tol, 0, 1e6, 0, "--skip-tol needs a value between 0 and 1e6, not '%s'"),
+      CLI_OPT_DOUBLE("--min-coverage", &o.autopair.hyp_min_coverage, 0, 1, 0, "--min-coverage needs a value between 0 and 1, not '%s'"),
       CLI_OPT_CHOICE("--flip-by", &o.autopair.hyp_flip_side, "x|y|both", FLIP_SIDES,
                      "--flip-by takes x, y or both, not '%s'"),
       CLI_OPT_END};
@@ -333,6 +336,7 @@ int cmd_match(int argc, char **argv) {
     cli_job_int(&J, "confident", res.autopair.confident);
     if (res.autopair.used) cli_job_int(&J, "pairing_confident", res.autopair.pairing_confident);
     if (res.autopair.hypotheses > 1) cli_job_num(&J, "hypothesis_margin", res.autopair.hyp_margin);
+    cli_job_num(&J, "coverage", res.autopair.coverage);
     cli_job_int(&J, "hypothesis", res.autopair.hypothesis);
     cli_job_int(&J, "descriptor_candidate", res.autopair.hyp_descriptor);
     cli_job_json(&J, "hypotheses", hypotheses_json(&res.autopair, hbuf, sizeof hbuf));

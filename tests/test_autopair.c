@@ -563,6 +563,42 @@ static void test_permuted_and_mirrored(void) {
     CHECK(res.autopair.used == 1 && res.pairs.n == pX.seg.m);
     /* either a good map or a note that says the pairing is not confident: never a silent wrong map */
     CHECK(exact > n / 2 || (!res.autopair.confident && strstr(res.notes, "NOT confident")));
+    /* the coverage: the map's distinct images over the smaller vertex count (the two have n) */
+    char *seen = calloc((size_t)n, 1);
+    int distinct = 0;
+    for (int i = 0; seen && i < n; i++) distinct += !seen[res.map[i]], seen[res.map[i]] = 1;
+    free(seen);
+    CHECK_MSG(res.autopair.coverage == (double)distinct / n, "coverage %.17g, %d distinct of %d", res.autopair.coverage,
+              distinct, n);
+    printf("  its coverage %.4f (%d distinct images)\n", res.autopair.coverage, distinct);
+    ss_match_result_free(&res);
+    /* a map below hyp_min_coverage is not confident, with a note saying so, and is the same map: the
+     * reflected copy's (the permuted copy's is a bijection, coverage 1) */
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+    const double cov = res.autopair.coverage;
+    const int had = res.autopair.confident;
+    int *copy = res.map ? malloc(sizeof(int) * (size_t)n) : NULL;
+    if (copy) memcpy(copy, res.map, sizeof(int) * (size_t)n);
+    printf("  the reflected copy's map: coverage %.4f, confident %d\n", cov, had);
+    CHECK(cov > 0.3 && cov < 1);
+    ss_match_result_free(&res);
+    if (cov < 1) {
+      mo.autopair.hyp_min_coverage = nextafter(cov, 2.0);
+      CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+      CHECK(res.map && copy && !memcmp(res.map, copy, sizeof(int) * (size_t)n));
+      CHECK(res.autopair.coverage == cov && !res.autopair.confident);
+      CHECK_MSG(!had || strstr(res.notes, "images reach only"), "notes '%s'", res.notes);
+      ss_match_result_free(&res);
+    }
+    mo.autopair.hyp_min_coverage = cov; /* at the bound: not below it */
+    CHECK(ss_match_prepared(&pX, &pR, 0, NULL, NULL, &mo, &res, &e) == SS_OK);
+    CHECK(res.autopair.confident == had);
+    ss_match_result_free(&res);
+    free(copy);
+    mo.autopair.hyp_min_coverage = 1.5;
+    CHECK(ss_match_prepared(&pX, &pP, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID && strstr(e.msg, "hyp_min_coverage"));
+    mo.autopair.hyp_min_coverage = -0.1;
+    CHECK(ss_match_prepared(&pX, &pP, 0, NULL, NULL, &mo, &res, &e) == SS_ERR_INVALID);
   }
   ss_match_result_free(&res);
   ss_shape_prep_free(&pX), ss_shape_prep_free(&pP), ss_shape_prep_free(&pR);

@@ -482,6 +482,14 @@ typedef struct ss_autopair_options {
    * energy, which may differ from the earlier map's by more than the margin between distinct maps,
    * and the choice and the confidence may go with it (docs/tuning.md) */
   double hyp_skip_tol;
+  /* the map returned is not confident when its images reach fewer than this share of the vertices
+   * of the smaller shape (ss_autopair_info.coverage: distinct images / min(X's, Y's vertex count)).
+   * A map that slides or folds part of X piles images together and leaves part of Y unreached: on
+   * the tuning split its three maps above 5 reach the fewest of all 180 (0.615-0.632; the right maps
+   * 0.636-0.875, FAUST_r's from 0.711). Default 0.65; 0: not used. Set on shapes of about equal vertex
+   * counts (FAUST_r, TOSCA_r); a right map between a coarse and a fine mesh reaches more, so there it
+   * flags less (docs/tuning.md) */
+  double hyp_min_coverage;
 } ss_autopair_options;
 
 #define SS_MAX_HYPOTHESES 16
@@ -605,6 +613,9 @@ typedef struct ss_autopair_info {
    * mapped (hyp_skip_tol; its hyp_* numbers are then NaN, and it is neither chosen nor counted in the
    * margin), -1 for the candidates mapped */
   int hyp_skipped_by[SS_MAX_HYPOTHESES];
+  /* the map returned: its distinct images over min(X's, Y's vertex count) (hyp_min_coverage); set by
+   * a match that forms hypotheses (landmark-free, or beside landmarks), 0 otherwise */
+  double coverage;
 } ss_autopair_info;
 
 /* Landmark-free pairing of the segment centres of two shapes (the method above): every centre of the

@@ -541,8 +541,9 @@ def _indices(a, n, what, hi):
     return a
 
 
-Match = namedtuple("Match", "map C pairs_x pairs_y centers_x centers_y notes confident hypothesis margin hypotheses",
-                   defaults=(None, None, ()))
+Match = namedtuple("Match",
+                   "map C pairs_x pairs_y centers_x centers_y notes confident hypothesis margin hypotheses coverage",
+                   defaults=(None, None, (), None))
 Match.__doc__ = """The result of `match`.
 
 Attributes
@@ -572,6 +573,10 @@ hypotheses : tuple of dict
     distortion, reversed, orientation, orientation_min, pair_energy, map_energy, differ, scale (NaN
     where the CLI writes null), "from" ("X", or "Y" for Y's pairing hypotheses read back), and
     flip_of / flip_by for a flipped candidate. Empty when one map was made.
+coverage : float or None
+    Where hypotheses were formed (landmark-free, or beside landmarks): the map's distinct images over
+    the smaller shape's vertex count (``coverage`` of ``specseg match --json``); below min_coverage
+    the map is not confident. None otherwise.
 """
 
 _PROBES = {"std": 0, "asa": 1, "diff": 2}
@@ -580,7 +585,7 @@ _PROBES = {"std": 0, "asa": 1, "diff": 2}
 def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="diff", k=None, zoomout=None,
           segment_profile=None, descriptors=None, wks=True, orient=None, zoomout_step=None, zoomout_samples=None,
           descr_k=None, hypotheses=None, one_way=False, flip_by=None, final_zoomout=None, polish=True, recheck=True,
-          scale_fit=False, skip_tol=None):
+          scale_fit=False, skip_tol=None, min_coverage=None):
     """Point map X -> Y by the paper's pipeline (§6): segmentation of both shapes, pairing of the
     segments through the landmarks, a functional map with STD / ASA / DIFF probes, optional ZoomOut.
 
@@ -658,6 +663,9 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
         within this many sqrt(area) of their partners is not mapped (``--skip-tol``; 0..1e6, default
         0: every one is). 0.05 takes about 0.8x the time; the candidate's own energy is lost, so the
         choice and the confidence may change (docs/tuning.md).
+    min_coverage : float, optional
+        The map is not confident when its distinct images make up less than this share of the
+        smaller shape's vertices (``--min-coverage``; 0..1, default 0.65; 0: not used).
 
     Returns
     -------
@@ -730,7 +738,7 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
             raise ValueError(f"orient must be a weight in [0, 1e6], not {orient!r}")
         o.fmap.w_orient = w
     _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
-                        polish, recheck, scale_fit, skip_tol)
+                        polish, recheck, scale_fit, skip_tol, min_coverage)
     if not wks and descriptors is None:
         raise ValueError("wks=False needs descriptors: they replace the WKS")
     o.fmap.no_wks = 0 if wks else 1
@@ -771,13 +779,14 @@ def match(VX, FX, VY=None, FY=None, landmarks=None, landmarks_y=None, probes="di
                      confident=None if not r.autopair.used else bool(r.autopair.confident),
                      hypothesis=int(r.autopair.hypothesis) if r.autopair.hypotheses > 1 else None,
                      margin=float(r.autopair.hyp_margin) if r.autopair.hypotheses > 1 else None,
-                     hypotheses=_hypotheses_info(r.autopair))
+                     hypotheses=_hypotheses_info(r.autopair),
+                     coverage=float(r.autopair.coverage) if r.autopair.used or r.autopair.hypotheses > 1 else None)
     finally:
         lib.ss_match_result_free(C.byref(r))
 
 
 def _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, one_way, flip_by, final_zoomout,
-                        polish, recheck, scale_fit, skip_tol):
+                        polish, recheck, scale_fit, skip_tol, min_coverage=None):
     """match()'s refinement and hypothesis keywords into the options o, with the CLI's ranges."""
     if zoomout_step is not None:
         o.fmap.zoomout_step = _as_int32(zoomout_step, "zoomout_step", 1, 10000)
@@ -809,6 +818,11 @@ def _hypothesis_options(o, zoomout_step, zoomout_samples, descr_k, hypotheses, o
         if not 0 <= t <= 1e6:
             raise ValueError("skip_tol must be in [0, 1e6], not %r" % (skip_tol,))
         o.autopair.hyp_skip_tol = t
+    if min_coverage is not None:
+        t = _as_float(min_coverage, "min_coverage")
+        if not 0 <= t <= 1:
+            raise ValueError("min_coverage must be in [0, 1], not %r" % (min_coverage,))
+        o.autopair.hyp_min_coverage = t
 
 
 _HYP_KEYS = ("energy", "distortion", "reversed", "orientation", "orientation_min", "pair_energy", "map_energy",

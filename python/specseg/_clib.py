@@ -137,7 +137,8 @@ class ss_autopair_options(C.Structure):
                 ("hyp_flip_orient", C.c_double), ("hyp_w_orientation", C.c_double),
                 ("hyp_flip_side", C.c_int), ("hyp_final_kmax", C.c_int), ("hyp_reverse", C.c_int),
                 ("hyp_final_polish", C.c_int), ("hyp_recheck_window", C.c_double),
-                ("hyp_fit_scale", C.c_int), ("hyp_skip_tol", C.c_double)]
+                ("hyp_fit_scale", C.c_int), ("hyp_skip_tol", C.c_double),
+                ("hyp_min_coverage", C.c_double)]
 
 
 MAX_HYPOTHESES = 16  # SS_MAX_HYPOTHESES (match.h)
@@ -161,7 +162,8 @@ class ss_autopair_info(C.Structure):
                 ("hyp_flip_by_y", C.c_int * MAX_HYPOTHESES), ("hyp_from_y", C.c_int * MAX_HYPOTHESES),
                 ("hyp_final_k", C.c_int), ("hyp_final_polished", C.c_int),
                 ("hyp_rechecked", C.c_int), ("hyp_recheck_from", C.c_int),
-                ("hyp_scale", C.c_double * MAX_HYPOTHESES), ("hyp_skipped_by", C.c_int * MAX_HYPOTHESES)]
+                ("hyp_scale", C.c_double * MAX_HYPOTHESES), ("hyp_skipped_by", C.c_int * MAX_HYPOTHESES),
+                ("coverage", C.c_double)]
 
 
 class ss_match_options(C.Structure):

@@ -63,6 +63,7 @@ void ss_autopair_default_options(ss_autopair_options *o) {
   o->hyp_recheck_window = 0.05;
   o->hyp_fit_scale = 0;
   o->hyp_skip_tol = 0;
+  o->hyp_min_coverage = 0.65;
 }
 
 static double cpu_now(void) {

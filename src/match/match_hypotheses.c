@@ -255,7 +255,8 @@ static ss_status hyp_options_check(const ss_autopair_options *a, ss_error *err) 
       int_outside(a->hyp_final_polish, 0, 1, "hyp_final_polish", err) ||
       int_outside(a->hyp_fit_scale, 0, 1, "hyp_fit_scale", err) ||
       real_outside(a->hyp_recheck_window, 0, 1e6, "hyp_recheck_window", err) ||
-      real_outside(a->hyp_skip_tol, 0, 1e6, "hyp_skip_tol", err))
+      real_outside(a->hyp_skip_tol, 0, 1e6, "hyp_skip_tol", err) ||
+      real_outside(a->hyp_min_coverage, 0, 1, "hyp_min_coverage", err))
     return SS_ERR_INVALID;
   /* (0, 1]: a share of the pairs, at least one kept */
   if (!(a->hyp_keep > 0 && a->hyp_keep <= 1))
@@ -672,6 +673,7 @@ typedef struct {
   int oriented;        /* it keeps orientation (or no candidate does) */
   int low_orient;      /* it keeps it, but not clearly */
   int high_map_energy; /* its own refinement energy is high */
+  int low_coverage;    /* the map returned reaches few of the vertices (judged once it is final) */
   double orientation, map_energy; /* its orientation score and own energy (the notes name them) */
 } doubts;
 
@@ -700,8 +702,33 @@ static doubts judge_kept(hyp_run *R) {
   d.low_orient = d.oriented && d.orientation < a->hyp_confident_orientation;
   /* NaN (no such energy) compares false: not flagged by it */
   d.high_map_energy = d.map_energy > a->hyp_max_map_energy;
+  d.low_coverage = 0;
   if (!d.oriented || d.low_orient || d.high_map_energy) info->confident = 0;
   return d;
+}
+
+/* The share of the smaller shape's vertex count that the map's distinct images make up
+ * (ss_autopair_info.coverage); seen: scratch of nY bytes */
+static double map_coverage(const int *map, int nX, int nY, unsigned char *seen) {
+  memset(seen, 0, (size_t)nY);
+  int distinct = 0;
+  for (int i = 0; i < nX; i++) {
+    distinct += !seen[map[i]];
+    seen[map[i]] = 1;
+  }
+  return (double)distinct / (nX < nY ? nX : nY);
+}
+
+/* The map returned, once final: its coverage, and no confidence below hyp_min_coverage */
+static ss_status judge_coverage(hyp_run *R, const ss_match_result *out, doubts *d, ss_error *err) {
+  const int nY = R->Y->mesh->nv;
+  unsigned char *seen = malloc((size_t)nY);
+  if (!seen) return ss_fail(err, SS_ERR_NOMEM, "match: out of memory");
+  R->info.coverage = map_coverage(out->map, (int)R->nX, nY, seen);
+  free(seen);
+  d->low_coverage = R->info.coverage < R->o.autopair.hyp_min_coverage;
+  if (d->low_coverage) R->info.confident = 0;
+  return SS_OK;
 }
 
 /* A landmark-free choice in doubt, rechecked by the polished maps (recheck_polished); another choice
@@ -756,6 +783,9 @@ static void note_doubts(const hyp_run *R, const doubts *d, ss_match_result *out)
   else if (d->high_map_energy)
     snprintf(msg, cap, "map NOT confident: its own energy %.3g is above %.3g (its functional map is far from "
              "orthogonal or the descriptors badly kept; %s)", d->map_energy, a->hyp_max_map_energy, ask);
+  else if (d->low_coverage)
+    snprintf(msg, cap, "map NOT confident: its images reach only %.3f of the vertices, below %.3g (part of it "
+             "slides or folds onto the rest; %s)", info->coverage, a->hyp_min_coverage, ask);
   else if (!info->confident && R->cs.nc > 1)
     snprintf(msg, cap, "%s map NOT confident (hypothesis margin %.3g, min %.3g): another pairing "
              "hypothesis maps almost as well; the map may be wrong (%s)", nlg ? "the" : "landmark-free",
@@ -846,7 +876,7 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
   if ((st = map_candidates(&R, zp, out, flip_skipped, sizeof flip_skipped, err))) goto done;
   R.info.hypotheses = R.cs.nc;
   R.info.hyp_descriptor = desc_c;
-  const doubts d = judge_kept(&R);
+  doubts d = judge_kept(&R);
   if ((st = recheck_choice(&R, zp, out, err))) goto done;
   /* the map kept, refined further and polished, with landmarks or without (their time is ZoomOut's) */
   const double t_final = ss_time();
@@ -855,6 +885,8 @@ static ss_status match_hypotheses_cached(const ss_shape_prep *X, const ss_shape_
     if ((st = ss_map_polish(X->mesh, Y->mesh, out->map, NULL, out->map, err))) goto done;
     R.info.hyp_final_polished = 1;
   }
+  R.info.coverage = NAN;
+  if (out->map && (st = judge_coverage(&R, out, &d, err))) goto done;
   out->t_zoomout += ss_time() - t_final;
   /* the other hypotheses' maps count as pairing time */
   out->t_pair += t_pair + (ss_time() - t_loop) - (out->t_pair + out->t_fmap + out->t_zoomout);
