@@ -173,15 +173,21 @@ else:
     check(np.array_equal(np.loadtxt(path("mp.txt"), dtype=np.int64), mc), "specseg match on the saved Shape: the CLI's map")
     # landmark-free with the hypothesis options (cheap ones): the CLI's map and its --json numbers
     flags = ["--hypotheses", 2, "--one-way", "--final-zoomout", 0, "--no-polish", "--no-recheck", "--flip-by", "x",
-             "--scale-fit", "--zoomout-step", 10, "--skip-tol", 0.05]
+             "--scale-fit", "--zoomout-step", 10, "--skip-tol", 0.05, "--min-coverage", 0.99]
     out = cli("match", path("s.sss"), path("s.sss"), *flags, "--json", "-o", path("mh.txt"))
     jh = json.loads(out)["results"][0]
     rh = specseg.match(S, S, hypotheses=2, one_way=True, final_zoomout=0, polish=False, recheck=False, flip_by="x",
-                       scale_fit=True, zoomout_step=10, skip_tol=0.05)
+                       scale_fit=True, zoomout_step=10, skip_tol=0.05, min_coverage=0.99)
     check(np.array_equal(np.loadtxt(path("mh.txt"), dtype=np.int64), rh.map), "match with hypothesis options: the CLI's map")
     check(rh.confident == bool(jh["confident"]) and rh.hypothesis == jh["hypothesis"] and
           rh.margin == jh["hypothesis_margin"], "match: confident / hypothesis / margin as --json")
     check(len(rh.hypotheses) == len(jh["hypotheses"]) >= 2, "match: %d hypotheses" % len(rh.hypotheses))
+    cov = len(np.unique(rh.map)) / S.n
+    check(rh.coverage == jh["coverage"] and abs(rh.coverage - cov) < 1e-12,
+          "match: coverage %r as --json %r and as counted %r" % (rh.coverage, jh["coverage"], cov))
+    check(rh.coverage >= 0.99 or not rh.confident, "match: below min_coverage 0.99 not confident (%r)" % rh.coverage)
+    check((rp.hypothesis is None) == (rp.coverage is None) and (rp.coverage is None or 0 < rp.coverage <= 1),
+          "match with landmarks: coverage %r where hypotheses were formed (hypothesis %r)" % (rp.coverage, rp.hypothesis))
     for a, b in zip(rh.hypotheses, jh["hypotheses"]):
         check(all((b[key] is None and math.isnan(a[key])) or a[key] == b[key] for key in b if key not in ("from",)),
               "match: a hypothesis's numbers as --json: %r / %r" % (a, b))
@@ -191,6 +197,11 @@ else:
         check(False, "match: skip_tol -1 refused")
     except ValueError as ex:
         check("skip_tol" in str(ex), "match: skip_tol -1 refused (%s)" % ex)
+    try:
+        specseg.match(S, S, min_coverage=1.5)
+        check(False, "match: min_coverage 1.5 refused")
+    except ValueError as ex:
+        check("min_coverage" in str(ex), "match: min_coverage 1.5 refused (%s)" % ex)
     cli("prepare", MESH, "-o", path("c.sss"))
     S3 = specseg.Shape.load(path("c.sss"))
     # (the CLI runs OpenBLAS on one thread: the last bits of the eigenpairs may differ from here)
