@@ -659,6 +659,48 @@ static void test_api(void) {
   CHECK(!ssi_mesh_assimp_ext("m.gltf", NULL, 0) && !ssi_mesh_assimp_ext("m.glb", NULL, 0));
 }
 
+/* The tetrahedron placed by n nodes (node i translated by 2i along x when `apart`): the scene places
+ * 4n vertices from 4 stored */
+static char *crowd_text(int n, int apart) {
+  size_t cap = (size_t)n * 48 + 512, len = 0;
+  char *nodes = malloc(cap), *list = malloc((size_t)n * 12 + 16);
+  size_t ll = 0;
+  for (int i = 0; i < n; i++) {
+    len += (size_t)snprintf(nodes + len, cap - len, apart ? "%s{\"mesh\":0,\"translation\":[%d,0,0]}" : "%s{\"mesh\":0}",
+                            i ? "," : "", 2 * i);
+    ll += (size_t)snprintf(list + ll, (size_t)n * 12 + 16 - ll, "%s%d", i ? "," : "", i);
+  }
+  char *rest = fmt("\"scene\":0,\"scenes\":[{\"nodes\":[%s]}],\"nodes\":[%s],"
+                   "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+                   "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48},{\"buffer\":0,"
+                   "\"byteOffset\":48,\"byteLength\":24}],"
+                   "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\"},"
+                   "{\"bufferView\":1,\"componentType\":5123,\"count\":12,\"type\":\"SCALAR\"}]",
+                   list, nodes);
+  char *t = gltf_text(rest, TBIN, sizeof TBIN);
+  free(nodes), free(list), free(rest);
+  return t;
+}
+
+/* Instancing in proportion: 1,000 copies of a tetrahedron are read; 262,145 copies (1,048,580 vertices
+ * from 4 stored, past the 2^20 floor and 64 copies) are refused, before the vertices are made */
+static void test_crowd(void) {
+  ss_error e = {{0}};
+  ss_mesh r = {0};
+  char *t = crowd_text(1000, 1);
+  CHECK_MSG(ss_read_mesh_memory(t, strlen(t), "crowd.gltf", &r, &e) == SS_OK && r.nv == 4000 && r.nf == 4000,
+            "1000 copies: %s (nv %d)", e.msg, r.nv);
+  ss_mesh_free(&r);
+  free(t);
+  t = crowd_text(262145, 0);
+  ss_status st = ss_read_mesh_memory(t, strlen(t), "crowd.gltf", &r, &e);
+  CHECK_MSG(st == SS_ERR_PARSE && strstr(e.msg, "crowd.gltf") && strstr(e.msg, "more than 64 times") &&
+                strstr(e.msg, "1048580 vertices"),
+            "262145 copies: status %d, '%s'", (int)st, e.msg);
+  CHECK(r.nv == 0 && r.V == NULL);
+  free(t);
+}
+
 int main(void) {
   if (!tl_tmpdir_make("/tmp/ss_test_gltf_XXXXXX")) {
     perror("mkdtemp");
@@ -675,6 +717,7 @@ int main(void) {
   test_errors();
   test_glb_errors();
   test_api();
+  test_crowd();
   tl_tmpdir_remove();
   TEST_MAIN_END();
 }

@@ -98,7 +98,9 @@ SS_API ss_status ss_read_stl(const char *path, ss_mesh *m, ss_error *err);
  * rotation / scale) applied in double precision; vertices with exactly equal coordinates are welded
  * as for STL. Positions float32, or integers with KHR_mesh_quantization; indices 8, 16 or 32 bit.
  * Refused: glTF 1.0, other required extensions (Draco, meshopt, ...), sparse accessors, accessors
- * without a buffer view, node cycles.
+ * without a buffer view, node cycles, and a scene that places its stored vertices (each POSITION
+ * accessor once) more than 64 times over once past 2^20 vertices (instancing out of proportion to
+ * the file: a few kilobytes could otherwise ask for many GB).
  *
  * Inputs:
  *   path     the file

@@ -10,8 +10,9 @@
  * in depth-first node order, concatenated, then welded by exact coordinates like the other readers.
  * Buffers: base64 data URIs, a GLB's BIN chunk, or files beside the .gltf (only when reading by path).
  * Refused with a message: sparse accessors, accessors without bufferView (all zeros), extensions
- * required other than KHR_mesh_quantization (integer positions), glTF 1.0. Skins and morph targets
- * are ignored (the mesh as stored). */
+ * required other than KHR_mesh_quantization (integer positions), glTF 1.0, instancing out of
+ * proportion to the file (GLTF_MAX_COPIES below). Skins and morph targets are ignored (the mesh as
+ * stored). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -370,6 +371,13 @@ static const char *jstr(const jdoc *d, const jv *v) {
 #define MAX_EXACT 9007199254740992.0 /* 2^53: larger integers are not exact in a JSON number */
 #define GLB_JSON 0x4E4F534Au
 #define GLB_BIN 0x004E4942u
+/* A scene may place a mesh once per node that names it, and one accessor may serve many meshes: a
+ * file of a few kilobytes could ask for hundreds of millions of vertices (many GB) before any other
+ * limit applies. Past GLTF_FLOOR vertices the scene may place its stored vertices (each POSITION
+ * accessor counted once) at most GLTF_MAX_COPIES times over, so that memory stays in proportion to
+ * the file; a shape to match is one body, not a crowd of copies. */
+#define GLTF_FLOOR ((size_t)1 << 20)
+#define GLTF_MAX_COPIES 64
 
 typedef struct gbuf {
   const unsigned char *p;
@@ -388,6 +396,8 @@ typedef struct gl {
   int glb, has_bin, quant;
   gbuf *bufs;
   unsigned char *state; /* per node: 0 not seen, 1 on the path from the root, 2 done */
+  unsigned char *placed; /* per accessor: 1 once some primitive placed its vertices */
+  size_t stored;         /* the vertices of the POSITION accessors placed, each accessor once */
   io_dvec V;
   io_ivec F;
   long dropped, prims;
@@ -804,6 +814,12 @@ static ss_status add_primitive(gl *g, long mi, long pi, const jv *prim, const do
   const size_t ntri = mode == 4 ? nidx / 3 : nidx >= 3 ? nidx - 2 : 0;
   if (g->V.n / 3 + pa.count > (size_t)IO_MAX_ELEMENTS)
     return ss_fail(g->err, SS_ERR_PARSE, "%s: more than %d vertices", g->name, IO_MAX_ELEMENTS);
+  if (!g->placed[pa_i]) g->placed[pa_i] = 1, g->stored += pa.count;
+  if (g->V.n / 3 + pa.count > GLTF_FLOOR && g->V.n / 3 + pa.count > GLTF_MAX_COPIES * g->stored)
+    return ss_fail(g->err, SS_ERR_PARSE,
+                   "%s: %s: the scene places its %zu stored vertices more than %d times over (%zu vertices "
+                   "so far): instancing out of proportion to the file is refused; export the shape alone",
+                   g->name, ctx, g->stored, GLTF_MAX_COPIES, g->V.n / 3 + pa.count);
   if (g->F.n / 3 + ntri > (size_t)IO_MAX_ELEMENTS)
     return ss_fail(g->err, SS_ERR_PARSE, "%s: more than %d triangles", g->name, IO_MAX_ELEMENTS);
   /* the indices first: an index out of range fails before any vertex is placed */
@@ -986,7 +1002,8 @@ static ss_status read_document(gl *g) {
   /* both sized by entries of the JSON text, which lie in memory */
   g->bufs = calloc(alen(g->buffers) + 1, sizeof *g->bufs);
   g->state = calloc(alen(g->nodes) + 1, 1);
-  if (!g->bufs || !g->state) return ss_fail(g->err, SS_ERR_NOMEM, "%s: out of memory", g->name);
+  g->placed = calloc(alen(g->accessors) + 1, 1);
+  if (!g->bufs || !g->state || !g->placed) return ss_fail(g->err, SS_ERR_NOMEM, "%s: out of memory", g->name);
   long si = -1;
   if ((st = get_ref(g, g->root, "(top level)", "scene", 0, scenes, "scenes", &si))) return st;
   if (si < 0 && alen(scenes)) si = 0;
@@ -1101,7 +1118,7 @@ ss_status io_parse_gltf(const char *path, const char *name, const char *buf, siz
   if (!st) st = io_finish_mesh(&g.V, &g.F, m, name, err);
   if (!st) st = ssi_mesh_weld(m, NULL, err);
   for (size_t i = 0; g.bufs && i < alen(g.buffers); i++) free(g.bufs[i].own);
-  free(g.bufs), free(g.state), free(g.V.a), free(g.F.a);
+  free(g.bufs), free(g.state), free(g.placed), free(g.V.a), free(g.F.a);
   jdoc_free(&g.d);
   if (st) ss_mesh_free(m);
   return st;
