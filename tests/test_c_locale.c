@@ -76,14 +76,7 @@ static void test_meshes(void) {
   const unsigned short I[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
   unsigned char bin[72];
   memcpy(bin, P, 48), memcpy(bin + 48, I, 24);
-  static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  char uri[200];
-  int u = 0;
-  for (int i = 0; i < 72; i += 3) {
-    const unsigned v = (unsigned)bin[i] << 16 | (unsigned)bin[i + 1] << 8 | bin[i + 2];
-    for (int s = 18; s >= 0; s -= 6) uri[u++] = b64[(v >> s) & 63];
-  }
-  uri[u] = 0;
+  char *uri = tl_base64(bin, sizeof bin);
   char gltf[1400];
   snprintf(gltf, sizeof gltf,
            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
@@ -94,7 +87,8 @@ static void test_meshes(void) {
            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
            "\"min\":[0,0,-9.765625e-4],\"max\":[0.75,0.125,0]},"
            "{\"bufferView\":1,\"componentType\":5123,\"count\":12,\"type\":\"SCALAR\"}]}",
-           uri);
+           uri ? uri : "");
+  free(uri);
   CHECK_MSG(ss_read_mesh_memory(gltf, strlen(gltf), "m.gltf", &r, &e) == SS_OK && same_tet(&r), "glTF: %s", e.msg);
   ss_mesh_free(&r);
 }

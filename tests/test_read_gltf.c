@@ -15,22 +15,6 @@
 #include "specseg/mesh.h"
 #include "testlib.h"
 
-static const char B64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-
-static char *base64(const void *data, size_t n) {
-  const unsigned char *in = data;
-  char *out = malloc(4 * (n / 3 + 1) + 1);
-  size_t o = 0;
-  for (size_t i = 0; i < n; i += 3) {
-    uint32_t v = (uint32_t)in[i] << 16 | (i + 1 < n ? (uint32_t)in[i + 1] << 8 : 0) | (i + 2 < n ? in[i + 2] : 0);
-    out[o++] = B64[v >> 18 & 63], out[o++] = B64[v >> 12 & 63];
-    out[o++] = i + 1 < n ? B64[v >> 6 & 63] : '=';
-    out[o++] = i + 2 < n ? B64[v & 63] : '=';
-  }
-  out[o] = '\0';
-  return out;
-}
-
 /* printf into a malloc'd string */
 static char *fmt(const char *f, ...) {
   va_list ap;
@@ -56,7 +40,7 @@ static char *replace(const char *s, const char *a, const char *b) {
 
 /* A .gltf: one buffer holding bin as a data URI, then `rest` (the members after "buffers") */
 static char *gltf_text(const char *rest, const void *bin, size_t n) {
-  char *b = base64(bin, n);
+  char *b = tl_base64(bin, n);
   char *s =
       fmt("{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;"
           "base64,%s\"}],%s}",
@@ -447,7 +431,7 @@ static void test_errors(void) {
   memcpy(nanbin, TBIN, 72);
   const float nanf = NAN;
   memcpy(nanbin + 16, &nanf, 4);
-  char *nanb = base64(nanbin, 72), *goodb = base64(TBIN, 72);
+  char *nanb = tl_base64(nanbin, 72), *goodb = tl_base64(TBIN, 72);
   const bad_case cases[] = {
       {"bad escape", "\"version\":\"2.0\"", "\"version\":\"2.0\\q\"", "bad.gltf:1:25: invalid escape in a string"},
       {"accessor out of range", "\"count\":4,", "\"count\":5,",

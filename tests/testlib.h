@@ -68,6 +68,25 @@ static inline void tl_tmpdir_remove(void) {
   if (system(cmd)) fprintf(stderr, "could not remove %s\n", tl_tmpdir);
 }
 
+/* n bytes as standard base64 with padding, in a malloc'd NUL-terminated string (NULL when out of
+ * memory): glTF data URIs */
+static inline char *tl_base64(const void *data, size_t n) {
+  static const char B64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const unsigned char *in = (const unsigned char *)data;
+  char *out = (char *)malloc(4 * (n / 3 + 1) + 1);
+  if (!out) return NULL;
+  size_t o = 0;
+  for (size_t i = 0; i < n; i += 3) {
+    unsigned long v = (unsigned long)in[i] << 16 | (i + 1 < n ? (unsigned long)in[i + 1] << 8 : 0) |
+                      (i + 2 < n ? in[i + 2] : 0);
+    out[o++] = B64[v >> 18 & 63], out[o++] = B64[v >> 12 & 63];
+    out[o++] = i + 1 < n ? B64[v >> 6 & 63] : '=';
+    out[o++] = i + 2 < n ? B64[v & 63] : '=';
+  }
+  out[o] = '\0';
+  return out;
+}
+
 /* The whole file at path in a malloc'd buffer with a NUL after its *n bytes; NULL (and *n 0) when it
  * cannot be read */
 static inline char *tl_read_file(const char *path, size_t *n) {
